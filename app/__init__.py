@@ -1,0 +1,1 @@
+"""Alpha Scoop desktop application (Qt + VTK), a thin layer over `core`."""

@@ -1,0 +1,1 @@
+"""Alpha Scoop core: pure numpy/scipy alpha-shape computation (no Qt, no VTK)."""
