@@ -1,0 +1,165 @@
+"""The result of reading a point file: clean points, their attributes, and a load report."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from core.io.subsample import subsample_indices
+
+PLANAR_RTOL = 1e-9  # smallest/largest singular value below this: the points lie on a plane
+SPACING_SAMPLE = 100_000  # query points used to estimate the median nearest-neighbour distance
+
+
+@dataclass(frozen=True)
+class LoadReport:
+    """What a reader found and changed; shown by the app's Data panel and `alphascoop info`."""
+
+    path: str
+    format: str
+    n_read: int
+    n_points: int
+    n_nonfinite: int
+    n_duplicates: int
+    dim: int
+    planar: bool
+    bbox: tuple[tuple[float, ...], tuple[float, ...]]
+    spacing: float
+    attributes: tuple[str, ...]
+    subsampled_from: int | None = None
+    subsample_method: str | None = None
+    notes: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict:
+        """Plain JSON-ready dict (lists instead of tuples)."""
+        out = dataclasses.asdict(self)
+        out["bbox"] = [list(c) for c in self.bbox]
+        out["attributes"] = list(self.attributes)
+        out["notes"] = list(self.notes)
+        return out
+
+    def lines(self) -> list[str]:
+        """Short human-readable summary, one fact per line."""
+        lo, hi = self.bbox
+        out = [
+            f"file        {self.path} ({self.format})",
+            f"points      {self.n_points:,} of {self.n_read:,} read"
+            f" ({self.n_nonfinite:,} non-finite dropped, {self.n_duplicates:,} duplicates merged)",
+            f"dimension   {self.dim}D{' (planar)' if self.planar and self.dim == 3 else ''}",
+            f"bbox        [{', '.join(f'{v:.6g}' for v in lo)}] - "
+            f"[{', '.join(f'{v:.6g}' for v in hi)}]",
+            f"spacing     {self.spacing:.6g} (median nearest-neighbour distance)",
+            f"attributes  {', '.join(self.attributes) or 'none'}",
+        ]
+        if self.subsampled_from is not None:
+            out.append(f"subsampled  {self.subsample_method} from {self.subsampled_from:,}")
+        out.extend(f"note        {n}" for n in self.notes)
+        return out
+
+
+@dataclass(frozen=True)
+class PointSet:
+    """Points (n, d) float64 (d = 2 or 3), per-point attributes (n, ...), and the load report."""
+
+    points: np.ndarray
+    attributes: dict[str, np.ndarray] = field(default_factory=dict)
+    report: LoadReport | None = None
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    """C-contiguous read-only copy-free view, so no widget can corrupt shared arrays."""
+    a = np.ascontiguousarray(a)
+    a.flags.writeable = False
+    return a
+
+
+def first_unique(points: np.ndarray) -> np.ndarray:
+    """(n,) bool mask keeping the first occurrence of every exact duplicate row."""
+    n = len(points)
+    if n < 2:
+        return np.ones(n, dtype=bool)
+    order = np.lexsort(points.T[::-1])
+    srt = points[order]
+    starts = np.ones(n, dtype=bool)
+    starts[1:] = np.any(srt[1:] != srt[:-1], axis=1)
+    firsts = np.minimum.reduceat(order, np.flatnonzero(starts))
+    keep = np.zeros(n, dtype=bool)
+    keep[firsts] = True
+    return keep
+
+
+def is_planar(points: np.ndarray) -> bool:
+    """True for 2D points, or 3D points whose spread across some plane is negligible."""
+    if points.shape[1] == 2 or len(points) < 4:
+        return True
+    centred = points - points.mean(axis=0)
+    s = np.linalg.svd(centred, compute_uv=False)
+    return bool(s[-1] <= PLANAR_RTOL * s[0])
+
+
+def median_spacing(points: np.ndarray, seed: int = 0) -> float:
+    """Median distance from a point to its nearest neighbour (on a sample for big sets)."""
+    if len(points) < 2:
+        return 0.0
+    tree = cKDTree(points)
+    query = points
+    if len(points) > SPACING_SAMPLE:
+        rng = np.random.default_rng(seed)
+        query = points[rng.choice(len(points), SPACING_SAMPLE, replace=False)]
+    dist, _ = tree.query(query, k=2)
+    return float(np.median(dist[:, 1]))
+
+
+def finish(
+    path: Path,
+    fmt: str,
+    points: np.ndarray,
+    attributes: dict[str, np.ndarray],
+    *,
+    subsample: int | None = None,
+    method: str = "voxel",
+    seed: int = 0,
+    notes: tuple[str, ...] = (),
+) -> PointSet:
+    """Drop non-finite rows, merge duplicates, subsample, and measure: the common reader tail."""
+    points = np.asarray(points, dtype=np.float64)
+    n_read = len(points)
+    finite = np.all(np.isfinite(points), axis=1)
+    points = points[finite]
+    attributes = {k: np.asarray(v)[finite] for k, v in attributes.items()}
+    keep = first_unique(points)
+    n_dup = int(len(points) - keep.sum())
+    points = points[keep]
+    attributes = {k: v[keep] for k, v in attributes.items()}
+    before = len(points)
+    if subsample is not None and 0 < subsample < before:
+        idx = subsample_indices(points, subsample, method=method, seed=seed)
+        points = points[idx]
+        attributes = {k: v[idx] for k, v in attributes.items()}
+    lo = points.min(axis=0) if len(points) else np.zeros(points.shape[1])
+    hi = points.max(axis=0) if len(points) else np.zeros(points.shape[1])
+    report = LoadReport(
+        path=str(path),
+        format=fmt,
+        n_read=n_read,
+        n_points=len(points),
+        n_nonfinite=int(n_read - finite.sum()),
+        n_duplicates=n_dup,
+        dim=points.shape[1],
+        planar=is_planar(points),
+        bbox=(tuple(map(float, lo)), tuple(map(float, hi))),
+        spacing=median_spacing(points, seed),
+        attributes=tuple(sorted(attributes)),
+        subsampled_from=before if len(points) < before else None,
+        subsample_method=method if len(points) < before else None,
+        notes=notes,
+    )
+    return PointSet(
+        points=_readonly(points),
+        attributes={k: _readonly(v) for k, v in attributes.items()},
+        report=report,
+    )
