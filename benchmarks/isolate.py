@@ -1,0 +1,94 @@
+"""Run one measurement in a fresh interpreter so its peak memory is its own."""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import os
+import resource
+import time
+import traceback
+from collections.abc import Callable
+from typing import Any
+
+MIB = 1024.0 * 1024.0
+
+
+def rss_mib() -> float:
+    """Current resident set size of this process, MiB (Linux /proc/self/statm)."""
+    with open("/proc/self/statm") as handle:
+        pages = int(handle.read().split()[1])
+    return pages * os.sysconf("SC_PAGE_SIZE") / MIB
+
+
+def peak_rss_mib() -> float:
+    """Peak resident set size of this process so far, MiB (ru_maxrss is KiB on Linux)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def cpu_seconds() -> float:
+    """User + system CPU time of this process so far, seconds (all its threads)."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+class Probe:
+    """Wall time, CPU time and memory of one operation; the baseline is taken at creation."""
+
+    def __init__(self) -> None:
+        self.base_rss = rss_mib()
+        self.base_peak = peak_rss_mib()
+        self._wall = time.perf_counter()
+        self._cpu = cpu_seconds()
+
+    def result(self, **extra: Any) -> dict:
+        """Figures since creation: seconds, cpu_seconds, peak_mib (whole process), extra_mib."""
+        wall = time.perf_counter() - self._wall
+        peak = peak_rss_mib()
+        return {
+            "seconds": wall,
+            "cpu_seconds": cpu_seconds() - self._cpu,
+            "base_rss_mib": self.base_rss,
+            "base_peak_mib": self.base_peak,
+            "peak_mib": peak,
+            "extra_mib": peak - self.base_rss,
+            **extra,
+        }
+
+
+def best_of(fn: Callable[[], Any], reps: int) -> tuple[float, Any]:
+    """Fastest wall time of reps calls of fn, seconds, and the last call's return value."""
+    best, value = float("inf"), None
+    for _ in range(max(1, reps)):
+        start = time.perf_counter()
+        value = fn()
+        best = min(best, time.perf_counter() - start)
+    return best, value
+
+
+def _child(conn: Any, fn: Callable[..., dict], args: tuple) -> None:
+    """Child entry point: send fn(*args), or {'error': message} when it raises."""
+    try:
+        result = fn(*args)
+    except Exception as exc:  # reported to the parent as a figure that could not be measured
+        result = {"error": f"{type(exc).__name__}: {exc}", "trace": traceback.format_exc()}
+    conn.send(result)
+    conn.close()
+
+
+def run_isolated(fn: Callable[..., dict], *args: Any) -> dict:
+    """fn(*args) run in a new 'spawn' process; its dict, or {'error': ...} if it failed or died."""
+    ctx = mp.get_context("spawn")
+    receiver, sender = ctx.Pipe(duplex=False)
+    proc = ctx.Process(target=_child, args=(sender, fn, args))
+    proc.start()
+    sender.close()
+    try:
+        result = receiver.recv()
+    except EOFError:
+        result = None
+    proc.join()
+    if result is None:
+        code = proc.exitcode
+        why = " (killed: out of memory?)" if code is not None and code < 0 else ""
+        result = {"error": f"measurement process died with exit code {code}{why}"}
+    return result

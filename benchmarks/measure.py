@@ -1,0 +1,118 @@
+"""The measurements of bench_core.py; each runs in its own process (isolate.run_isolated)."""
+
+from __future__ import annotations
+
+import gc
+
+import numpy as np
+from datasets import read_points
+from isolate import Probe, best_of
+
+QUANTILES = (0.0, 0.1, 0.5, 0.9, 1.0)
+
+
+def scipy_delaunay(points_path: str) -> dict:
+    """scipy.spatial.Delaunay(points) alone: time and peak memory."""
+    from scipy.spatial import Delaunay
+
+    points = read_points(points_path)
+    probe = Probe()
+    tri = Delaunay(points)
+    return probe.result(cells=int(tri.simplices.shape[0]))
+
+
+def gudhi_alpha(points_path: str) -> dict:
+    """gudhi.AlphaComplex(points, precision='fast').create_simplex_tree(): time and peak."""
+    import gudhi
+
+    points = read_points(points_path)
+    probe = Probe()
+    tree = gudhi.AlphaComplex(points=points, precision="fast").create_simplex_tree()
+    return probe.result(simplices=int(tree.num_simplices()))
+
+
+def core_build(points_path: str, table_path: str) -> dict:
+    """AlphaComplex.from_points(points): time and peak; then ac.save(table_path) timed once."""
+    from core import AlphaComplex
+
+    points = read_points(points_path)
+    probe = Probe()
+    ac = AlphaComplex.from_points(points)
+    result = probe.result(dim=int(ac.dim), counts=[int(ac.simplices(k).shape[0]) for k in
+                                                   range(ac.dim + 1)])
+    result["save_seconds"], _ = best_of(lambda: ac.save(table_path), 1)
+    return result
+
+
+def core_query(table_path: str, reps: int) -> dict:
+    """AlphaComplex.load (best of reps), shape(alpha) at spectrum quantiles, signatures()."""
+    from core import AlphaComplex
+
+    load_seconds, ac = best_of(lambda: _fresh_load(AlphaComplex, table_path), reps)
+    spectrum = np.asarray(ac.spectrum())
+    first_alpha = float(spectrum[len(spectrum) // 2])
+    first_seconds, _ = best_of(lambda: _materialize(ac.shape(first_alpha), ac.dim), 1)
+    shapes = [_time_shapes(ac, spectrum, q, reps) for q in QUANTILES]
+    result = {"load_seconds": load_seconds, "spectrum_size": len(spectrum),
+              "shape_first_call_seconds": first_seconds, "shapes": shapes}
+    if hasattr(ac, "optimal_alpha"):
+        result["optimal_alpha"] = float(ac.optimal_alpha())
+        shapes.append(_time_shapes(ac, spectrum, None, reps, result["optimal_alpha"]))
+    if hasattr(ac, "signatures"):
+        result["signatures_seconds"], _ = best_of(ac.signatures, 1)
+    return result
+
+
+def _fresh_load(cls: type, path: str) -> object:
+    """A newly loaded table, after the previous one is freed (so loads do not share caches)."""
+    gc.collect()
+    return cls.load(path)
+
+
+def _time_shapes(ac: object, spectrum: np.ndarray, q: float | None, reps: int,
+                 alpha: float | None = None) -> dict:
+    """Best time of reps fully materialized shapes at distinct neighbouring critical alphas.
+
+    Distinct alphas keep any per-alpha cache in the core from turning repeats into lookups.
+    """
+    if alpha is not None:
+        start = int(np.searchsorted(spectrum, alpha))
+    else:
+        start = round(q * (len(spectrum) - 1))
+    start = int(np.clip(start, 0, max(0, len(spectrum) - reps)))
+    alphas = spectrum[start:start + reps] if len(spectrum) else np.zeros(1)
+    times, sizes = [], []
+    for value in alphas:
+        seconds, size = best_of(lambda a=float(value): _materialize(ac.shape(a), ac.dim), 1)
+        times.append(seconds)
+        sizes.append(size)
+    best = int(np.argmin(times))
+    return {"quantile": q, "alpha": float(alphas[best]), "seconds": float(times[best]),
+            "simplices": int(sizes[best])}
+
+
+def _materialize(shape: object, dim: int) -> int:
+    """Touch every array of an AlphaShape; returns how many simplices it holds in all."""
+    arrays = [shape.cells, shape.boundary_facets, shape.regular_facets]
+    arrays += [shape.singular(k) for k in range(dim)]
+    _ = shape.measure
+    return int(sum(np.asarray(a).shape[0] for a in arrays))
+
+
+def open3d_alpha(points_path: str, alphas: list[float]) -> dict:
+    """Open3D: TetraMesh once, then create_from_point_cloud_alpha_shape at each alpha (radius)."""
+    import open3d as o3d
+
+    points = read_points(points_path)
+    pcd = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
+    probe = Probe()
+    tetra, pt_map = o3d.geometry.TetraMesh.create_from_point_cloud(pcd)
+    result = probe.result(version=o3d.__version__)
+    create = o3d.geometry.TriangleMesh.create_from_point_cloud_alpha_shape
+    per_alpha = []
+    for alpha in alphas:
+        seconds, mesh = best_of(lambda a=alpha: create(pcd, a, tetra, pt_map), 1)
+        per_alpha.append({"alpha": alpha, "seconds": seconds,
+                          "triangles": len(mesh.triangles)})
+    result["per_alpha"] = per_alpha
+    return result

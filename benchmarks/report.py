@@ -1,0 +1,121 @@
+"""Turn bench_core measurements into figures, goal ratios, a printed table and a JSON file."""
+
+from __future__ import annotations
+
+import json
+import math
+import operator
+import os
+import tempfile
+
+# label, numerator figure, denominator figure, comparison, goal, source issue
+GOALS = (
+    ("build / scipy Delaunay (time)", "build.seconds", "scipy.seconds", "<=", 1.5, 3),
+    ("build / gudhi fast (time)", "build.seconds", "gudhi.seconds", "<=", 0.8, 3),
+    ("build / scipy (peak extra memory)", "build.extra_mib", "scipy.extra_mib", "<=", 2.0, 3),
+    ("worst shape(alpha) / build", "shape.worst_seconds", "build.seconds", "<=", 1e-3, 3),
+    ("build / load", "build.seconds", "query.load_seconds", ">=", 20.0, 3),
+    ("signatures() / build", "query.signatures_seconds", "build.seconds", "<=", 0.5, 4),
+    ("worst shape / fastest Open3D alpha", "shape.worst_seconds", "open3d.fastest_seconds",
+     "<=", 0.1, 6),
+)
+COMPARE = {"<=": operator.le, ">=": operator.ge}
+ROWS = ("scipy", "gudhi", "build", "open3d")
+
+
+def figures(results: dict) -> dict:
+    """Flat {'name.key': number} of every scalar measurement, plus the derived worst/fastest."""
+    flat = {}
+    for name, result in results.items():
+        for key, value in result.items():
+            if isinstance(value, int | float) and not isinstance(value, bool):
+                flat[f"{name}.{key}"] = float(value)
+    shapes = results.get("query", {}).get("shapes", [])
+    if shapes:
+        flat["shape.worst_seconds"] = max(s["seconds"] for s in shapes)
+    per_alpha = results.get("open3d", {}).get("per_alpha", [])
+    if per_alpha:
+        flat["open3d.fastest_seconds"] = min(p["seconds"] for p in per_alpha)
+    return flat
+
+
+def ratios(flat: dict) -> list[dict]:
+    """One dict per goal: value, reference, ratio, goal and passed (None when not measured)."""
+    rows = []
+    for label, num, den, op, goal, issue in GOALS:
+        value, ref = flat.get(num), flat.get(den)
+        ratio = value / ref if value is not None and ref else None
+        passed = None if ratio is None else bool(COMPARE[op](ratio, goal))
+        rows.append({"figure": label, "value": value, "reference": ref, "ratio": ratio,
+                     "goal": f"{op} {goal:g}", "passed": passed, "issue": issue})
+    return rows
+
+
+def _num(value: float | None, digits: int = 3) -> str:
+    """Short human number; '-' when absent."""
+    return "-" if value is None else f"{value:.{digits}g}"
+
+
+def format_tables(n: int, results: dict, rows: list[dict]) -> str:
+    """The measurements and the goal ratios as two plain-text (markdown) tables."""
+    lines = [f"### n = {n}", "",
+             "| measurement | wall s | cpu s | peak MiB | extra MiB | note |",
+             "|---|---|---|---|---|---|"]
+    for name in ROWS:
+        res = results.get(name)
+        if res is None:
+            continue
+        note = res.get("error", "")
+        lines.append(f"| {name} | {_num(res.get('seconds'))} | {_num(res.get('cpu_seconds'))} "
+                     f"| {_num(res.get('peak_mib'), 4)} | {_num(res.get('extra_mib'), 4)} "
+                     f"| {note} |")
+    lines += _query_lines(results.get("query", {}), results.get("open3d", {}))
+    lines += ["", "| figure | value s/MiB | reference | ratio | goal | pass |",
+              "|---|---|---|---|---|---|"]
+    for row in rows:
+        verdict = {True: "PASS", False: "FAIL", None: "n/a"}[row["passed"]]
+        lines.append(f"| {row['figure']} | {_num(row['value'])} | {_num(row['reference'])} | "
+                     f"{_num(row['ratio'])} | {row['goal']} | {verdict} |")
+    return "\n".join(lines)
+
+
+def _query_lines(query: dict, o3d: dict) -> list[str]:
+    """Table rows for load, save, signatures and each timed alpha."""
+    if not query or "error" in query:
+        return [f"| query | | | | | {query.get('error', 'not run')} |"]
+    lines = [f"| load (best) | {_num(query['load_seconds'])} | | | | |",
+             f"| signatures() | {_num(query.get('signatures_seconds'))} | | | | |",
+             f"| shape, first call | {_num(query['shape_first_call_seconds'])} | | | | "
+             "lazy set-up included |"]
+    for shape in query["shapes"]:
+        where = "optimal" if shape["quantile"] is None else f"q{shape['quantile']:g}"
+        lines.append(f"| shape {where} alpha={shape['alpha']:.4g} | {_num(shape['seconds'])} "
+                     f"| | | | {shape['simplices']} simplices |")
+    for item in o3d.get("per_alpha", []):
+        lines.append(f"| Open3D alpha={item['alpha']:.4g} | {_num(item['seconds'])} | | | | "
+                     f"{item['triangles']} triangles |")
+    return lines
+
+
+def _finite(value: object) -> object:
+    """value with every non-finite float replaced by None, so the JSON stays standard."""
+    if isinstance(value, dict):
+        return {key: _finite(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_finite(item) for item in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def write_json(path: str, payload: dict) -> None:
+    """Write payload as indented JSON atomically (temp file + os.replace)."""
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(suffix=".json", dir=folder)
+    try:
+        with os.fdopen(fd, "w") as handle:
+            json.dump(_finite(payload), handle, indent=2, allow_nan=False, default=str)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise

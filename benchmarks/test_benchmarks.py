@@ -1,0 +1,87 @@
+"""Tests of the benchmark harness: dataset, isolation, memory probe, ratios (pytest benchmarks/)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from bench_core import main
+from datasets import TORUS_R, TORUS_TUBE, noisy_torus
+from isolate import Probe, run_isolated
+from report import figures, ratios
+
+
+def _allocate(mib: int) -> dict:
+    """Child task: touch mib MiB of memory and report the probe's figures."""
+    probe = Probe()
+    block = np.ones(mib * 1024 * 1024 // 8)
+    return probe.result(total=float(block.sum()))
+
+
+def _fail() -> dict:
+    """Child task that raises, as a missing library would."""
+    raise ImportError("no such library")
+
+
+def test_torus_is_deterministic_per_seed():
+    assert np.array_equal(noisy_torus(500, seed=3), noisy_torus(500, seed=3))
+    assert not np.array_equal(noisy_torus(500, seed=3), noisy_torus(500, seed=4))
+
+
+def test_torus_points_lie_in_a_thin_shell_around_the_surface():
+    points = noisy_torus(20_000, seed=1)
+    ring = np.hypot(points[:, 0], points[:, 1]) - TORUS_R
+    tube = np.hypot(ring, points[:, 2])
+    assert points.shape == (20_000, 3) and points.dtype == np.float64
+    assert np.abs(tube - TORUS_TUBE).max() < 6 * 0.003 * TORUS_TUBE
+    assert np.std(tube) > 0.5 * 0.003 * TORUS_TUBE
+
+
+def test_torus_sample_is_area_uniform():
+    points = noisy_torus(40_000, seed=2)
+    outer = np.hypot(points[:, 0], points[:, 1]) > TORUS_R
+    expected = 0.5 + TORUS_TUBE / (np.pi * TORUS_R)
+    assert abs(outer.mean() - expected) < 0.015
+
+
+def test_torus_rejects_too_few_points():
+    with pytest.raises(ValueError, match="at least 4"):
+        noisy_torus(3)
+
+
+def test_isolated_probe_sees_the_child_allocation():
+    result = run_isolated(_allocate, 160)
+    assert result["extra_mib"] > 140
+    assert result["seconds"] > 0
+
+
+def test_isolated_failure_becomes_an_error_message():
+    assert run_isolated(_fail)["error"] == "ImportError: no such library"
+
+
+@pytest.mark.parametrize(
+    ("build", "passed"), [(1.4, True), (1.6, False), (None, None)]
+)
+def test_ratio_against_goal(build, passed):
+    results = {"scipy": {"seconds": 1.0}}
+    if build is not None:
+        results["build"] = {"seconds": build}
+    row = ratios(figures(results))[0]
+    assert row["figure"].startswith("build / scipy") and row["passed"] is passed
+
+
+def test_worst_shape_and_fastest_open3d_are_derived():
+    flat = figures({"query": {"shapes": [{"seconds": 0.1}, {"seconds": 0.3}]},
+                    "open3d": {"per_alpha": [{"seconds": 5.0}, {"seconds": 2.0}]}})
+    assert flat["shape.worst_seconds"] == 0.3 and flat["open3d.fastest_seconds"] == 2.0
+
+
+def test_end_to_end_small_run_writes_json(tmp_path, capsys):
+    out = tmp_path / "bench.json"
+    assert main(["--n", "300", "--reps", "2", "--skip-gudhi", "--skip-open3d",
+                 "--json", str(out)]) == 0
+    run = json.loads(out.read_text())["runs"]["300"]
+    assert run["results"]["scipy"]["cells"] > 300
+    assert len(run["ratios"]) == 7
+    assert "| build / scipy Delaunay (time) |" in capsys.readouterr().out
