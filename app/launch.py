@@ -1,0 +1,30 @@
+"""Start the Qt application and the main window (interactive mode)."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+os.environ["QT_API"] = "pyside6"
+
+from PySide6.QtWidgets import QApplication
+
+from app.resources import SAMPLE_PATH
+
+
+def run_window(args: argparse.Namespace) -> int:
+    """Open the window on args.file (or the bundled sample) and run the event loop."""
+    from app.main_window import MainWindow
+
+    app = QApplication.instance() or QApplication(sys.argv[:1])
+    app.setApplicationName("Alpha Scoop")
+    app.setOrganizationName("alphascoop")
+    window = MainWindow()
+    if args.size:
+        window.resize(*args.size)
+    else:
+        window.resize(1280, 800)
+    window.show()
+    window.open_path(args.file or SAMPLE_PATH)
+    return app.exec()

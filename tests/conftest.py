@@ -1,0 +1,103 @@
+"""Test session set-up: Qt binding, a private Xvfb display for GUI tests, plotter leak checks."""
+
+from __future__ import annotations
+
+import os
+
+os.environ["QT_API"] = "pyside6"
+
+import shutil
+import subprocess
+import sys
+from collections.abc import Iterator
+
+import numpy as np
+import pytest
+
+XVFB_ARGS = ("-screen", "0", "1280x1024x24", "-nolisten", "tcp")
+XVFB_STOP_TIMEOUT_S = 20.0
+XVFB_KEY = pytest.StashKey[subprocess.Popen]()
+XVFB_ERROR_KEY = pytest.StashKey[str]()
+NO_XVFB = (
+    "GUI tests need an X display, and Xvfb is not installed: run ./.ci/setup "
+    "(or apt-get install xvfb libxcb-icccm4 libxcb-keysyms1), or set DISPLAY."
+)
+
+
+def start_xvfb(xvfb: str) -> subprocess.Popen:
+    """Start Xvfb on a free display (it reports which through -displayfd); set DISPLAY."""
+    read_fd, write_fd = os.pipe()
+    process = subprocess.Popen(
+        [xvfb, "-displayfd", str(write_fd), *XVFB_ARGS],
+        pass_fds=(write_fd,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    )
+    os.close(write_fd)
+    with os.fdopen(read_fd) as stream:
+        number = stream.readline().strip()
+    if not number.isdigit():
+        process.kill()
+        raise RuntimeError(f"Xvfb did not start (exit status {process.wait()})")
+    os.environ["DISPLAY"] = f":{number}"
+    return process
+
+
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """Give the session a display of its own when the machine has none."""
+    if os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"):
+        return
+    xvfb = shutil.which("Xvfb")
+    if xvfb is None:
+        session.config.stash[XVFB_ERROR_KEY] = NO_XVFB
+        return
+    session.config.stash[XVFB_KEY] = start_xvfb(xvfb)
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    """Stop the Xvfb this session started, if any."""
+    process = session.config.stash.get(XVFB_KEY, None)
+    if process is None:
+        return
+    process.terminate()
+    try:
+        process.wait(timeout=XVFB_STOP_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        process.kill()
+
+
+@pytest.fixture(scope="session")
+def qapp_cls(request: pytest.FixtureRequest) -> type:
+    """pytest-qt's QApplication class; fails GUI tests plainly when there is no display."""
+    error = request.config.stash.get(XVFB_ERROR_KEY, None)
+    if error:
+        pytest.fail(error)
+    from PySide6.QtWidgets import QApplication
+
+    return QApplication
+
+
+def open_plotters() -> set[str]:
+    """Names of the pyvista plotters alive now (none if pyvista was never imported)."""
+    if "pyvista" not in sys.modules:
+        return set()
+    from pyvista.plotting import _ALL_PLOTTERS
+
+    return set(_ALL_PLOTTERS)
+
+
+@pytest.fixture(autouse=True)
+def no_leaked_plotters() -> Iterator[None]:
+    """Fail a test that leaves a pyvista plotter open (close them in teardown)."""
+    before = open_plotters()
+    yield
+    leaked = open_plotters() - before
+    if leaked:
+        from pyvista.plotting import _ALL_PLOTTERS
+
+        for name in leaked:
+            _ALL_PLOTTERS[name].close()
+        pytest.fail(f"test left {len(leaked)} pyvista plotter(s) open")
+
+
+def image_contrast(image: np.ndarray) -> float:
+    """Standard deviation of an (h, w, c) uint8 screenshot: ~0 for a blank or black frame."""
+    return float(np.asarray(image, dtype=np.float64).std())
