@@ -38,7 +38,6 @@ READ_FORMATS: dict[str, str] = {
     ".gltf": "glTF mesh (vertices)",
     ".vtk": "Legacy VTK (vertices)",
     ".vtu": "VTK unstructured grid (vertices)",
-    ".vtp": "VTK polydata (vertices)",
 }
 
 Reader = Callable[[Path, object], tuple[np.ndarray, dict[str, np.ndarray], tuple]]
@@ -46,7 +45,7 @@ READERS: dict[str, Reader] = {
     ".ply": read_ply, ".pcd": read_pcd, ".las": read_las, ".laz": read_las,
     ".npy": read_npy, ".npz": read_npy,
     **dict.fromkeys((".xyz", ".pts", ".txt", ".csv"), read_text),
-    **dict.fromkeys((".obj", ".stl", ".off", ".glb", ".gltf", ".vtk", ".vtu", ".vtp"), read_mesh),
+    **dict.fromkeys((".obj", ".stl", ".off", ".glb", ".gltf", ".vtk", ".vtu"), read_mesh),
 }
 
 

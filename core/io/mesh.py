@@ -10,7 +10,7 @@ import numpy as np
 from core.errors import FileFormatError
 
 TRIMESH_EXTS = {".obj", ".stl", ".off", ".glb", ".gltf"}
-MESHIO_EXTS = {".vtk", ".vtu", ".vtp", ".vtm"}
+MESHIO_READERS = {".vtk": "vtk", ".vtu": "vtu"}  # meshio reads no VTP
 
 
 def _trimesh_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
@@ -32,10 +32,11 @@ def _trimesh_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
 
 def _meshio_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     """Points of a VTK-family file plus its 1-component or 3-component point data."""
-    import meshio
+    import importlib
 
-    try:
-        mesh = meshio.read(str(path))
+    module = importlib.import_module(f"meshio.{MESHIO_READERS[path.suffix.lower()]}")
+    try:  # the format's own reader: meshio.read() calls sys.exit on failure
+        mesh = module.read(str(path))
     except Exception as exc:  # meshio raises ReadError, ValueError, KeyError...
         raise FileFormatError(f"{path}: unreadable mesh ({type(exc).__name__}: {exc})") from None
     vertices = np.asarray(mesh.points, dtype=np.float64)

@@ -72,6 +72,8 @@ def _read_ascii(fh, vertex: plyfile.PlyElement, skip: int, path: Path) -> np.nda
                            ndmin=2, usecols=range(len(vertex.properties)))
     except ValueError as exc:
         raise FileFormatError(f"{path}: bad PLY vertex data ({exc})") from None
+    finally:
+        text.detach()  # the caller owns and closes the binary stream
     if len(table) < vertex.count:
         raise FileFormatError(f"{path}: truncated PLY ({len(table):,} of "
                               f"{vertex.count:,} vertices)")

@@ -1,0 +1,91 @@
+"""Bad point files fail with one exception type naming the file, never a hang or a deep trace."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from core.errors import FileFormatError
+from core.io import read_points
+
+PLY_HEAD = "ply\nformat {fmt} 1.0\nelement vertex {n}\nproperty float x\nproperty float y\n" \
+           "property float z\nend_header\n"
+
+
+def _write(tmp_path: Path, name: str, content: bytes | str) -> Path:
+    """Write a small file and return its path."""
+    path = tmp_path / name
+    path.write_bytes(content.encode() if isinstance(content, str) else content)
+    return path
+
+
+BAD_FILES = {
+    "empty.ply": b"",
+    "empty.csv": b"",
+    "blank.xyz": "\n\n  \n",
+    "only_header.csv": "x,y,z\n",
+    "comments.xyz": "# nothing\n# here\n",
+    "wrong_magic.ply": "plx\nformat ascii 1.0\nend_header\n",
+    "bad_format.ply": "ply\nformat weird 1.0\nelement vertex 1\nproperty float x\nend_header\n",
+    "no_vertex.ply": "ply\nformat ascii 1.0\nelement face 0\n"
+                     "property list uchar int vertex_indices\nend_header\n",
+    "no_xy.ply": "ply\nformat ascii 1.0\nelement vertex 1\nproperty float q\nend_header\n1\n",
+    "trunc_ascii.ply": PLY_HEAD.format(fmt="ascii", n=5) + "0 0 0\n1 1 1\n",
+    "trunc_binary.ply": PLY_HEAD.format(fmt="binary_little_endian", n=5).encode()
+                        + np.zeros((2, 3), "<f4").tobytes(),
+    "bogus_count.ply": PLY_HEAD.format(fmt="binary_little_endian", n=10**15).encode()
+                       + b"\0" * 24,
+    "bogus_count_ascii.ply": PLY_HEAD.format(fmt="ascii", n=10**15) + "0 0 0\n",
+    "text_in_ply.ply": PLY_HEAD.format(fmt="ascii", n=2) + "0 0 0\n1 a 1\n",
+    "non_numeric.csv": "x,y,z\n1,2,3\n4,five,6\n",
+    "non_numeric.xyz": "1 2 3\n4 5 6\nseven 8 9\n",
+    "one_column.txt": "1\n2\n3\n",
+    "ragged.xyz": "1 2 3\n4 5\n",
+    "binary.xyz": b"\x00\x01\x02\x03" * 100,
+    "all_nan.xyz": "nan nan nan\nnan 1 2\n",
+    "garbage.npy": b"not numpy at all",
+    "pickled.npy": b"\x93NUMPY\x01\x00v\x00{'descr': '|O', 'fortran_order': False, "
+                   b"'shape': (1,), }" + b" " * 60 + b"\n" + b"\x80\x04N.",
+    "garbage.pcd": "# .PCD v0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                   "WIDTH 1000000\nHEIGHT 1\nPOINTS 1000000\nDATA binary\n" + "x" * 30,
+    "garbage.las": b"LASF" + b"\0" * 300,
+    "garbage.laz": b"not a laz file" * 10,
+    "garbage.stl": b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\n",
+    "garbage.vtu": "<VTKFile><broken",
+    "unknown.foo": "1 2 3\n",
+    "noext": "1 2 3\n",
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD_FILES))
+def test_bad_file_raises_format_error_naming_file(tmp_path, name):
+    path = _write(tmp_path, name, BAD_FILES[name])
+    with pytest.raises(FileFormatError) as info:
+        read_points(path)
+    assert name in str(info.value)
+    assert len(str(info.value).splitlines()) == 1
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(FileFormatError, match="no such file"):
+        read_points(tmp_path / "absent.ply")
+
+
+def test_unknown_extension_lists_known(tmp_path):
+    path = _write(tmp_path, "points.dat", "1 2 3\n")
+    with pytest.raises(FileFormatError, match=r"unknown extension '\.dat'.*\.ply"):
+        read_points(path)
+
+
+def test_non_numeric_message_gives_line_and_column(tmp_path):
+    path = _write(tmp_path, "p.csv", "x,y\n1,2\n3,4\n5,oops\n")
+    with pytest.raises(FileFormatError, match=r"'oops' at line 4, column 2"):
+        read_points(path)
+
+
+def test_truncated_ply_message(tmp_path):
+    path = _write(tmp_path, "t.ply", BAD_FILES["trunc_binary.ply"])
+    with pytest.raises(FileFormatError, match="truncated"):
+        read_points(path)
