@@ -25,7 +25,7 @@ def voxel_indices(points: np.ndarray, target: int) -> np.ndarray:
     extent = float(np.max(np.ptp(points, axis=0)))
     if extent == 0.0:
         return np.arange(min(1, len(points)), dtype=np.int64)
-    lo, hi = 0.0, extent  # hi always gives <= target voxels (a single voxel per axis)
+    lo, hi = 0.0, 2.0 * extent  # hi puts every point in one voxel
     best = _voxel_firsts(points, hi)
     for _ in range(_BISECTION_STEPS):
         mid = 0.5 * (lo + hi)

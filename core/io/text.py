@@ -118,9 +118,10 @@ def choose_columns(layout: Layout, columns, path: Path) -> tuple[list[int], dict
 
 def _read_fast(path: Path, layout: Layout, usecols: list[int]) -> np.ndarray:
     """numpy's C parser; raises ValueError on anything unusual (missing values, ragged rows)."""
+    quoted = layout.delimiter is not None  # numpy allows quotes with one comment marker only
     return np.loadtxt(
-        path, delimiter=layout.delimiter, quotechar='"' if layout.delimiter else None,
-        skiprows=layout.skiprows, usecols=usecols, comments=COMMENTS, ndmin=2,
+        path, delimiter=layout.delimiter, quotechar='"' if quoted else None,
+        skiprows=layout.skiprows, usecols=usecols, comments="#" if quoted else COMMENTS, ndmin=2,
         dtype=np.float64, encoding="utf-8",
     )
 
