@@ -1,0 +1,125 @@
+"""Betti numbers and solid components of the alpha complex at any alpha, from three forests.
+
+Built once per complex in O(n log n), then every alpha is a handful of `searchsorted` calls:
+- b0: vertices minus the edges of the spanning forest (edges in order of entry) already in;
+- holes (2D) / voids (3D): by Alexander duality, the regions of the complement minus one. The
+  complement is the dual graph (cells plus one outside node, facets as edges) taken in order of
+  decreasing alpha, so its regions come from a spanning forest too;
+- tunnels (3D): from the Euler characteristic, b1 = b0 + b2 - chi;
+- solid components: cells in the complex joined through shared facets (CGAL's definition).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from core.forest import spanning_forest
+
+
+@dataclass(frozen=True, eq=False)
+class Topology:
+    """Sorted event arrays from which Betti numbers and solid components follow at any alpha."""
+
+    dim: int
+    n_cells: int
+    enter_sorted: tuple[np.ndarray, ...]  # per k: (n_k,) float64 ascending enter of k-simplices
+    vertex_forest: np.ndarray  # (f0,) float64 ascending enter of edges that join components
+    dual_forest: np.ndarray  # (fd,) float64 ascending enter of facets that join complement regions
+    dual_edges: np.ndarray  # (fd, 2) int64 their dual nodes (cells; n_cells = outside), by merge
+    solid_forest: np.ndarray  # (fs,) float64 ascending alpha at which facets join solid parts
+
+    def betti(self, alpha: float) -> tuple[int, ...]:
+        """(b0, b1) in 2D, (b0, b1, b2) in 3D at one alpha."""
+        return tuple(int(b) for b in self.betti_many(np.array([alpha], dtype=np.float64))[0])
+
+    def betti_many(self, alphas: np.ndarray) -> np.ndarray:
+        """(s, dim) int64 Betti numbers at every alpha of the (s,) array `alphas`."""
+        alphas = np.asarray(alphas, dtype=np.float64)
+        n_in = [np.searchsorted(e, alphas, side="right") for e in self.enter_sorted]
+        b0 = n_in[0] - np.searchsorted(self.vertex_forest, alphas, side="right")
+        open_forest = len(self.dual_forest) - np.searchsorted(self.dual_forest, alphas, "right")
+        cavities = (self.n_cells - n_in[self.dim]) - open_forest
+        if self.dim == 2:
+            return np.stack([b0, cavities], axis=1).astype(np.int64)
+        chi = n_in[0] - n_in[1] + n_in[2] - n_in[3]
+        return np.stack([b0, b0 + cavities - chi, cavities], axis=1).astype(np.int64)
+
+    def solid_components(self, alphas: np.ndarray) -> np.ndarray:
+        """(s,) int64 number of facet-connected groups of cells in the complex at each alpha."""
+        alphas = np.asarray(alphas, dtype=np.float64)
+        cells_in = np.searchsorted(self.enter_sorted[self.dim], alphas, side="right")
+        return (cells_in - np.searchsorted(self.solid_forest, alphas, side="right")).astype(
+            np.int64
+        )
+
+
+def build_topology(ac) -> Topology:
+    """The Topology of an AlphaComplex, from its public table; O(n log n)."""
+    dim = ac.dim
+    enter = [np.asarray(ac.intervals(k)[:, 0], dtype=np.float64) for k in range(dim + 1)]
+    enter_sorted = tuple(ascending(e) for e in enter)
+    cell_enter = enter[dim]
+    facet_cells = np.asarray(ac.facet_cells(), dtype=np.int64)
+    edges = np.asarray(ac.simplices(1), dtype=np.int64)
+    vertex_ids = spanning_forest(
+        len(enter[0]), edges[:, 0], edges[:, 1], np.argsort(enter[1], kind="stable")
+    )
+    dual_u, dual_v, dual_ids = dual_forest(facet_cells, enter[dim - 1], len(cell_enter))
+    return Topology(
+        dim=dim,
+        n_cells=len(cell_enter),
+        enter_sorted=enter_sorted,
+        vertex_forest=_frozen(enter[1][vertex_ids]),
+        dual_forest=_frozen(enter[dim - 1][dual_ids][::-1]),
+        dual_edges=_frozen(np.stack([dual_u, dual_v], axis=1)),
+        solid_forest=_frozen(solid_forest(facet_cells, cell_enter)),
+    )
+
+
+def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) -> tuple:
+    """Spanning forest of the complement's dual graph taken in decreasing alpha.
+
+    facet_cells: (n_f, 2) int64, -1 = outside. Returns (u, v, ids): (fd,) int64 dual nodes of
+    the forest edges in merge order (outside node = n_cells) and their facet rows.
+    """
+    sides = np.where(facet_cells < 0, n_cells, facet_cells)
+    u, v = sides.min(axis=1), sides.max(axis=1)
+    order = np.argsort(-facet_enter, kind="stable")
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    first_hull = np.full(n_cells + 1, len(order), dtype=np.int64)
+    hull = v == n_cells
+    np.minimum.at(first_hull, u[hull], rank[hull])
+    keep = np.flatnonzero((u != v) & (~hull | (rank == first_hull[u])))
+    sub = spanning_forest(n_cells + 1, u[keep], v[keep], np.argsort(rank[keep], kind="stable"))
+    ids = keep[sub]
+    return u[ids], v[ids], ids
+
+
+def solid_forest(facet_cells: np.ndarray, cell_enter: np.ndarray) -> np.ndarray:
+    """(fs,) float64 ascending alphas at which an inner facet first joins two separate solids."""
+    inner = np.flatnonzero((facet_cells >= 0).all(axis=1))
+    a, b = facet_cells[inner, 0], facet_cells[inner, 1]
+    joined = np.maximum(cell_enter[a], cell_enter[b])
+    ids = spanning_forest(
+        len(cell_enter), np.minimum(a, b), np.maximum(a, b), np.argsort(joined, kind="stable")
+    )
+    return joined[ids]
+
+
+def ascending(values: np.ndarray) -> np.ndarray:
+    """Read-only ascending copy of a (n,) float array; skips the sort when already in order."""
+    values = np.asarray(values, dtype=np.float64)
+    if len(values) > 1 and not bool(np.all(values[1:] >= values[:-1])):
+        values = np.sort(values)
+    return _frozen(values)
+
+
+def _frozen(array: np.ndarray) -> np.ndarray:
+    """The array if already read-only (the table's), else a read-only copy."""
+    if array.flags.writeable:
+        array = array.copy()
+        array.flags.writeable = False
+    return array
