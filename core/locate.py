@@ -1,0 +1,104 @@
+"""Point location in the complex's own triangulation: a visibility walk run for all queries at once.
+
+Each query starts in a cell of its nearest vertex (k-d tree) and steps across the facet it lies
+most beyond until no facet separates it from the cell. In a Delaunay triangulation such walks
+cannot cycle, so they stop after a few steps; a random choice among separating facets takes
+over after `GREEDY_STEPS` in case rounding on degenerate cells makes the greedy walk loop.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from core.errors import InputError
+
+#: A query whose barycentric coordinates are all >= -LOCATE_RTOL is inside the cell, so a
+#: point on a shared facet is accepted by either side instead of bouncing between them.
+LOCATE_RTOL = 1e-12
+GREEDY_STEPS = 200
+MAX_STEPS = 5000
+
+
+class Locator:
+    """Finds the cell (row of simplices(dim)) holding each query point; -1 outside the hull."""
+
+    def __init__(self, points: np.ndarray, cells: np.ndarray, face_ids: np.ndarray,
+                 facet_cells: np.ndarray) -> None:
+        self.points = np.asarray(points, dtype=np.float64)
+        self.cells = np.asarray(cells, dtype=np.int64)
+        self.tree = cKDTree(self.points)
+        self.neighbors = neighbor_cells(face_ids, facet_cells)
+        self.vertex_cell = np.zeros(len(self.points), dtype=np.int64)
+        self.vertex_cell[self.cells.ravel()] = np.repeat(
+            np.arange(len(self.cells)), self.cells.shape[1]
+        )
+
+    def locate(self, queries: np.ndarray) -> np.ndarray:
+        """(k,) int64 cell row of each of the (k, dim) query points, -1 outside the hull."""
+        q = np.asarray(queries, dtype=np.float64)
+        _, nearest = self.tree.query(q)
+        current = self.vertex_cell[nearest]
+        found = np.full(len(q), -1, dtype=np.int64)
+        active = np.arange(len(q))
+        rng = np.random.default_rng(0)
+        for step in range(MAX_STEPS):
+            if len(active) == 0:
+                break
+            cell = current[active]
+            lam = barycentric(self.points, self.cells[cell], q[active])
+            beyond = lam < -LOCATE_RTOL
+            inside = ~beyond.any(axis=1)
+            found[active[inside]] = cell[inside]
+            pick = lam if step < GREEDY_STEPS else -rng.random(lam.shape) * beyond
+            nxt = self.neighbors[cell, np.argmin(pick, axis=1)]
+            move = ~inside & (nxt >= 0)
+            current[active[move]] = nxt[move]
+            active = active[move]
+        return found
+
+
+def neighbor_cells(face_ids: np.ndarray, facet_cells: np.ndarray) -> np.ndarray:
+    """(c, dim + 1) int64 cell across the facet opposite each vertex of each cell, -1 = outside."""
+    faces = np.asarray(face_ids, dtype=np.int64)
+    sides = np.asarray(facet_cells, dtype=np.int64)[faces]
+    own = np.arange(len(faces))[:, None]
+    return np.where(sides[..., 0] == own, sides[..., 1], sides[..., 0])
+
+
+def barycentric(points: np.ndarray, cells: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """(a, dim + 1) barycentric coordinates of the (a, dim) queries in their (a, dim + 1) cells.
+
+    Signed volumes with one vertex swapped for the query, relative to the query for accuracy;
+    a flat cell gets coordinates scaled by the largest swapped volume instead of its own.
+    """
+    rel = points[cells] - q[:, None, :]
+    dim = q.shape[1]
+    swapped = np.empty((len(q), dim + 1))
+    for j in range(dim + 1):
+        verts = rel.copy()
+        verts[:, j] = 0.0
+        swapped[:, j] = np.linalg.det(verts[:, 1:] - verts[:, :1])
+    total = swapped.sum(axis=1)
+    flat = np.abs(total) <= LOCATE_RTOL * np.abs(swapped).max(axis=1, initial=0.0)
+    scale = np.where(flat, -np.abs(swapped).max(axis=1, initial=0.0), total)
+    scale[scale == 0.0] = 1.0
+    return swapped / scale[:, None]
+
+
+def query_points(queries: object, dim: int) -> np.ndarray:
+    """(k, dim) float64 finite query points, or InputError saying what is wrong."""
+    try:
+        q = np.asarray(queries, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"query points must be numbers: {exc}") from None
+    if q.ndim == 1 and q.shape[0] == dim:
+        q = q[None, :]
+    if q.ndim != 2 or q.shape[1] != dim:
+        raise InputError(
+            f"query points must be an array of shape (k, {dim}) in the complex's coordinates, "
+            f"got shape {q.shape}"
+        )
+    if not np.isfinite(q).all():
+        raise InputError("query points contain NaN or infinite values")
+    return q
