@@ -40,7 +40,8 @@ def core_build(points_path: str, table_path: str) -> dict:
     ac = AlphaComplex.from_points(points)
     result = probe.result(dim=int(ac.dim), counts=[int(ac.simplices(k).shape[0]) for k in
                                                    range(ac.dim + 1)])
-    result["save_seconds"], _ = best_of(lambda: ac.save(table_path), 1)
+    result["save_seconds"], result["save_cpu_seconds"], _ = best_of(
+        lambda: ac.save(table_path), 1)
     return result
 
 
@@ -48,18 +49,20 @@ def core_query(table_path: str, reps: int) -> dict:
     """AlphaComplex.load (best of reps), shape(alpha) at spectrum quantiles, signatures()."""
     from core import AlphaComplex
 
-    load_seconds, ac = best_of(lambda: _fresh_load(AlphaComplex, table_path), reps)
+    load, load_cpu, ac = best_of(lambda: _fresh_load(AlphaComplex, table_path), reps)
     spectrum = np.asarray(ac.spectrum())
     first_alpha = float(spectrum[len(spectrum) // 2])
-    first_seconds, _ = best_of(lambda: _materialize(ac.shape(first_alpha), ac.dim), 1)
+    first, first_cpu, _ = best_of(lambda: _materialize(ac.shape(first_alpha), ac.dim), 1)
     shapes = [_time_shapes(ac, spectrum, q, reps) for q in QUANTILES]
-    result = {"load_seconds": load_seconds, "spectrum_size": len(spectrum),
-              "shape_first_call_seconds": first_seconds, "shapes": shapes}
+    result = {"load_seconds": load, "load_cpu_seconds": load_cpu,
+              "spectrum_size": len(spectrum), "shape_first_call_seconds": first,
+              "shape_first_call_cpu_seconds": first_cpu, "shapes": shapes}
     if hasattr(ac, "optimal_alpha"):
         result["optimal_alpha"] = float(ac.optimal_alpha())
         shapes.append(_time_shapes(ac, spectrum, None, reps, result["optimal_alpha"]))
     if hasattr(ac, "signatures"):
-        result["signatures_seconds"], _ = best_of(ac.signatures, 1)
+        result["signatures_seconds"], result["signatures_cpu_seconds"], _ = best_of(
+            ac.signatures, 1)
     return result
 
 
@@ -81,14 +84,11 @@ def _time_shapes(ac: object, spectrum: np.ndarray, q: float | None, reps: int,
         start = round(q * (len(spectrum) - 1))
     start = int(np.clip(start, 0, max(0, len(spectrum) - reps)))
     alphas = spectrum[start:start + reps] if len(spectrum) else np.zeros(1)
-    times, sizes = [], []
-    for value in alphas:
-        seconds, size = best_of(lambda a=float(value): _materialize(ac.shape(a), ac.dim), 1)
-        times.append(seconds)
-        sizes.append(size)
-    best = int(np.argmin(times))
-    return {"quantile": q, "alpha": float(alphas[best]), "seconds": float(times[best]),
-            "simplices": int(sizes[best])}
+    runs = [best_of(lambda a=float(a): _materialize(ac.shape(a), ac.dim), 1) for a in alphas]
+    best = int(np.argmin([run[0] for run in runs]))
+    wall, cpu, size = runs[best]
+    return {"quantile": q, "alpha": float(alphas[best]), "seconds": wall,
+            "cpu_seconds": cpu, "simplices": size}
 
 
 def _materialize(shape: object, dim: int) -> int:
@@ -111,8 +111,8 @@ def open3d_alpha(points_path: str, alphas: list[float]) -> dict:
     create = o3d.geometry.TriangleMesh.create_from_point_cloud_alpha_shape
     per_alpha = []
     for alpha in alphas:
-        seconds, mesh = best_of(lambda a=alpha: create(pcd, a, tetra, pt_map), 1)
-        per_alpha.append({"alpha": alpha, "seconds": seconds,
+        wall, cpu, mesh = best_of(lambda a=alpha: create(pcd, a, tetra, pt_map), 1)
+        per_alpha.append({"alpha": alpha, "seconds": wall, "cpu_seconds": cpu,
                           "triangles": len(mesh.triangles)})
     result["per_alpha"] = per_alpha
     return result

@@ -33,12 +33,18 @@ def figures(results: dict) -> dict:
             if isinstance(value, int | float) and not isinstance(value, bool):
                 flat[f"{name}.{key}"] = float(value)
     shapes = results.get("query", {}).get("shapes", [])
-    if shapes:
-        flat["shape.worst_seconds"] = max(s["seconds"] for s in shapes)
     per_alpha = results.get("open3d", {}).get("per_alpha", [])
-    if per_alpha:
-        flat["open3d.fastest_seconds"] = min(p["seconds"] for p in per_alpha)
+    for clock in ("seconds", "cpu_seconds"):
+        if shapes:
+            flat[f"shape.worst_{clock}"] = max(s[clock] for s in shapes)
+        if per_alpha:
+            flat[f"open3d.fastest_{clock}"] = min(p[clock] for p in per_alpha)
     return flat
+
+
+def _cpu_key(key: str) -> str | None:
+    """The CPU-time figure matching a wall-time figure, None for non-time figures."""
+    return key.replace("seconds", "cpu_seconds") if key.endswith("seconds") else None
 
 
 def ratios(flat: dict) -> list[dict]:
@@ -46,11 +52,18 @@ def ratios(flat: dict) -> list[dict]:
     rows = []
     for label, num, den, op, goal, issue in GOALS:
         value, ref = flat.get(num), flat.get(den)
-        ratio = value / ref if value is not None and ref else None
+        ratio = _ratio(value, ref)
+        cpu_ratio = _ratio(flat.get(_cpu_key(num)), flat.get(_cpu_key(den)))
         passed = None if ratio is None else bool(COMPARE[op](ratio, goal))
         rows.append({"figure": label, "value": value, "reference": ref, "ratio": ratio,
-                     "goal": f"{op} {goal:g}", "passed": passed, "issue": issue})
+                     "cpu_ratio": cpu_ratio, "goal": f"{op} {goal:g}", "passed": passed,
+                     "issue": issue})
     return rows
+
+
+def _ratio(value: float | None, ref: float | None) -> float | None:
+    """value / ref, or None when either is missing or ref is zero."""
+    return value / ref if value is not None and ref else None
 
 
 def _num(value: float | None, digits: int = 3) -> str:
@@ -71,12 +84,13 @@ def format_tables(n: int, results: dict, rows: list[dict]) -> str:
                      f"| {_num(res.get('peak_mib'), 4)} | {_num(res.get('extra_mib'), 4)} "
                      f"| {_note(res)} |")
     lines += _query_lines(results.get("query", {}), results.get("open3d", {}))
-    lines += ["", "| figure | value s/MiB | reference | ratio | goal | pass |",
-              "|---|---|---|---|---|---|"]
+    lines += ["", "| figure | value s/MiB | reference | ratio | cpu ratio | goal | pass |",
+              "|---|---|---|---|---|---|---|"]
     for row in rows:
         verdict = {True: "PASS", False: "FAIL", None: "n/a"}[row["passed"]]
         lines.append(f"| {row['figure']} | {_num(row['value'])} | {_num(row['reference'])} | "
-                     f"{_num(row['ratio'])} | {row['goal']} | {verdict} |")
+                     f"{_num(row['ratio'])} | {_num(row['cpu_ratio'])} | {row['goal']} | "
+                     f"{verdict} |")
     return "\n".join(lines)
 
 
@@ -93,18 +107,22 @@ def _query_lines(query: dict, o3d: dict) -> list[str]:
     """Table rows for load, save, signatures and each timed alpha."""
     if not query or "error" in query:
         return [f"| query | | | | | {query.get('error', 'not run')} |"]
-    lines = [f"| load (best) | {_num(query['load_seconds'])} | | | | |",
-             f"| signatures() | {_num(query.get('signatures_seconds'))} | | | | |",
-             f"| shape, first call | {_num(query['shape_first_call_seconds'])} | | | | "
-             "lazy set-up included |"]
+    lines = [_timed("load (best)", query, "load_"), _timed("signatures()", query, "signatures_"),
+             _timed("shape, first call", query, "shape_first_call_", "lazy set-up included")]
     for shape in query["shapes"]:
         where = "optimal" if shape["quantile"] is None else f"q{shape['quantile']:g}"
-        lines.append(f"| shape {where} alpha={shape['alpha']:.4g} | {_num(shape['seconds'])} "
-                     f"| | | | {shape['simplices']} simplices |")
+        lines.append(_timed(f"shape {where} alpha={shape['alpha']:.4g}", shape, "",
+                            f"{shape['simplices']} simplices"))
     for item in o3d.get("per_alpha", []):
-        lines.append(f"| Open3D alpha={item['alpha']:.4g} | {_num(item['seconds'])} | | | | "
-                     f"{item['triangles']} triangles |")
+        lines.append(_timed(f"Open3D alpha={item['alpha']:.4g}", item, "",
+                            f"{item['triangles']} triangles"))
     return lines
+
+
+def _timed(label: str, res: dict, prefix: str, note: str = "") -> str:
+    """A table row with the wall and CPU seconds stored under prefix in res."""
+    wall, cpu = res.get(f"{prefix}seconds"), res.get(f"{prefix}cpu_seconds")
+    return f"| {label} | {_num(wall)} | {_num(cpu)} | | | {note} |"
 
 
 def _finite(value: object) -> object:
