@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import gc
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from datasets import read_points
@@ -46,24 +48,30 @@ def core_build(points_path: str, table_path: str) -> dict:
 
 
 def core_query(table_path: str, reps: int) -> dict:
-    """AlphaComplex.load (best of reps), shape(alpha) at spectrum quantiles, signatures()."""
+    """AlphaComplex.load (best of reps), signatures(), shape(alpha) at spectrum quantiles."""
     from core import AlphaComplex
 
-    load, load_cpu, ac = best_of(lambda: _fresh_load(AlphaComplex, table_path), reps)
-    spectrum = np.asarray(ac.spectrum())
-    first_alpha = float(spectrum[len(spectrum) // 2])
-    first, first_cpu, _ = best_of(lambda: _materialize(ac.shape(first_alpha), ac.dim), 1)
+    result: dict = {}
+    ac = _timed(result, "load", lambda: _fresh_load(AlphaComplex, table_path), reps)
+    if hasattr(ac, "signatures"):  # first, on a table no other query has warmed up
+        _timed(result, "signatures", ac.signatures)
+        ac = _fresh_load(AlphaComplex, table_path)
+    spectrum = np.asarray(_timed(result, "spectrum_first_call", ac.spectrum))
+    middle = float(spectrum[len(spectrum) // 2])
+    _timed(result, "shape_first_call", lambda: _materialize(ac.shape(middle), ac.dim))
     shapes = [_time_shapes(ac, spectrum, q, reps) for q in QUANTILES]
-    result = {"load_seconds": load, "load_cpu_seconds": load_cpu,
-              "spectrum_size": len(spectrum), "shape_first_call_seconds": first,
-              "shape_first_call_cpu_seconds": first_cpu, "shapes": shapes}
     if hasattr(ac, "optimal_alpha"):
-        result["optimal_alpha"] = float(ac.optimal_alpha())
+        result["optimal_alpha"] = float(_timed(result, "optimal_alpha", ac.optimal_alpha))
         shapes.append(_time_shapes(ac, spectrum, None, reps, result["optimal_alpha"]))
-    if hasattr(ac, "signatures"):
-        result["signatures_seconds"], result["signatures_cpu_seconds"], _ = best_of(
-            ac.signatures, 1)
+    result.update(spectrum_size=len(spectrum), shapes=shapes)
     return result
+
+
+def _timed(result: dict, name: str, fn: Callable[[], Any], reps: int = 1) -> Any:
+    """fn() timed as best of reps; stores name_seconds and name_cpu_seconds in result."""
+    wall, cpu, value = best_of(fn, reps)
+    result[f"{name}_seconds"], result[f"{name}_cpu_seconds"] = wall, cpu
+    return value
 
 
 def _fresh_load(cls: type, path: str) -> object:

@@ -71,15 +71,16 @@ def test_ratio_against_goal(build, passed):
     assert row["figure"].startswith("build / scipy") and row["passed"] is passed
 
 
-def test_worst_shape_and_fastest_open3d_are_derived_for_both_clocks():
+def test_open3d_is_compared_at_the_same_alpha_on_both_clocks():
     flat = figures({
-        "query": {"shapes": [{"seconds": 0.1, "cpu_seconds": 0.1},
-                             {"seconds": 0.3, "cpu_seconds": 0.2}]},
-        "open3d": {"per_alpha": [{"seconds": 5.0, "cpu_seconds": 4.0},
-                                 {"seconds": 2.0, "cpu_seconds": 1.6}]}})
-    assert flat["shape.worst_seconds"] == 0.3 and flat["open3d.fastest_seconds"] == 2.0
+        "query": {"shapes": [{"alpha": 0.5, "seconds": 0.1, "cpu_seconds": 0.1},
+                             {"alpha": 2.0, "seconds": 0.3, "cpu_seconds": 0.2},
+                             {"alpha": 9.0, "seconds": 0.9, "cpu_seconds": 0.9}]},
+        "open3d": {"per_alpha": [{"alpha": 0.5, "seconds": 0.5, "cpu_seconds": 0.4},
+                                 {"alpha": 2.0, "seconds": 6.0, "cpu_seconds": 5.0}]}})
+    assert flat["shape.worst_seconds"] == 0.9
     row = ratios(flat)[-1]
-    assert row["ratio"] == pytest.approx(0.15) and row["cpu_ratio"] == pytest.approx(0.125)
+    assert row["ratio"] == pytest.approx(0.2) and row["cpu_ratio"] == pytest.approx(0.25)
     assert row["passed"] is False
 
 
