@@ -323,3 +323,24 @@ def _assert_faces(ac, k: int, s: np.ndarray, iv: np.ndarray) -> None:
         assert (fiv[fid[:, j], 0] <= iv[:, 0]).all(), f"filtration broken in dimension {k}"
         assert (fiv[fid[:, j], 1] <= iv[:, 0]).all(), f"face regular > coface enter ({k})"
         assert (fiv[fid[:, j], 2] >= iv[:, 2]).all(), f"interior of a face below its coface's ({k})"
+
+
+def facet_measures(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
+    """(n,) length (2D) or area (3D) of (n, dim) facets."""
+    pts = np.asarray(points, dtype=np.float64)
+    f = np.asarray(facets, dtype=np.int64).reshape(-1, pts.shape[1])
+    if f.shape[1] == 2:
+        return np.linalg.norm(pts[f[:, 1]] - pts[f[:, 0]], axis=1)
+    return np.linalg.norm(np.cross(pts[f[:, 1]] - pts[f[:, 0]], pts[f[:, 2]] - pts[f[:, 0]]),
+                          axis=1) / 2
+
+
+def gudhi_boundary_measure(points: np.ndarray, table: dict, alpha: float) -> float:
+    """Area (3D) / length (2D) of gudhi's regular facets at alpha (one cell in the complex)."""
+    dim = table["dim"]
+    facets, cells = table[dim - 1][0], table[dim][0]
+    f, c = cofacet_pairs(facets, cells, len(points))
+    cell_in = table[dim][1] <= alpha**2
+    n_in = np.bincount(f, weights=cell_in[c], minlength=len(facets))
+    regular = (table[dim - 1][1] <= alpha**2) & (n_in == 1)
+    return float(facet_measures(points, facets[regular]).sum())
