@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from core.errors import InputError
+from .errors import InputError
 
 #: A query whose barycentric coordinates are all >= -LOCATE_RTOL is inside the cell, so a
 #: point on a shared facet is accepted by either side instead of bouncing between them.

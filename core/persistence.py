@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.forest import younger_roots
-from core.topology import Topology
+from .forest import younger_roots
+from .topology import Topology
 
 
 @dataclass(frozen=True, eq=False)

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.topology import Topology, ascending
+from .topology import Topology, ascending
 
 #: Column order of `Signatures.counts`: the four classes of `AlphaComplex.classify`.
 CLASSES = ("exterior", "singular", "regular", "interior")

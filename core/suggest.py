@@ -6,8 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.errors import InputError
-from core.signatures import Signatures
+from .errors import InputError
+from .signatures import Signatures
 
 
 @dataclass(frozen=True)

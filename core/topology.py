@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.forest import spanning_forest
+from .forest import spanning_forest
 
 
 @dataclass(frozen=True, eq=False)
