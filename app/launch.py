@@ -23,8 +23,10 @@ def run_window(args: argparse.Namespace) -> int:
     window = MainWindow()
     if args.size:
         window.resize(*args.size)
-    else:
+    elif not window.prefs.store.contains("window/geometry"):
         window.resize(1280, 800)
+    if args.alpha is not None:
+        window.start_alpha = args.alpha
     window.show()
     window.open_path(args.file or SAMPLE_PATH)
     return app.exec()

@@ -1,4 +1,7 @@
-"""The explorer's main window: a QtInteractor in a QMainWindow (composition only)."""
+"""The explorer's main window: composes the view, docks, menus and the loader (no logic of its own).
+
+State lives in ExplorerModel, geometry in Scene, loading in Loader; this class only wires them.
+"""
 
 from __future__ import annotations
 
@@ -8,35 +11,170 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
+from PySide6.QtCore import QSettings, Qt
 from PySide6.QtGui import QIcon
-from PySide6.QtWidgets import QMainWindow
+from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 from pyvistaqt import QtInteractor
 
-from app.loading import read_points
+from app import file_actions
+from app.alpha_panel import AlphaPanel
+from app.info_panel import InfoPanel
+from app.layers_panel import LayersPanel
+from app.menus import build_menus
+from app.model import ExplorerModel
+from app.progress_widget import ProgressWidget
 from app.resources import ICON_PATH
-from app.scene import Scene
+from app.scene import Scene, as_xyz
+from app.settings import Preferences
+from app.worker import Loader
 
 
 class MainWindow(QMainWindow):
-    """Main window with the 3D view at its centre."""
+    """Main window: 3D view in the centre, alpha/layers/info docks, status bar with progress."""
 
-    def __init__(self) -> None:
-        """Create the view; no dataset until open_path."""
+    def __init__(self, settings: QSettings | None = None) -> None:
+        """Create the widgets; no dataset until open_path."""
         super().__init__()
         self.setWindowTitle("Alpha Scoop")
         self.setWindowIcon(QIcon(str(ICON_PATH)))
+        self.setAcceptDrops(True)
+        self.prefs = Preferences(settings)
+        self.start_alpha: float | None = None
+        self.model = ExplorerModel()
+        self.loader = Loader(self)
         self.plotter = QtInteractor(self, auto_update=False)
-        self.plotter.set_background("#1f2a36")
+        self.plotter.setAcceptDrops(False)
         self.setCentralWidget(self.plotter)
-        self.scene = Scene(self.plotter)
+        self.scene = Scene(self.plotter, render=self.plotter.update)
+        self.alpha_panel = AlphaPanel(self.model)
+        self.layers_panel = LayersPanel()
+        self.info_panel = InfoPanel(self.model)
+        self.progress = ProgressWidget()
+        self.status = QLabel("Open a point set: File → Open, or drop a file here.")
+        self.statusBar().addWidget(self.status, 1)
+        self.statusBar().addPermanentWidget(self.progress)
+        self._add_dock("Alpha", self.alpha_panel, Qt.DockWidgetArea.RightDockWidgetArea)
+        self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
+        self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
+        self.menus = build_menus(self)
+        self._connect()
+        self._restore_layout()
 
-    def open_path(self, path: str | Path) -> None:
-        """Load the points of path and show them."""
-        self.scene.set_points(read_points(path))
-        self.setWindowTitle(f"Alpha Scoop - {Path(path).name}")
+    def _add_dock(self, title: str, widget: QWidget, area: Qt.DockWidgetArea) -> QDockWidget:
+        """Put widget in a named dock (names let QSettings restore the layout)."""
+        dock = QDockWidget(title, self)
+        dock.setObjectName(f"dock_{title.lower()}")
+        dock.setWidget(widget)
+        self.addDockWidget(area, dock)
+        return dock
+
+    def _connect(self) -> None:
+        """Wire loader -> window, model -> scene, layers -> scene."""
+        self.loader.progress.connect(self._on_progress)
+        self.loader.finished.connect(self._on_loaded)
+        self.loader.failed.connect(self._on_failed)
+        self.loader.cancelled.connect(self._on_cancelled)
+        self.progress.cancelRequested.connect(self.loader.cancel)
+        self.model.datasetChanged.connect(self._show_dataset)
+        self.model.alphaChanged.connect(self._show_shape)
+        self.layers_panel.styleChanged.connect(self._set_style)
+
+    def open_path(self, path: str | Path) -> int:
+        """Load and build path in the worker (cancels any older open); returns the request id."""
+        path = Path(path)
+        self.prefs.set_last_dir(path)
+        self.progress.start(f"opening {path.name}")
+        return self.loader.open(path)
+
+    def _on_progress(self, request: int, fraction: float, stage: str) -> None:
+        """Show the current request's progress (older requests are ignored)."""
+        if request == self.loader.current:
+            self.progress.update_progress(fraction, stage)
+
+    def _on_loaded(self, request: int, dataset) -> None:
+        """Adopt the dataset of the current request; drop stale ones."""
+        if request != self.loader.current:
+            return
+        self.progress.stop()
+        self.prefs.add_recent(dataset.path)
+        self.model.set_dataset(dataset)
+        if self.start_alpha is not None:
+            self.model.set_alpha(self.start_alpha)
+            self.start_alpha = None
+
+    def _on_failed(self, request: int, message: str) -> None:
+        """Show why the current request failed; the previous dataset stays."""
+        if request != self.loader.current:
+            return
+        self.progress.stop()
+        QMessageBox.warning(self, "Could not open the file", message)
+
+    def _on_cancelled(self, request: int) -> None:
+        """Note a cancelled open in the status bar."""
+        if request == self.loader.current:
+            self.progress.stop()
+            self.status.setText("Opening cancelled.")
+
+    def _show_dataset(self) -> None:
+        """New dataset: new layers and camera (the only time actors are added)."""
+        ds = self.model.dataset
+        ac = ds.ac
+        styles = self.prefs.styles(ac.dim)
+        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles)
+        self.layers_panel.set_layers(styles)
+        self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
+
+    def _show_shape(self) -> None:
+        """New alpha: swap layer connectivity, one render, status line."""
+        self.scene.set_shape(self.model.shape)
+        self.scene.render()
+        ds = self.model.dataset
+        self.status.setText(
+            f"{len(ds.ac.points):,} points · {len(self.model.shape.cells):,} cells · "
+            f"alpha {self.model.alpha:.6g} · built in {ds.build_seconds:.2f} s"
+        )
+
+    def _set_style(self, name: str, style) -> None:
+        """Apply and remember one layer's style; render once."""
+        self.scene.set_style(name, style)
+        if self.model.dataset is not None:
+            self.prefs.set_style(self.model.dataset.ac.dim, name, style)
         self.scene.render()
 
+    def dragEnterEvent(self, event) -> None:
+        """Accept drags that carry local files."""
+        if any(url.isLocalFile() for url in event.mimeData().urls()):
+            event.acceptProposedAction()
+
+    def dropEvent(self, event) -> None:
+        """Open the first dropped local file."""
+        files = [url.toLocalFile() for url in event.mimeData().urls() if url.isLocalFile()]
+        if files:
+            self.open_path(files[0])
+            event.acceptProposedAction()
+
+    def _restore_layout(self) -> None:
+        """Restore window geometry and dock layout from the preferences."""
+        store = self.prefs.store
+        if store.contains("window/geometry"):
+            self.restoreGeometry(store.value("window/geometry"))
+            self.restoreState(store.value("window/state"))
+
     def closeEvent(self, event) -> None:
-        """Close the plotter with the window, so VTK is released before Qt."""
+        """Stop the worker, save the layout, release VTK before Qt."""
+        self.loader.cancel()
+        self.loader.wait()
+        self.prefs.store.setValue("window/geometry", self.saveGeometry())
+        self.prefs.store.setValue("window/state", self.saveState())
         self.plotter.close()
         super().closeEvent(event)
+
+    def report(self, message: str) -> None:
+        """Show a short result message (exports, screenshots) in the status bar."""
+        self.status.setText(message)
+
+    def ask_and_open(self) -> None:
+        """File → Open."""
+        path = file_actions.ask_open_path(self, self.prefs)
+        if path:
+            self.open_path(path)

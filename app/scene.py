@@ -2,18 +2,40 @@
 
 A new dataset replaces the layers' points once; a new alpha only swaps their connectivity in
 place (zero-copy numpy -> vtkCellArray), so a slider step never adds or removes an actor.
+Hidden layers are not updated until shown again.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
 import numpy as np
 import pyvista as pv
+from vtkmodules.vtkFiltersGeneral import vtkShrinkFilter
 
-POINT_SIZE = 3.0
+from app.palette import BACKGROUND, LayerStyle
+
+SHRINK_FACTOR = 0.8
+KINDS_3D = {
+    "delaunay": "lines", "points": "verts", "interior": "tets", "boundary": "tris",
+    "singular_faces": "tris", "singular_edges": "lines", "singular_points": "verts",
+}
+KINDS_2D = {
+    "delaunay": "lines", "points": "verts", "interior": "tris", "boundary": "lines",
+    "singular_edges": "lines", "singular_points": "verts",
+}
+STATIC_LAYERS = ("points", "delaunay")
+DRAW_OPTIONS = {
+    "points": {"point_size": 3.0},
+    "singular_points": {"point_size": 7.0, "render_points_as_spheres": True},
+    "singular_edges": {"line_width": 3.0},
+    "delaunay": {"line_width": 1.0},
+}
 
 
 def as_xyz(points: np.ndarray) -> np.ndarray:
-    """(m, 3) float64 view/copy of (m, 2) or (m, 3) points (2D gets z = 0)."""
+    """(m, 3) float64 copy of (m, 2) or (m, 3) points (2D gets z = 0)."""
     points = np.asarray(points, dtype=np.float64)
     if points.shape[1] == 3:
         return np.ascontiguousarray(points)
@@ -21,35 +43,155 @@ def as_xyz(points: np.ndarray) -> np.ndarray:
 
 
 def cell_array(cells: np.ndarray) -> pv.CellArray:
-    """vtkCellArray sharing memory with (k, s) int32 cells (s points each; copy only if needed)."""
+    """vtkCellArray sharing memory with (k, s) int32 cells (copies only to fix the dtype)."""
     cells = np.ascontiguousarray(cells, dtype=np.int32)
-    return pv.CellArray.from_regular_cells(cells.reshape(len(cells), -1))
+    return pv.CellArray.from_regular_cells(cells if cells.ndim == 2 else cells[:, None])
+
+
+def shape_cells(shape, name: str) -> np.ndarray:
+    """(k, s) int32 simplices an AlphaShape gives the named layer."""
+    if name == "interior":
+        return shape.cells
+    if name == "boundary":
+        return shape.regular_facets
+    order = {"singular_points": 0, "singular_edges": 1, "singular_faces": 2}[name]
+    return shape.singular(order).reshape(-1, order + 1)
+
+
+@dataclass
+class Layer:
+    """One drawn layer: its mesh (connectivity swapped in place) and actor."""
+
+    kind: str
+    mesh: pv.DataSet
+    actor: pv.Actor | None = None
+    dirty: bool = False
+    cells: np.ndarray = field(default_factory=lambda: np.zeros((0, 1), dtype=np.int32))
+
+    def set_cells(self, cells: np.ndarray) -> None:
+        """Replace the layer's (k, s) connectivity in place (points stay)."""
+        array = cell_array(cells)
+        if self.kind == "tets":
+            self.mesh.SetCells(pv.CellType.TETRA, array)
+        elif self.kind == "tris":
+            self.mesh.faces = array
+        elif self.kind == "lines":
+            self.mesh.lines = array
+        else:
+            self.mesh.verts = array
+        self.mesh.Modified()
+        self.cells = cells
+        self.dirty = False
+
+
+def new_mesh(kind: str, xyz: np.ndarray) -> pv.DataSet:
+    """An empty mesh of the kind's type on the shared (m, 3) points."""
+    mesh = pv.UnstructuredGrid() if kind == "tets" else pv.PolyData()
+    mesh.points = xyz
+    return mesh
 
 
 class Scene:
     """Layers of one dataset drawn into a pyvista plotter (QtInteractor or off-screen)."""
 
-    def __init__(self, plotter: pv.BasePlotter) -> None:
-        """Draw into plotter; no layers until set_points."""
+    def __init__(self, plotter: pv.BasePlotter, render: Callable[[], None] | None = None) -> None:
+        """Draw into plotter; render() defaults to plotter.render (QtInteractor: pass update)."""
         self.plotter = plotter
         self.plotter.theme.allow_empty_mesh = True
-        self.meshes: dict[str, pv.PolyData] = {}
-        self.actors: dict[str, pv.Actor] = {}
+        self.plotter.set_background(BACKGROUND)
+        self._render = render or plotter.render
+        self.layers: dict[str, Layer] = {}
+        self.styles: dict[str, LayerStyle] = {}
+        self.shape = None
+        self.dim = 3
 
-    def set_points(self, points: np.ndarray) -> None:
-        """Show a new dataset's (m, 2|3) points; replaces every layer's geometry."""
-        xyz = as_xyz(points)
-        if "points" not in self.meshes:
-            self.meshes["points"] = pv.PolyData()
-            self.actors["points"] = self.plotter.add_mesh(
-                self.meshes["points"], color="#d8dee9", point_size=POINT_SIZE,
-                render_points_as_spheres=False, name="points", reset_camera=False,
-            )
-        mesh = self.meshes["points"]
-        mesh.points = xyz
-        mesh.verts = cell_array(np.arange(len(xyz), dtype=np.int32)[:, None])
-        self.plotter.reset_camera()
+    @property
+    def meshes(self) -> dict[str, pv.DataSet]:
+        """Layer name -> its mesh (read the drawn geometry here)."""
+        return {name: layer.mesh for name, layer in self.layers.items()}
+
+    def set_dataset(self, xyz: np.ndarray, dim: int, edges: np.ndarray,
+                    styles: dict[str, LayerStyle]) -> None:
+        """New data: (m, 3) points, complex dimension, (e, 2) Delaunay edges, layer styles."""
+        self.clear()
+        self.dim, self.shape = dim, None
+        for name, kind in (KINDS_2D if dim == 2 else KINDS_3D).items():
+            self.layers[name] = Layer(kind, new_mesh(kind, xyz))
+            self.layers[name].actor = self._add_actor(name, styles[name])
+            self.styles[name] = styles[name]
+        self.layers["points"].set_cells(np.arange(len(xyz), dtype=np.int32)[:, None])
+        self.layers["delaunay"].set_cells(edges)
+        self.fit_view()
+
+    def _add_actor(self, name: str, style: LayerStyle) -> pv.Actor:
+        """Add the layer's one actor (only on a new dataset)."""
+        layer = self.layers[name]
+        source = layer.mesh
+        if layer.kind == "tets":
+            source = vtkShrinkFilter()
+            source.SetInputData(layer.mesh)
+            source.SetShrinkFactor(SHRINK_FACTOR)
+        actor = self.plotter.add_mesh(
+            source, color=style.colour, opacity=style.opacity, name=name, reset_camera=False,
+            lighting=layer.kind in ("tris", "tets") and self.dim == 3,
+            **DRAW_OPTIONS.get(name, {}),
+        )
+        actor.SetVisibility(style.visible)
+        return actor
+
+    def clear(self) -> None:
+        """Remove every layer's actor (only when the dataset changes)."""
+        for name in self.layers:
+            self.plotter.remove_actor(name, reset_camera=False, render=False)
+        self.layers.clear()
+        self.styles.clear()
+
+    def set_shape(self, shape) -> None:
+        """Show an AlphaShape: swap the connectivity of visible layers, mark hidden ones dirty."""
+        self.shape = shape
+        for name, layer in self.layers.items():
+            if name in STATIC_LAYERS:
+                continue
+            if self.styles[name].visible:
+                layer.set_cells(shape_cells(shape, name))
+            else:
+                layer.dirty = True
+
+    def set_style(self, name: str, style: LayerStyle) -> None:
+        """Change one layer's visibility, colour or opacity (no geometry work unless dirty)."""
+        if name not in self.layers:
+            return
+        layer = self.layers[name]
+        self.styles[name] = style
+        if style.visible and layer.dirty and self.shape is not None:
+            layer.set_cells(shape_cells(self.shape, name))
+        prop = layer.actor.prop
+        prop.color = style.colour
+        prop.opacity = style.opacity
+        layer.actor.SetVisibility(style.visible)
+
+    def fit_view(self) -> None:
+        """Fit the camera to all points: 3D isometric perspective, or 2D top-down parallel."""
+        renderer = self.plotter.renderer
+        bounds = self.layers["points"].mesh.bounds if self.layers else None
+        interactive = getattr(self.plotter, "iren", None) is not None
+        if self.dim == 2 and self.is_flat():
+            renderer.enable_parallel_projection()
+            renderer.view_xy(render=False, bounds=bounds)
+            if interactive:
+                self.plotter.enable_2d_style()
+        else:
+            renderer.disable_parallel_projection()
+            renderer.view_isometric(render=False, bounds=bounds)
+            if interactive:
+                self.plotter.enable_trackball_style()
+        renderer.reset_camera(render=False, bounds=bounds)
+
+    def is_flat(self) -> bool:
+        """True when all points lie in the z = 0 plane (2D input)."""
+        points = self.layers["points"].mesh.points
+        return bool(len(points) == 0 or not np.any(points[:, 2]))
 
     def render(self) -> None:
-        """Request one render of the plotter."""
-        self.plotter.render()
+        """Request one render."""
+        self._render()

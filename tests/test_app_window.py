@@ -12,12 +12,17 @@ from app.resources import SAMPLE_PATH
 MIN_CONTRAST = 10.0
 
 
+BUILD_TIMEOUT_MS = 120_000
+
+
 @pytest.fixture
-def window(qtbot):
-    """A shown MainWindow, closed (with its plotter) in teardown."""
+def window(qtbot, tmp_path):
+    """A shown MainWindow with private settings, closed (with its plotter) in teardown."""
+    from PySide6.QtCore import QSettings
+
     from app.main_window import MainWindow
 
-    win = MainWindow()
+    win = MainWindow(QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat))
     qtbot.addWidget(win)
     win.resize(800, 600)
     win.show()
@@ -38,19 +43,27 @@ def test_sample_is_small_and_sizeable() -> None:
     assert 15_000 <= len(sample_points()) <= 25_000
 
 
-def test_window_shows_the_sample_points(window, qtbot) -> None:
-    """The points layer holds exactly the sample's points, one vertex cell each."""
-    window.open_path(SAMPLE_PATH)
-    mesh = window.scene.meshes["points"]
+@pytest.fixture
+def sample_window(window, qtbot):
+    """The window after opening the bundled sample (waits for the build)."""
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(SAMPLE_PATH)
+    return window
+
+
+def test_window_shows_the_sample_points(sample_window) -> None:
+    """The points layer holds exactly the sample's points (mapped back to file order)."""
+    mesh = sample_window.scene.meshes["points"]
+    ac = sample_window.model.dataset.ac
     expected = sample_points()
-    assert mesh.n_points == len(expected)
-    assert np.array_equal(np.asarray(mesh.points, dtype=np.float64), expected)
+    assert mesh.n_points == len(ac.points) == len(expected)
+    assert np.array_equal(np.asarray(mesh.points)[ac.input_index], expected)
     assert mesh.n_verts == len(expected)
 
 
-def test_window_screenshot_is_not_blank(window, qtbot) -> None:
+def test_window_screenshot_is_not_blank(sample_window, qtbot) -> None:
     """A screenshot of the window's view has contrast (a black or empty frame fails)."""
-    window.open_path(SAMPLE_PATH)
+    window = sample_window
     window.plotter.interactor.update()
     qtbot.wait(50)
     image = window.plotter.screenshot(return_img=True)

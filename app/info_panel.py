@@ -1,0 +1,73 @@
+"""Info dock: facts about the data and about the shape at the current alpha."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
+
+from app.model import ExplorerModel
+
+BETTI_NAMES = {2: ("components", "holes"), 3: ("components", "tunnels", "voids")}
+
+
+def data_lines(model: ExplorerModel) -> list[str]:
+    """Lines describing the dataset: file, point counts, dimension, timings."""
+    ds = model.dataset
+    ac = ds.ac
+    lines = [f"<b>{ds.path.name}</b>", f"{ds.n_input:,} points read, {len(ac.points):,} used"]
+    report = ds.report
+    if report is not None and getattr(report, "n_duplicates", 0):
+        lines.append(f"{report.n_duplicates:,} duplicates merged")
+    if report is not None and getattr(report, "spacing", 0):
+        lines.append(f"spacing {report.spacing:.4g}")
+    flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
+    lines.append(f"{ac.dim}D complex{flat}, {len(ac.simplices(ac.dim)):,} cells")
+    lines.append(f"read {ds.load_seconds:.2f} s, built {ds.build_seconds:.2f} s")
+    return lines
+
+
+def shape_lines(model: ExplorerModel) -> list[str]:
+    """Lines describing the shape at the current alpha: classes, topology, measures."""
+    shape, ds = model.shape, model.dataset
+    dim = ds.ac.dim
+    lines = [f"<b>alpha {model.alpha:.6g}</b>", f"{len(shape.cells):,} cells, "
+             f"{len(shape.regular_facets):,} boundary facets"]
+    singular = ", ".join(f"{len(shape.singular(k)):,}" for k in range(dim))
+    lines.append(f"singular (points, edges{', triangles' if dim == 3 else ''}): {singular}")
+    sig = ds.signatures
+    if sig is not None:
+        betti = sig.betti[model.index]
+        names = BETTI_NAMES[dim]
+        lines.append(", ".join(f"{int(b):,} {n}" for b, n in zip(betti, names, strict=True)))
+        boundary = "perimeter" if dim == 2 else "area"
+        lines.append(f"{boundary} {float(sig.boundary_measure[model.index]):.6g}")
+    lines.append(f"{'area' if dim == 2 else 'volume'} {shape.measure:.6g}")
+    return lines
+
+
+class InfoPanel(QWidget):
+    """Two text blocks, refreshed from the model."""
+
+    def __init__(self, model: ExplorerModel, parent: QWidget | None = None) -> None:
+        """Create the labels and follow model."""
+        super().__init__(parent)
+        self.model = model
+        self.data = QLabel("No data yet: File → Open, or drop a file on the window.")
+        self.shape = QLabel()
+        column = QVBoxLayout(self)
+        for label in (self.data, self.shape):
+            label.setTextFormat(Qt.TextFormat.RichText)
+            label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+            label.setWordWrap(True)
+            column.addWidget(label)
+        column.addStretch(1)
+        model.datasetChanged.connect(self.show_data)
+        model.alphaChanged.connect(self.show_shape)
+
+    def show_data(self) -> None:
+        """Refresh the data block."""
+        self.data.setText("<br>".join(data_lines(self.model)))
+
+    def show_shape(self) -> None:
+        """Refresh the shape-at-alpha block."""
+        self.shape.setText("<br>".join(shape_lines(self.model)))

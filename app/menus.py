@@ -1,0 +1,109 @@
+"""The main window's menus and their handlers (file dialogs, exports, view and shape actions)."""
+
+from __future__ import annotations
+
+from functools import partial
+from pathlib import Path
+
+from PySide6.QtGui import QAction, QKeySequence
+from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QMessageBox
+
+from app import file_actions
+from core.errors import AlphaScoopError
+
+ABOUT = (
+    "<b>Alpha Scoop</b><br>Explore alpha shapes of 2D and 3D point sets: one Delaunay build, "
+    "every alpha a cheap query.<br>Alpha is a radius; r² is the value CGAL and gudhi use."
+)
+
+
+def add_action(menu: QMenu, text: str, slot, shortcut=None) -> QAction:
+    """Add a triggered action to menu."""
+    action = menu.addAction(text)
+    action.triggered.connect(lambda _=False: slot())
+    if shortcut is not None:
+        action.setShortcut(QKeySequence(shortcut))
+    return action
+
+
+def fill_recent(window, menu: QMenu) -> None:
+    """Rebuild the Open Recent submenu from the preferences."""
+    menu.clear()
+    files = window.prefs.recent_files()
+    for path in files:
+        add_action(menu, Path(path).name, partial(window.open_path, path)).setToolTip(path)
+    menu.setEnabled(bool(files))
+
+
+def run_writer(window, title: str, write) -> None:
+    """Run a writer; report its result in the status bar, or its error in a dialog."""
+    try:
+        window.report(write())
+    except (AlphaScoopError, OSError) as error:
+        QMessageBox.warning(window, title, str(error))
+
+
+def export_shape(window) -> None:
+    """File → Export shape: formats from core.export, the oriented surface by default."""
+    formats = file_actions.shape_formats()
+    if window.model.dataset is None or not formats:
+        QMessageBox.information(window, "Export shape", "Open a point set first, or the "
+                                "shape exporter is not available in this version.")
+        return
+    stem = window.model.dataset.path.stem
+    path = file_actions.ask_save_path(window, window.prefs, "Export shape", formats,
+                                      f"{stem}_alpha")
+    if path:
+        ac, alpha = window.model.dataset.ac, window.model.alpha
+        run_writer(window, "Export shape", lambda: file_actions.export_shape(ac, alpha, path))
+
+
+def export_table(window) -> None:
+    """File → Export table: the interval table (.npz), to reopen instantly."""
+    if window.model.dataset is None:
+        return
+    stem = window.model.dataset.path.stem
+    path = file_actions.ask_save_path(window, window.prefs, "Export table",
+                                      {".npz": "Alpha Scoop table"}, f"{stem}_table")
+    if path:
+        ac = window.model.dataset.ac
+        run_writer(window, "Export table", lambda: file_actions.export_table(ac, path))
+
+
+def save_screenshot(window) -> None:
+    """File → Save screenshot (PNG)."""
+    path = file_actions.ask_save_path(window, window.prefs, "Save screenshot",
+                                      {".png": "PNG image"}, "alphascoop")
+    if path:
+        run_writer(window, "Save screenshot",
+                   lambda: file_actions.save_screenshot(window.plotter, path))
+
+
+def build_menus(window: QMainWindow) -> dict[str, QAction]:
+    """Create File, View, Shape and Help menus on window; returns the main actions by name."""
+    bar = window.menuBar()
+    file_menu = bar.addMenu("&File")
+    actions = {"open": add_action(file_menu, "&Open…", window.ask_and_open, QKeySequence.Open)}
+    recent = file_menu.addMenu("Open &Recent")
+    recent.aboutToShow.connect(lambda: fill_recent(window, recent))
+    fill_recent(window, recent)
+    file_menu.addSeparator()
+    actions["export_shape"] = add_action(file_menu, "&Export shape…", lambda: export_shape(window))
+    actions["export_table"] = add_action(file_menu, "Export &table…", lambda: export_table(window))
+    actions["screenshot"] = add_action(file_menu, "Save &screenshot…",
+                                       lambda: save_screenshot(window))
+    file_menu.addSeparator()
+    add_action(file_menu, "&Quit", window.close, QKeySequence.Quit)
+    view = bar.addMenu("&View")
+    for dock in window.findChildren(QDockWidget):
+        view.addAction(dock.toggleViewAction())
+    add_action(view, "&Reset camera", lambda: (window.scene.fit_view(), window.scene.render()))
+    shape = bar.addMenu("&Shape")
+    model = window.model
+    actions["optimal"] = add_action(shape, "&Optimal alpha",
+                                    lambda: model.set_index(model.optimal_index()), "Ctrl+1")
+    actions["hull"] = add_action(shape, "Convex &hull",
+                                 lambda: model.set_index(model.hull_index()), "Ctrl+H")
+    help_menu = bar.addMenu("&Help")
+    add_action(help_menu, "&About Alpha Scoop", lambda: QMessageBox.about(window, "About", ABOUT))
+    return actions

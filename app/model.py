@@ -1,0 +1,80 @@
+"""The explorer's state (Qt-evented, no widgets, no VTK): the dataset and the alpha index.
+
+Signals fire only on real change; the alpha is an index into the dataset's spectrum, so every
+value is a critical alpha and every critical alpha is reachable.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from PySide6.QtCore import QObject, Signal
+
+from app.dataset import Dataset
+
+
+def snap_index(spectrum: np.ndarray, alpha: float) -> int:
+    """Index of the largest critical alpha <= alpha (the shape at alpha is the shape there)."""
+    return max(int(np.searchsorted(spectrum, alpha, side="right")) - 1, 0)
+
+
+class ExplorerModel(QObject):
+    """Current dataset and alpha index; the shape at that alpha is queried lazily and cached."""
+
+    datasetChanged = Signal()
+    alphaChanged = Signal()
+
+    def __init__(self) -> None:
+        """Start empty: no dataset, index -1."""
+        super().__init__()
+        self.dataset: Dataset | None = None
+        self.index = -1
+        self._shape = None
+
+    @property
+    def spectrum(self) -> np.ndarray:
+        """(s,) float64 critical alphas of the dataset (empty without one)."""
+        return self.dataset.spectrum if self.dataset else np.zeros(0)
+
+    @property
+    def alpha(self) -> float:
+        """The current alpha radius (nan without a dataset)."""
+        return float(self.spectrum[self.index]) if self.dataset else float("nan")
+
+    @property
+    def shape(self):
+        """AlphaShape at the current alpha (queried once per index)."""
+        if self._shape is None and self.dataset is not None:
+            self._shape = self.dataset.ac.shape(self.alpha)
+        return self._shape
+
+    def set_dataset(self, dataset: Dataset) -> None:
+        """Replace the dataset and move to its optimal alpha."""
+        self.dataset = dataset
+        self.index = snap_index(dataset.spectrum, dataset.optimal_alpha)
+        self._shape = None
+        self.datasetChanged.emit()
+        self.alphaChanged.emit()
+
+    def set_index(self, index: int) -> None:
+        """Move to spectrum[index] (clamped); emits alphaChanged only when it changes."""
+        if self.dataset is None:
+            return
+        index = int(np.clip(index, 0, len(self.spectrum) - 1))
+        if index == self.index:
+            return
+        self.index = index
+        self._shape = None
+        self.alphaChanged.emit()
+
+    def set_alpha(self, alpha: float) -> None:
+        """Move to the shape at alpha (snapped to the critical value at or below it)."""
+        if self.dataset is not None:
+            self.set_index(snap_index(self.spectrum, alpha))
+
+    def optimal_index(self) -> int:
+        """Index of the dataset's optimal alpha."""
+        return snap_index(self.spectrum, self.dataset.optimal_alpha) if self.dataset else -1
+
+    def hull_index(self) -> int:
+        """Index of the last critical alpha: the whole triangulation (convex hull)."""
+        return len(self.spectrum) - 1

@@ -1,0 +1,52 @@
+"""One palette for the whole app: simplex classes, layers, background (view, legend, plots)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+BACKGROUND = "#1f2a36"
+TEXT = "#e8f1fb"
+
+CLASS_COLOURS = {
+    "exterior": "#8c96a0",
+    "singular": "#e4572e",
+    "regular": "#4c9be8",
+    "interior": "#59b86a",
+}
+
+
+@dataclass(frozen=True)
+class LayerStyle:
+    """How a layer is drawn: shown or not, colour '#rrggbb', opacity 0..1."""
+
+    visible: bool
+    colour: str
+    opacity: float
+
+
+LAYER_TITLES = {
+    "boundary": "Boundary (regular)",
+    "interior": "Interior cells",
+    "singular_faces": "Singular triangles",
+    "singular_edges": "Singular edges",
+    "singular_points": "Singular points",
+    "points": "Points",
+    "delaunay": "Delaunay edges",
+}
+
+DEFAULT_STYLES = {
+    "boundary": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
+    "interior": LayerStyle(False, CLASS_COLOURS["interior"], 0.35),
+    "singular_faces": LayerStyle(True, CLASS_COLOURS["singular"], 1.0),
+    "singular_edges": LayerStyle(True, "#f3a712", 1.0),
+    "singular_points": LayerStyle(True, "#d65ac8", 1.0),
+    "points": LayerStyle(False, "#c9d1d9", 1.0),
+    "delaunay": LayerStyle(False, "#9aa5b1", 0.15),
+}
+
+DEFAULT_STYLES_2D = {**DEFAULT_STYLES, "interior": LayerStyle(True, CLASS_COLOURS["interior"], 0.6)}
+
+
+def default_styles(dim: int) -> dict[str, LayerStyle]:
+    """Layer styles a new dataset of dimension dim (2 or 3) starts with."""
+    return dict(DEFAULT_STYLES_2D if dim == 2 else DEFAULT_STYLES)

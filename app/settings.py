@@ -1,0 +1,57 @@
+"""Preferences kept between runs (QSettings): last directory, recent files, layer styles."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtCore import QSettings
+
+from app.palette import LayerStyle, default_styles
+
+MAX_RECENT = 8
+
+
+class Preferences:
+    """Typed access to a QSettings store (tests pass an ini file of their own)."""
+
+    def __init__(self, settings: QSettings | None = None) -> None:
+        """Use settings, or the user's store for organization 'alphascoop'."""
+        self.store = settings or QSettings("alphascoop", "Alpha Scoop")
+
+    def last_dir(self) -> str:
+        """Directory of the last file opened or written ('' if none)."""
+        return str(self.store.value("last_dir", "", type=str))
+
+    def set_last_dir(self, path: str | Path) -> None:
+        """Remember the directory containing path."""
+        self.store.setValue("last_dir", str(Path(path).resolve().parent))
+
+    def recent_files(self) -> list[str]:
+        """Recently opened files, newest first (only those that still exist)."""
+        files = self.store.value("recent_files", [], type=list) or []
+        return [f for f in files if Path(f).is_file()]
+
+    def add_recent(self, path: str | Path) -> None:
+        """Put path first in the recent files."""
+        path = str(Path(path).resolve())
+        files = [path, *(f for f in self.recent_files() if f != path)]
+        self.store.setValue("recent_files", files[:MAX_RECENT])
+
+    def styles(self, dim: int) -> dict[str, LayerStyle]:
+        """Layer styles for a dim-D dataset: defaults overridden by saved ones."""
+        styles = default_styles(dim)
+        for name, default in styles.items():
+            key = f"layers/{dim}d/{name}"
+            styles[name] = LayerStyle(
+                visible=self.store.value(f"{key}/visible", default.visible, type=bool),
+                colour=str(self.store.value(f"{key}/colour", default.colour, type=str)),
+                opacity=float(self.store.value(f"{key}/opacity", default.opacity, type=float)),
+            )
+        return styles
+
+    def set_style(self, dim: int, name: str, style: LayerStyle) -> None:
+        """Save one layer's style for dim-D datasets."""
+        key = f"layers/{dim}d/{name}"
+        self.store.setValue(f"{key}/visible", style.visible)
+        self.store.setValue(f"{key}/colour", style.colour)
+        self.store.setValue(f"{key}/opacity", style.opacity)

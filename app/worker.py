@@ -1,0 +1,87 @@
+"""Load and build datasets off the GUI thread, with progress, cancel and request ids.
+
+Every open gets a new request id and cancels the one before; results of a request that is no
+longer current are dropped, so a slow old build can never replace a newer dataset.
+"""
+
+from __future__ import annotations
+
+import sys
+import threading
+import traceback
+from pathlib import Path
+
+from PySide6.QtCore import QObject, QThreadPool, Signal
+
+from app.dataset import load_dataset
+from core.errors import AlphaScoopError, Cancelled
+
+
+class Loader(QObject):
+    """Runs load_dataset in a one-thread pool and reports back through queued signals."""
+
+    progress = Signal(int, float, str)
+    finished = Signal(int, object)
+    failed = Signal(int, str)
+    cancelled = Signal(int)
+
+    def __init__(self, parent: QObject | None = None) -> None:
+        """One worker thread: a new build waits for the previous one to stop."""
+        super().__init__(parent)
+        self._pool = QThreadPool(self)
+        self._pool.setMaxThreadCount(1)
+        self._current = 0
+        self._cancel: threading.Event | None = None
+
+    @property
+    def current(self) -> int:
+        """Id of the newest request (0 before the first)."""
+        return self._current
+
+    def is_busy(self) -> bool:
+        """True while a request is queued or running."""
+        return self._pool.activeThreadCount() > 0
+
+    def open(self, path: str | Path) -> int:
+        """Start loading path; cancels the previous request; returns the new request id."""
+        self.cancel()
+        self._current += 1
+        request, cancel = self._current, threading.Event()
+        self._cancel = cancel
+        self._pool.start(lambda: self._run(request, Path(path), cancel))
+        return request
+
+    def cancel(self) -> None:
+        """Ask the running request to stop at its next progress step."""
+        if self._cancel is not None:
+            self._cancel.set()
+
+    def wait(self, msecs: int = -1) -> bool:
+        """Block until the worker is idle (used on close); False on timeout."""
+        return self._pool.waitForDone(msecs)
+
+    def _run(self, request: int, path: Path, cancel: threading.Event) -> None:
+        """Worker-thread body: emit exactly one of finished/failed/cancelled."""
+
+        def progress(fraction: float, stage: str) -> None:
+            if cancel.is_set():
+                raise Cancelled("cancelled by the user")
+            self.progress.emit(request, fraction, stage)
+
+        try:
+            dataset = load_dataset(path, progress)
+        except Cancelled:
+            self.cancelled.emit(request)
+        except AlphaScoopError as error:
+            self.failed.emit(request, str(error))
+        except MemoryError:
+            self.failed.emit(request, f"{path.name}: not enough memory to build this point set")
+        except Exception as error:
+            traceback.print_exc(file=sys.stderr)
+            self.failed.emit(request, f"{path.name}: unexpected error ({type(error).__name__}: "
+                                      f"{error})")
+        else:
+            if cancel.is_set():
+                self.cancelled.emit(request)
+            else:
+                self.finished.emit(request, dataset)
