@@ -1,0 +1,140 @@
+"""Write a chosen alpha shape (or the whole interval table) to files other tools read.
+
+Every write is atomic: a temporary file beside the target, renamed over it only on success.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from core.errors import FileFormatError
+from core.export.atomic import atomic_path, atomic_write_text
+from core.export.complex_vtu import write_vtu
+from core.export.metadata import shape_metadata, sidecar_text
+from core.export.polygons import POLYGON_WRITERS
+from core.export.surface import SURFACE_WRITERS, manifold_meta, surface_arrays
+from core.export.table import TABLE_WRITERS
+
+__all__ = ["SHAPE_FORMATS", "TABLE_FORMATS", "ExportReport", "write_shape", "write_table"]
+
+SHAPE_FORMATS: dict[str, str] = {
+    ".ply": "PLY surface (binary, metadata in comments)",
+    ".stl": "STL surface (binary)",
+    ".obj": "Wavefront OBJ surface",
+    ".off": "OFF surface",
+    ".vtp": "VTK PolyData surface",
+    ".glb": "glTF binary surface",
+    ".gltf": "glTF surface (embedded buffer)",
+    ".vtu": "VTK unstructured grid: cells and boundary simplices with class and intervals",
+    ".geojson": "GeoJSON polygons with holes (2D)",
+    ".wkt": "WKT MultiPolygon (2D)",
+    ".svg": "SVG figure (2D)",
+    ".csv": "CSV of boundary rings (2D)",
+}
+TABLE_FORMATS: dict[str, str] = {".npz": "interval table, NumPy archive",
+                                 ".csv": "interval table, CSV"}
+
+
+@dataclass(frozen=True)
+class ExportReport:
+    """What was written: file, format, counts, measure, closedness and any manifold split."""
+
+    path: str
+    format: str
+    alpha: float
+    n_vertices: int = 0
+    n_faces: int = 0
+    measure: float = 0.0
+    closed: bool | None = None
+    manifold: str | None = None
+    sidecar: str | None = None
+    metadata: dict = field(default_factory=dict)
+
+    def line(self) -> str:
+        """One-line summary for the CLI and the status bar."""
+        parts = [f"wrote {self.path} ({self.format}, alpha {self.alpha:.6g}"]
+        if self.n_faces:
+            parts.append(f", {self.n_vertices:,} vertices, {self.n_faces:,} faces")
+        parts.append(f", measure {self.measure:.6g})")
+        if self.manifold:
+            parts.append(f"; {self.manifold}")
+        return "".join(parts)
+
+
+def is_closed(faces: np.ndarray) -> bool:
+    """True when every directed edge of the (f, 3) triangles is matched by its reverse."""
+    if len(faces) == 0:
+        return False
+    edges = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2).astype(np.int64)
+    n = int(faces.max()) + 1
+    fwd = np.sort(edges[:, 0] * n + edges[:, 1])
+    rev = np.sort(edges[:, 1] * n + edges[:, 0])
+    return bool(np.array_equal(fwd, rev))
+
+
+def _extension(path: Path, formats: dict[str, str]) -> str:
+    """Lower-case extension of `path` if it is one of `formats`, else a clear error."""
+    ext = path.suffix.lower()
+    if ext not in formats:
+        raise FileFormatError(f"{path}: cannot export to {ext or 'a file without extension'!r};"
+                              f" choose one of {' '.join(formats)}")
+    return ext
+
+
+def _write_surface(tmp: Path, ext: str, ac, shape, manifold: bool, meta: dict) -> dict:
+    """Write a triangle surface; returns the report fields."""
+    vertices, faces, split = surface_arrays(ac, shape, manifold=manifold)
+    meta.update(manifold_meta(split))
+    SURFACE_WRITERS[ext](tmp, vertices, faces, meta)
+    return {"n_vertices": len(vertices), "n_faces": len(faces),
+            "closed": is_closed(faces) if ac.dim == 3 else None,
+            "manifold": None if split is None else split.line()}
+
+
+def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = False,
+                sidecar: bool = False, source: str | os.PathLike | None = None) -> ExportReport:
+    """Write ac.shape(alpha) in the format of `path`'s extension (SHAPE_FORMATS).
+
+    3D: surfaces are the outward REGULAR facets (`manifold=True` splits where the shape
+    touches itself); 2D: polygon formats, or the filled triangles for surface formats.
+    `sidecar=True` also writes PATH.json with the metadata.
+    """
+    path = Path(path)
+    ext = _extension(path, SHAPE_FORMATS)
+    if ac.dim == 3 and ext in POLYGON_WRITERS:
+        raise FileFormatError(f"{path}: {ext} holds 2D polygons, but this shape is 3D; "
+                              f"use one of {' '.join(SURFACE_WRITERS)} .vtu")
+    shape = ac.shape(alpha)
+    meta = shape_metadata(ac, shape, source)
+    fields: dict = {}
+    try:
+        with atomic_path(path) as tmp:
+            if ext in POLYGON_WRITERS:
+                POLYGON_WRITERS[ext](tmp, ac, shape, meta)
+            elif ext == ".vtu":
+                write_vtu(tmp, ac, shape, meta)
+            else:
+                fields = _write_surface(tmp, ext, ac, shape, manifold, meta)
+        side = None
+        if sidecar:
+            side = str(path) + ".json"
+            atomic_write_text(side, sidecar_text(meta))
+    except OSError as exc:
+        raise FileFormatError(f"{path}: cannot write ({exc.strerror or exc})") from None
+    return ExportReport(path=str(path), format=ext.lstrip(".").upper(), alpha=float(alpha),
+                        measure=float(shape.measure), sidecar=side, metadata=meta, **fields)
+
+
+def write_table(ac, path: str | os.PathLike) -> None:
+    """Write the interval table as .npz (layout in core/export/table.py) or .csv, atomically."""
+    path = Path(path)
+    ext = _extension(path, TABLE_FORMATS)
+    try:
+        with atomic_path(path) as tmp:
+            TABLE_WRITERS[ext](tmp, ac)
+    except OSError as exc:
+        raise FileFormatError(f"{path}: cannot write ({exc.strerror or exc})") from None

@@ -1,0 +1,61 @@
+"""The alpha complex at one alpha as a VTU for ParaView: cells and boundary simplices with data.
+
+Blocks: the cells in the complex (INTERIOR), the REGULAR facets, and the SINGULAR simplices of
+every lower dimension. Cell data: `class` (0-3), `dimension`, and the simplex's `enter`,
+`regular` and `interior` alphas (radii; inf = never). Metadata goes into field data.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from core.export.vtkxml import vtu_bytes
+
+INTERIOR, REGULAR, SINGULAR = 3, 2, 1
+
+
+def _rows(simplices: np.ndarray, chosen: np.ndarray, n: int) -> np.ndarray:
+    """Row index in `simplices` ((m, k) sorted rows) of each (c, k) simplex in `chosen`."""
+    def key(a):
+        a = np.sort(np.asarray(a, dtype=np.int64), axis=1)
+        out = np.zeros(len(a), dtype=np.int64)
+        for col in a.T:  # at most 4 columns
+            out = out * n + col
+        return out
+
+    table = key(simplices)
+    order = np.argsort(table, kind="stable")
+    return order[np.searchsorted(table[order], key(chosen))]
+
+
+def complex_blocks(ac, shape) -> tuple[list[np.ndarray], dict[str, np.ndarray]]:
+    """Cell blocks (highest dimension first) and their concatenated cell data."""
+    n, dim = len(ac.points), ac.dim
+    parts = [(dim, np.asarray(shape.cell_ids), INTERIOR)]
+    parts.append((dim - 1, _rows(ac.simplices(dim - 1), shape.regular_facets, n), REGULAR))
+    for k in range(dim - 1, -1, -1):
+        parts.append((k, _rows(ac.simplices(k), shape.singular(k), n), SINGULAR))
+    blocks, data = [], {"class": [], "dimension": [], "enter": [], "regular": [], "interior": []}
+    for k, rows, cls in parts:
+        if len(rows) == 0:
+            continue
+        blocks.append(np.asarray(ac.simplices(k))[rows])
+        iv = np.asarray(ac.intervals(k))[rows]
+        data["class"].append(np.full(len(rows), cls, dtype=np.int8))
+        data["dimension"].append(np.full(len(rows), k, dtype=np.int8))
+        for j, name in enumerate(("enter", "regular", "interior")):
+            data[name].append(iv[:, j])
+    return blocks, {k: np.concatenate(v) for k, v in data.items() if v}
+
+
+def write_vtu(path: Path, ac, shape, meta: dict) -> None:
+    """Write the complex at shape.alpha as VTU (points in the input's space)."""
+    blocks, data = complex_blocks(ac, shape)
+    points = np.asarray(ac.to_ambient(ac.points), dtype=np.float64)
+    if points.shape[1] == 2:
+        points = np.column_stack([points, np.zeros(len(points))])
+    if not blocks:
+        blocks = [np.empty((0, 1), dtype=np.int64)]
+    path.write_bytes(vtu_bytes(points, blocks, data, meta))

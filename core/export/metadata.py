@@ -1,0 +1,60 @@
+"""What an exported shape carries about itself: alpha, source, counts, measure, Betti numbers."""
+
+from __future__ import annotations
+
+import json
+import os
+from importlib import metadata as importlib_metadata
+
+import numpy as np
+
+
+def software() -> str:
+    """'alphascoop <version>' (the installed distribution, else the source tree)."""
+    try:
+        return f"alphascoop {importlib_metadata.version('alphascoop')}"
+    except importlib_metadata.PackageNotFoundError:
+        return "alphascoop (source tree)"
+
+
+def betti_numbers(ac, alpha: float) -> list[int] | None:
+    """Betti numbers at alpha if the complex offers them (`ac.betti`), else None."""
+    betti = getattr(ac, "betti", None)
+    if betti is None:
+        return None
+    try:
+        values = betti(alpha) if callable(betti) else betti
+        return [int(b) for b in np.asarray(values).ravel()]
+    except (TypeError, ValueError):
+        return None
+
+
+def shape_metadata(ac, shape, source: str | os.PathLike | None = None) -> dict:
+    """JSON-ready facts about `shape` (an AlphaShape of `ac`) for file headers and sidecars."""
+    meta = {
+        "software": software(),
+        "alpha": float(shape.alpha),
+        "alpha_sq": float(shape.alpha) ** 2,
+        "source": None if source is None else os.fspath(source),
+        "dim": int(ac.dim),
+        "ambient_dim": int(ac.ambient_dim),
+        "n_points": len(ac.points),
+        "n_cells": len(shape.cells),
+        "n_regular_facets": len(shape.regular_facets),
+        "n_singular": [len(shape.singular(k)) for k in range(ac.dim)],
+        "volume" if ac.dim == 3 else "area": float(shape.measure),
+    }
+    betti = betti_numbers(ac, shape.alpha)
+    if betti is not None:
+        meta["betti"] = betti
+    return meta
+
+
+def comment_lines(meta: dict) -> list[str]:
+    """'key=value' lines for formats with free-text comments (PLY, OBJ)."""
+    return [f"{key}={json.dumps(value)}" for key, value in meta.items()]
+
+
+def sidecar_text(meta: dict) -> str:
+    """The JSON sidecar's content."""
+    return json.dumps(meta, indent=2, sort_keys=False) + "\n"

@@ -1,0 +1,117 @@
+"""2D shapes as polygons with holes (shapely): GeoJSON, WKT, SVG and CSV of rings."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from core.export.metadata import sidecar_text
+from core.export.rings import ring_order, successors
+
+
+def boundary_rings(points: np.ndarray, edges: np.ndarray) -> list[np.ndarray]:
+    """Closed rings ((k, 2) float64, first point repeated last) of oriented boundary edges."""
+    if len(edges) == 0:
+        return []
+    order, offsets = ring_order(successors(points, edges))
+    tails = points[edges[order, 0]]
+    return [np.vstack([r, r[:1]]) for r in np.split(tails, offsets[1:])]
+
+
+def signed_area(ring: np.ndarray) -> float:
+    """Shoelace area of a closed (k, 2) ring: positive when counter-clockwise."""
+    x, y = ring[:, 0], ring[:, 1]
+    return 0.5 * float(np.dot(x[:-1], y[1:]) - np.dot(x[1:], y[:-1]))
+
+
+def shape_polygons(ac, shape) -> shapely.MultiPolygon:
+    """The regularized 2D shape as a valid MultiPolygon (holes inside their shells)."""
+    rings = boundary_rings(np.asarray(ac.points), np.asarray(shape.regular_facets))
+    areas = np.array([signed_area(r) for r in rings])
+    shells = [shapely.Polygon(r) for r, a in zip(rings, areas, strict=True) if a > 0]
+    holes = [r for r, a in zip(rings, areas, strict=True) if a < 0]
+    owner = _hole_owners(shells, [shapely.Polygon(h) for h in holes])
+    polys = [shapely.Polygon(s.exterior, [h for h, o in zip(holes, owner, strict=True) if o == i])
+             for i, s in enumerate(shells)]
+    geom = shapely.MultiPolygon(polys)
+    if not geom.is_valid:
+        geom = shapely.make_valid(geom)
+        parts = [g for g in getattr(geom, "geoms", [geom]) if g.geom_type.endswith("Polygon")]
+        geom = shapely.MultiPolygon([p for g in parts for p in getattr(g, "geoms", [g])])
+    return geom
+
+
+def _hole_owners(shells: list, holes: list) -> np.ndarray:
+    """(h,) index of the smallest shell covering each hole (-1 if none)."""
+    owner = np.full(len(holes), -1, dtype=np.int64)
+    if not holes or not shells:
+        return owner
+    tree = shapely.STRtree(shells)
+    hole_idx, shell_idx = tree.query(holes, predicate="covered_by")
+    area = shapely.area(np.asarray(shells, dtype=object))[shell_idx]
+    order = np.lexsort((area, hole_idx))
+    first = np.concatenate([[True], hole_idx[order][1:] != hole_idx[order][:-1]])
+    owner[hole_idx[order][first]] = shell_idx[order][first]
+    return owner
+
+
+def _singular_lines(ac, shape) -> shapely.MultiLineString:
+    """SINGULAR edges (dangling, in no triangle) as line segments."""
+    return shapely.MultiLineString([ac.points[e] for e in np.asarray(shape.singular(1))])
+
+
+def write_geojson(path: Path, ac, shape, meta: dict) -> None:
+    """FeatureCollection: the polygons (properties = metadata) and any singular edges."""
+    features = [{"type": "Feature", "properties": {"role": "shape", **meta},
+                 "geometry": json.loads(shapely.to_geojson(shape_polygons(ac, shape)))}]
+    lines = _singular_lines(ac, shape)
+    if not lines.is_empty:
+        features.append({"type": "Feature", "properties": {"role": "singular_edges"},
+                         "geometry": json.loads(shapely.to_geojson(lines))})
+    path.write_text(sidecar_text({"type": "FeatureCollection", "features": features}))
+
+
+def write_wkt(path: Path, ac, shape, meta: dict) -> None:
+    """Well-known text of the MultiPolygon, at full precision."""
+    path.write_text(shapely.to_wkt(shape_polygons(ac, shape), rounding_precision=-1) + "\n")
+
+
+def write_rings_csv(path: Path, ac, shape, meta: dict) -> None:
+    """One row per ring vertex: polygon, ring (0 = shell), role, vertex, x, y."""
+    rows = ["polygon,ring,role,vertex,x,y"]
+    for p, poly in enumerate(shape_polygons(ac, shape).geoms):
+        for r, ring in enumerate([poly.exterior, *poly.interiors]):
+            role = "shell" if r == 0 else "hole"
+            rows += [f"{p},{r},{role},{i},{x!r},{y!r}" for i, (x, y) in enumerate(ring.coords)]
+    path.write_text("\n".join(rows) + "\n")
+
+
+def write_svg(path: Path, ac, shape, meta: dict) -> None:
+    """An SVG figure: filled polygons (even-odd holes), singular edges as thin lines."""
+    geom = shape_polygons(ac, shape)
+    lo, hi = np.min(ac.points, axis=0), np.max(ac.points, axis=0)
+    size = float(np.max(hi - lo)) or 1.0
+    pad, width = 0.02 * size, 0.002 * size
+
+    def pts(coords) -> str:
+        return " ".join(f"{x!r},{-y!r}" for x, y in coords)
+
+    paths = [" ".join(f"M {pts(r.coords)} Z" for r in [p.exterior, *p.interiors])
+             for p in geom.geoms]
+    lines = [f"M {pts(line.coords)}" for line in _singular_lines(ac, shape).geoms]
+    box = (lo[0] - pad, -hi[1] - pad, hi[0] - lo[0] + 2 * pad, hi[1] - lo[1] + 2 * pad)
+    view = " ".join(repr(float(v)) for v in box)
+    title = f"alpha shape, alpha={meta['alpha']:.6g}, area={meta.get('area', 0.0):.6g}"
+    body = "".join(f'<path d="{d}" fill="#4c8bd6" fill-rule="evenodd" stroke="#1d3f73" '
+                   f'stroke-width="{width!r}"/>' for d in paths)
+    body += "".join(f'<path d="{d}" fill="none" stroke="#d1495b" stroke-width="{width!r}"/>'
+                    for d in lines)
+    path.write_text(f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{view}">'
+                    f"<title>{title}</title>{body}</svg>\n")
+
+
+POLYGON_WRITERS = {".geojson": write_geojson, ".json": write_geojson, ".wkt": write_wkt,
+                   ".svg": write_svg, ".csv": write_rings_csv}
