@@ -39,8 +39,7 @@ def cover_alpha(cells: np.ndarray, cell_enter: np.ndarray, n_points: int) -> flo
 
 def optimal_alpha(signatures: Signatures, cover: float, n_components: int = 1) -> float:
     """Smallest spectrum alpha >= cover with at most n_components solid components (CGAL)."""
-    if int(n_components) != n_components or n_components < 1:
-        raise InputError(f"n_components must be a whole number >= 1, got {n_components!r}")
+    n_components = whole_number(n_components, "n_components", 1)
     alphas = signatures.alphas
     ok = (alphas >= cover) & (signatures.solid_components <= n_components)
     hits = np.flatnonzero(ok)
@@ -77,6 +76,16 @@ def stable_ranges(signatures: Signatures, k: int | None = None) -> list[AlphaRan
 
 def suggest_alphas(signatures: Signatures, k: int = 5) -> tuple[AlphaRange, ...]:
     """The k longest ranges of constant Betti numbers (log scale), best first."""
-    if int(k) != k or k < 0:
-        raise InputError(f"k must be a whole number >= 0, got {k!r}")
-    return tuple(stable_ranges(signatures, int(k)))
+    return tuple(stable_ranges(signatures, whole_number(k, "k", 0)))
+
+
+def whole_number(value: object, name: str, minimum: int) -> int:
+    """`value` as an int >= minimum, or InputError naming the parameter."""
+    try:
+        number = int(value)  # type: ignore[call-overload]
+        exact = number == value
+    except (TypeError, ValueError):
+        exact = False
+    if not exact or isinstance(value, bool) or number < minimum:
+        raise InputError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+    return number
