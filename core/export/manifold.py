@@ -129,7 +129,8 @@ def split_nonmanifold(ac, shape) -> tuple[np.ndarray, np.ndarray, ManifoldReport
     if len(faces) == 0:
         return np.empty(0, np.int64), faces.reshape(0, 3), ManifoldReport(0, 0, 0)
     tris = ac.simplices(2)
-    rows = facet_rows(tris, faces, len(ac.points))
+    rows = getattr(shape, "regular_facet_ids", None)  # the core knows them; else look up
+    rows = facet_rows(tris, faces, len(ac.points)) if rows is None else np.asarray(rows)
     n_cells = len(ac.simplices(3))
     filled = np.zeros(n_cells + 1, dtype=bool)
     filled[np.asarray(shape.cell_ids)] = True

@@ -34,7 +34,8 @@ def data_array(name: str, values: np.ndarray) -> str:
     comps = 1 if values.ndim == 1 else values.shape[1]
     kind = VTK_TYPES[values.dtype.newbyteorder("=")]
     return (f'<DataArray type="{kind}" Name={quoteattr(name)} NumberOfComponents="{comps}" '
-            f'format="binary">{_encode(values.tobytes())}</DataArray>')
+            f'NumberOfTuples="{len(values)}" format="binary">{_encode(values.tobytes())}'
+            "</DataArray>")
 
 
 def string_array(name: str, text: str) -> str:
