@@ -30,6 +30,7 @@ DRAW_OPTIONS = {
     "points": {"point_size": 3.0},
     "singular_points": {"point_size": 7.0, "render_points_as_spheres": True},
     "singular_edges": {"line_width": 3.0},
+    "boundary": {"line_width": 2.0},
     "delaunay": {"line_width": 1.0},
 }
 

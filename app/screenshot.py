@@ -1,30 +1,48 @@
-"""Non-interactive mode: render a file at one alpha into a PNG and exit (no window, no Qt)."""
+"""Non-interactive mode: render a file's shape at one alpha into a PNG and exit (no Qt).
+
+`alphascoop FILE --alpha R --screenshot OUT.png [--size WxH]` (or `--optimal`) uses an
+off-screen VTK plotter, so it also works with no display at all.
+"""
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import tempfile
 from pathlib import Path
 
 import pyvista as pv
 
-from app.loading import read_points
+from app.dataset import Dataset, load_dataset
+from app.palette import default_styles
 from app.resources import SAMPLE_PATH
-from app.scene import Scene
+from app.scene import Scene, as_xyz
 from core.errors import AlphaScoopError
 
 DEFAULT_SIZE = (1280, 800)
 
 
-def render_png(source: Path, out: Path, size: tuple[int, int]) -> None:
-    """Render source's points into out (PNG) with an off-screen plotter of size pixels."""
+def quiet_progress(fraction: float, stage: str) -> None:
+    """Progress sink for scripts: says nothing."""
+
+
+def render_png(dataset: Dataset, alpha: float, out: Path, size: tuple[int, int]) -> None:
+    """Render dataset's shape at alpha into out (PNG, written atomically) at size pixels."""
+    ac = dataset.ac
     plotter = pv.Plotter(off_screen=True, window_size=list(size))
+    fd, tmp = tempfile.mkstemp(dir=out.parent, suffix=".png")
+    os.close(fd)
     try:
-        plotter.set_background("#1f2a36")
         scene = Scene(plotter)
-        scene.set_points(read_points(source))
-        plotter.screenshot(str(out))
+        scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1),
+                          default_styles(ac.dim))
+        scene.set_shape(ac.shape(alpha))
+        plotter.screenshot(tmp)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, out)
     finally:
+        Path(tmp).unlink(missing_ok=True)
         plotter.close()
 
 
@@ -33,9 +51,13 @@ def run_screenshot(args: argparse.Namespace) -> int:
     source = Path(args.file) if args.file else SAMPLE_PATH
     out = Path(args.screenshot)
     try:
-        render_png(source, out, args.size or DEFAULT_SIZE)
+        if not out.parent.is_dir():
+            raise AlphaScoopError(f"{out.parent}: no such folder for the screenshot")
+        dataset = load_dataset(source, quiet_progress)
+        alpha = dataset.optimal_alpha if args.alpha is None else args.alpha
+        render_png(dataset, alpha, out, args.size or DEFAULT_SIZE)
     except (AlphaScoopError, OSError) as error:
         print(f"alphascoop: {error}", file=sys.stderr)
         return 1
-    print(f"wrote {out}")
+    print(f"wrote {out} (alpha {alpha:.6g})")
     return 0

@@ -101,3 +101,28 @@ def no_leaked_plotters() -> Iterator[None]:
 def image_contrast(image: np.ndarray) -> float:
     """Standard deviation of an (h, w, c) uint8 screenshot: ~0 for a blank or black frame."""
     return float(np.asarray(image, dtype=np.float64).std())
+
+
+BUILD_TIMEOUT_MS = 120_000
+
+
+@pytest.fixture
+def window(qtbot, tmp_path):
+    """A shown MainWindow with private settings, closed (with its plotter) in teardown."""
+    from PySide6.QtCore import QSettings
+
+    from app.main_window import MainWindow
+
+    win = MainWindow(QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat))
+    qtbot.addWidget(win)
+    win.resize(900, 650)
+    win.show()
+    qtbot.waitExposed(win)
+    yield win
+    win.close()
+
+
+def open_and_wait(qtbot, win, path) -> None:
+    """Open path the way a user does (window.open_path) and wait until it is shown."""
+    with qtbot.waitSignal(win.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        win.open_path(path)

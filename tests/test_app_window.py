@@ -4,31 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import image_contrast
+from conftest import image_contrast, open_and_wait
 from plyfile import PlyData
 
 from app.resources import SAMPLE_PATH
 
 MIN_CONTRAST = 10.0
-
-
-BUILD_TIMEOUT_MS = 120_000
-
-
-@pytest.fixture
-def window(qtbot, tmp_path):
-    """A shown MainWindow with private settings, closed (with its plotter) in teardown."""
-    from PySide6.QtCore import QSettings
-
-    from app.main_window import MainWindow
-
-    win = MainWindow(QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat))
-    qtbot.addWidget(win)
-    win.resize(800, 600)
-    win.show()
-    qtbot.waitExposed(win)
-    yield win
-    win.close()
 
 
 def sample_points() -> np.ndarray:
@@ -46,8 +27,7 @@ def test_sample_is_small_and_sizeable() -> None:
 @pytest.fixture
 def sample_window(window, qtbot):
     """The window after opening the bundled sample (waits for the build)."""
-    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
-        window.open_path(SAMPLE_PATH)
+    open_and_wait(qtbot, window, SAMPLE_PATH)
     return window
 
 

@@ -1,0 +1,230 @@
+"""The explorer window end to end: open like a user, move alpha with keys, check every layer."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from conftest import BUILD_TIMEOUT_MS, image_contrast, open_and_wait
+from PySide6.QtCore import Qt
+
+MIN_CONTRAST = 10.0
+REGULAR = 2
+
+
+def blobs_3d(n: int = 1200, seed: int = 1) -> np.ndarray:
+    """(n, 3) noisy solid ring plus a separate ball: tunnels, components, singular bits."""
+    rng = np.random.default_rng(seed)
+    angle = rng.uniform(0, 2 * np.pi, n // 2)
+    tube = rng.normal(scale=0.15, size=(n // 2, 3))
+    ring = np.column_stack([np.cos(angle), np.sin(angle), np.zeros(n // 2)]) + tube
+    ball = rng.normal(scale=0.3, size=(n - n // 2, 3)) + np.array([3.0, 0.0, 0.0])
+    return np.concatenate([ring, ball])
+
+
+def disc_2d(n: int = 600, seed: int = 2) -> np.ndarray:
+    """(n, 2) points of an annulus: a 2D shape with a hole."""
+    rng = np.random.default_rng(seed)
+    angle, radius = rng.uniform(0, 2 * np.pi, n), np.sqrt(rng.uniform(0.25, 1.0, n))
+    return np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
+
+
+@pytest.fixture
+def points_file(tmp_path):
+    """Write an (n, d) array to tmp_path as .npy; returns the path."""
+    def write(points: np.ndarray, name: str = "points.npy"):
+        path = tmp_path / name
+        np.save(path, points)
+        return path
+    return write
+
+
+@pytest.fixture
+def opened(window, qtbot, points_file):
+    """The window after opening the 3D test blobs, with every layer shown."""
+    open_and_wait(qtbot, window, points_file(blobs_3d()))
+    for row in window.layers_panel.rows.values():
+        row.visible.setChecked(True)
+    return window
+
+
+def layer_cells(layer) -> np.ndarray:
+    """(k, s) connectivity a layer's VTK mesh holds (tets, triangles, lines or vertices)."""
+    mesh = layer.mesh
+    if layer.kind == "tets":
+        assert set(mesh.celltypes.tolist()) <= {10}
+        return mesh.cell_connectivity.reshape(-1, 4)
+    cells, size = {"tris": (mesh.faces, 3), "lines": (mesh.lines, 2),
+                   "verts": (mesh.verts, 1)}[layer.kind]
+    return cells.reshape(-1, size + 1)[:, 1:]
+
+
+def as_set(cells: np.ndarray) -> set[tuple[int, ...]]:
+    """Simplices as a set of sorted vertex tuples (orientation and order ignored)."""
+    return {tuple(row) for row in np.sort(np.asarray(cells), axis=1).tolist()}
+
+
+def expected_layers(ac, alpha: float) -> dict[str, np.ndarray]:
+    """Layer name -> simplices the core reports at alpha (shape and classify, independently)."""
+    shape, dim = ac.shape(alpha), ac.dim
+    expected = {
+        "interior": shape.cells,
+        "boundary": ac.simplices(dim - 1)[ac.classify(alpha, dim - 1) == REGULAR],
+        "singular_edges": shape.singular(1),
+        "singular_points": shape.singular(0).reshape(-1, 1),
+    }
+    if dim == 3:
+        expected["singular_faces"] = shape.singular(2)
+    return expected
+
+
+def assert_layers_match(win) -> None:
+    """Every shape layer's mesh holds exactly the simplices of its class at the model's alpha."""
+    ac, alpha = win.model.dataset.ac, win.model.alpha
+    for name, cells in expected_layers(ac, alpha).items():
+        got = layer_cells(win.scene.layers[name])
+        assert len(got) == len(cells), name
+        assert as_set(got) == as_set(cells), name
+
+
+def press(qtbot, win, key, times: int = 1) -> None:
+    """Real key presses on the alpha slider, then wait for the model to settle."""
+    before = win.model.index
+    for _ in range(times):
+        qtbot.keyClick(win.alpha_panel.slider, key)
+    qtbot.waitUntil(lambda: win.model.index != before, timeout=5000)
+
+
+def test_opens_at_optimal_alpha_with_matching_layers(opened) -> None:
+    """A new file starts at the optimal alpha (not empty, not the hull); layers match."""
+    model = opened.model
+    assert model.index == model.optimal_index()
+    assert 0 < model.index < model.hull_index()
+    assert len(model.shape.cells) > 0
+    assert_layers_match(opened)
+
+
+@pytest.mark.parametrize(("key", "direction"), [(Qt.Key.Key_Left, -1), (Qt.Key.Key_Right, 1)])
+def test_arrow_keys_step_one_critical_value(opened, qtbot, key, direction) -> None:
+    """An arrow key moves exactly one critical alpha; every layer follows."""
+    start = opened.model.index
+    press(qtbot, opened, key)
+    assert opened.model.index == start + direction
+    assert opened.model.alpha == opened.model.spectrum[start + direction]
+    assert_layers_match(opened)
+
+
+def test_page_keys_take_bigger_steps_and_layers_follow(opened, qtbot) -> None:
+    """PageDown/PageUp move a page of critical values; the meshes change and still match."""
+    model, page = opened.model, opened.alpha_panel.slider.pageStep()
+    assert page > 1
+    start = model.index
+    before = layer_cells(opened.scene.layers["interior"]).copy()
+    press(qtbot, opened, Qt.Key.Key_PageDown, times=3)
+    assert model.index == max(start - 3 * page, 0)
+    assert len(layer_cells(opened.scene.layers["interior"])) < len(before)
+    assert_layers_match(opened)
+
+
+def test_slider_steps_keep_the_same_actors(opened, qtbot) -> None:
+    """Moving alpha swaps connectivity in place: no actor is added or replaced."""
+    actors = dict(opened.plotter.renderer.actors)
+    press(qtbot, opened, Qt.Key.Key_Right, times=2)
+    assert dict(opened.plotter.renderer.actors) == actors
+
+
+def test_typed_radius_snaps_to_the_shape_at_that_value(opened, qtbot) -> None:
+    """Typing r selects the largest critical alpha <= r; the layers show that shape."""
+    spectrum = opened.model.spectrum
+    target = 0.5 * (spectrum[10] + spectrum[11])
+    field = opened.alpha_panel.radius
+    field.setFocus()
+    field.selectAll()
+    qtbot.keyClicks(field, f"{target:.12g}")
+    qtbot.keyClick(field, Qt.Key.Key_Return)
+    assert opened.model.index == 10
+    assert_layers_match(opened)
+
+
+def test_hull_and_optimal_buttons(opened, qtbot) -> None:
+    """'Convex hull' shows every Delaunay cell; 'Optimal' returns to the optimal alpha."""
+    qtbot.mouseClick(opened.alpha_panel.hull, Qt.MouseButton.LeftButton)
+    ac = opened.model.dataset.ac
+    assert len(layer_cells(opened.scene.layers["interior"])) == len(ac.simplices(ac.dim))
+    qtbot.mouseClick(opened.alpha_panel.optimal, Qt.MouseButton.LeftButton)
+    assert opened.model.index == opened.model.optimal_index()
+
+
+def test_toggling_a_layer_hides_its_actor(opened, qtbot) -> None:
+    """Unchecking a layer hides its actor; checking it shows it again, up to date."""
+    row, actor = opened.layers_panel.rows["boundary"], opened.scene.layers["boundary"].actor
+    row.visible.setChecked(False)
+    assert not actor.GetVisibility()
+    press(qtbot, opened, Qt.Key.Key_Right)
+    row.visible.setChecked(True)
+    assert actor.GetVisibility()
+    assert_layers_match(opened)
+
+
+def screenshot(win, qtbot) -> np.ndarray:
+    """(h, w, 3) uint8 image of the view after one render."""
+    win.plotter.interactor.update()
+    qtbot.wait(50)
+    return win.plotter.screenshot(return_img=True)
+
+
+def test_screenshots_have_contrast_and_differ_between_alphas(opened, qtbot) -> None:
+    """Two alphas give two different, non-blank pictures."""
+    first = screenshot(opened, qtbot)
+    qtbot.mouseClick(opened.alpha_panel.hull, Qt.MouseButton.LeftButton)
+    second = screenshot(opened, qtbot)
+    assert image_contrast(first) > MIN_CONTRAST and image_contrast(second) > MIN_CONTRAST
+    assert np.abs(first.astype(int) - second.astype(int)).mean() > 1.0
+
+
+def test_2d_data_gets_a_parallel_top_down_view(window, qtbot, points_file) -> None:
+    """2D points: parallel projection looking down z, boundary drawn as edges."""
+    open_and_wait(qtbot, window, points_file(disc_2d()))
+    assert window.plotter.camera.parallel_projection
+    assert np.allclose(np.abs(window.plotter.camera.direction), [0, 0, 1])
+    assert window.scene.layers["boundary"].kind == "lines"
+    assert_layers_match(window)
+
+
+def test_bad_file_shows_error_and_keeps_previous_dataset(opened, qtbot, tmp_path, monkeypatch):
+    """A broken file gives a readable dialog; the dataset on screen stays."""
+    shown: list[str] = []
+    monkeypatch.setattr("app.main_window.QMessageBox.warning",
+                        lambda parent, title, text: shown.append(text))
+    before = opened.model.dataset
+    bad = tmp_path / "broken.ply"
+    bad.write_bytes(b"ply\nformat binary_little_endian 1.0\nelement vertex 9\nend_header\n\x00")
+    with qtbot.waitSignal(opened.loader.failed, timeout=BUILD_TIMEOUT_MS):
+        opened.open_path(bad)
+    assert len(shown) == 1 and "broken.ply" in shown[0] and "Traceback" not in shown[0]
+    assert opened.model.dataset is before
+    assert_layers_match(opened)
+
+
+def test_cancel_leaves_the_window_usable(opened, qtbot, points_file) -> None:
+    """Cancel during an open: nothing changes, and the slider still drives the old dataset."""
+    before = opened.model.dataset
+    with qtbot.waitSignal(opened.loader.cancelled, timeout=BUILD_TIMEOUT_MS):
+        opened.open_path(points_file(blobs_3d(20_000, seed=5), "big.npy"))
+        qtbot.mouseClick(opened.progress.cancel, Qt.MouseButton.LeftButton)
+    assert opened.model.dataset is before
+    assert not opened.progress.isVisible()
+    press(qtbot, opened, Qt.Key.Key_Right)
+    assert_layers_match(opened)
+
+
+def test_newer_open_wins_over_older(window, qtbot, points_file) -> None:
+    """Opening B while A is still loading shows B; A's late result is dropped."""
+    first = points_file(blobs_3d(3000, seed=7), "a.npy")
+    second = points_file(blobs_3d(800, seed=8), "b.npy")
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(first)
+        window.open_path(second)
+    window.loader.wait()
+    qtbot.wait(50)
+    assert window.model.dataset.path == second
+    assert len(window.model.dataset.ac.points) == 800
