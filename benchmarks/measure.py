@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import gc
+import time
 from collections.abc import Callable
+from itertools import pairwise
 from typing import Any
 
 import numpy as np
@@ -38,10 +40,16 @@ def core_build(points_path: str, table_path: str) -> dict:
     from core import AlphaComplex
 
     points = read_points(points_path)
+    marks: list[tuple[float, float, str]] = []
     probe = Probe()
-    ac = AlphaComplex.from_points(points)
+    ac = AlphaComplex.from_points(
+        points, progress=lambda _f, stage: marks.append(
+            (time.perf_counter(), time.process_time(), stage)))
     result = probe.result(dim=int(ac.dim), counts=[int(ac.simplices(k).shape[0]) for k in
                                                    range(ac.dim + 1)])
+    marks.append((time.perf_counter(), time.process_time(), ""))
+    result["stages"] = [{"stage": stage, "seconds": wall_end - wall, "cpu_seconds": cpu_end - cpu}
+                        for (wall, cpu, stage), (wall_end, cpu_end, _) in pairwise(marks)]
     result["save_seconds"], result["save_cpu_seconds"], _ = best_of(
         lambda: ac.save(table_path), 1)
     return result
@@ -63,8 +71,26 @@ def core_query(table_path: str, reps: int) -> dict:
     if hasattr(ac, "optimal_alpha"):
         result["optimal_alpha"] = float(_timed(result, "optimal_alpha", ac.optimal_alpha))
         shapes.append(_time_shapes(ac, spectrum, None, reps, result["optimal_alpha"]))
-    result.update(spectrum_size=len(spectrum), shapes=shapes)
+    worst = max(shapes, key=lambda shape: shape["seconds"])["alpha"]
+    result.update(spectrum_size=len(spectrum), shapes=shapes,
+                  shape_parts=_shape_parts(ac, worst, reps))
     return result
+
+
+def _shape_parts(ac: object, alpha: float, reps: int) -> list[dict]:
+    """Best time of each AlphaShape attribute, touched in _materialize's order, at one alpha."""
+    parts = [("cells", lambda s: s.cells), ("boundary_facets", lambda s: s.boundary_facets),
+             ("regular_facets", lambda s: s.regular_facets)]
+    parts += [(f"singular({k})", lambda s, k=k: s.singular(k)) for k in range(ac.dim)]
+    parts.append(("measure", lambda s: s.measure))
+    best = {name: (float("inf"), float("inf")) for name, _ in parts}
+    for _ in range(reps):
+        shape = ac.shape(alpha)
+        for name, touch in parts:
+            wall, cpu, _ = best_of(lambda t=touch, s=shape: t(s), 1)
+            best[name] = (min(best[name][0], wall), min(best[name][1], cpu))
+    return [{"part": name, "alpha": alpha, "seconds": wall, "cpu_seconds": cpu}
+            for name, (wall, cpu) in best.items()]
 
 
 def _timed(result: dict, name: str, fn: Callable[[], Any], reps: int = 1) -> Any:

@@ -92,6 +92,7 @@ def format_tables(n: int, results: dict, rows: list[dict]) -> str:
         lines.append(f"| {label} | {_num(res.get('seconds'))} | {_num(res.get('cpu_seconds'))} "
                      f"| {_num(res.get('peak_mib'), 4)} | {_num(res.get('extra_mib'), 4)} "
                      f"| {_note(res)} |")
+        lines += [_timed(f"build: {stage['stage']}", stage, "") for stage in res.get("stages", [])]
     lines += _query_lines(results.get("query", {}), results.get("open3d", {}))
     lines += ["", "| figure | value s/MiB | reference | ratio | cpu ratio | goal | pass |",
               "|---|---|---|---|---|---|---|"]
@@ -125,6 +126,8 @@ def _query_lines(query: dict, o3d: dict) -> list[str]:
         where = "optimal" if shape["quantile"] is None else f"q{shape['quantile']:g}"
         lines.append(_timed(f"shape {where} alpha={shape['alpha']:.4g}", shape, "",
                             f"{shape['simplices']} simplices"))
+    for part in query.get("shape_parts", []):
+        lines.append(_timed(f"shape part at alpha={part['alpha']:.4g}: {part['part']}", part, ""))
     for item in o3d.get("per_alpha", []):
         lines.append(_timed(f"Open3D alpha={item['alpha']:.4g}", item, "",
                             f"{item['triangles']} triangles"))
