@@ -1,0 +1,81 @@
+"""ExplorerModel: alpha snapping, clamping, and signals only on real change (no window)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from app.dataset import Dataset, optimal_alpha
+from app.model import ExplorerModel, snap_index
+from core import AlphaComplex
+
+finite = st.floats(0.0, 1e6, allow_nan=False)
+
+
+@given(st.lists(finite, min_size=1, max_size=30, unique=True), finite)
+def test_snap_index_is_the_largest_critical_value_at_or_below(values, alpha) -> None:
+    """snap_index picks the last spectrum entry <= alpha (the first one if none is)."""
+    spectrum = np.sort(np.array([0.0, *values]))
+    spectrum = np.unique(spectrum)
+    index = snap_index(spectrum, alpha)
+    assert spectrum[index] <= alpha
+    assert index == len(spectrum) - 1 or spectrum[index + 1] > alpha
+
+
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory) -> Dataset:
+    """A small built 3D dataset."""
+    points = np.random.default_rng(4).normal(size=(300, 3))
+    ac = AlphaComplex.from_points(points)
+    return Dataset(path=tmp_path_factory.mktemp("d") / "p.npy", ac=ac, spectrum=ac.spectrum(),
+                   optimal_alpha=optimal_alpha(ac), signatures=None, n_input=300, report=None,
+                   load_seconds=0.0, build_seconds=0.0)
+
+
+@pytest.fixture
+def model(dataset):
+    """A model holding dataset, with a list recording alphaChanged emissions."""
+    m = ExplorerModel()
+    m.set_dataset(dataset)
+    m.changes = []
+    m.alphaChanged.connect(lambda: m.changes.append(m.index))
+    return m
+
+
+def test_starts_at_the_optimal_alpha(model, dataset) -> None:
+    """A new dataset opens at its optimal alpha: inside the spectrum, not empty, not the hull."""
+    assert model.alpha == dataset.spectrum[snap_index(dataset.spectrum, dataset.optimal_alpha)]
+    assert 0 < model.index < model.hull_index()
+
+
+def test_signals_only_on_real_change(model) -> None:
+    """Same index twice: one signal; out-of-range indexes clamp."""
+    start = model.index
+    model.set_index(start + 1)
+    model.set_index(start + 1)
+    model.set_index(10**9)
+    model.set_index(10**9)
+    model.set_index(-5)
+    assert model.changes == [start + 1, model.hull_index(), 0]
+
+
+def test_set_alpha_snaps_and_shape_follows(model, dataset) -> None:
+    """A radius between two critical values shows the lower one's shape."""
+    spectrum = dataset.spectrum
+    model.set_alpha(0.5 * (spectrum[20] + spectrum[21]))
+    assert model.index == 20
+    expected = dataset.ac.shape(spectrum[20])
+    assert np.array_equal(model.shape.cells, expected.cells)
+
+
+def test_fallback_optimal_alpha_covers_every_point(dataset) -> None:
+    """The fallback rule gives the smallest alpha at which every point is in some cell."""
+    ac = dataset.ac
+    alpha = optimal_alpha(type("NoOptimal", (), {n: getattr(ac, n) for n in
+                                                  ("dim", "points", "simplices", "intervals")})())
+    covered = np.unique(ac.shape(alpha).cells)
+    assert len(covered) == len(ac.points)
+    below = ac.spectrum()[snap_index(ac.spectrum(), alpha) - 1]
+    assert len(np.unique(ac.shape(below).cells)) < len(ac.points)
