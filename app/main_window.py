@@ -26,6 +26,7 @@ from app.progress_widget import ProgressWidget
 from app.resources import ICON_PATH
 from app.scene import Scene, as_xyz
 from app.settings import Preferences
+from app.signatures_dock import SignaturesPanel
 from app.worker import Loader
 
 
@@ -49,6 +50,7 @@ class MainWindow(QMainWindow):
         self.alpha_panel = AlphaPanel(self.model)
         self.layers_panel = LayersPanel()
         self.info_panel = InfoPanel(self.model)
+        self.signatures_panel = SignaturesPanel(self.model)
         self.progress = ProgressWidget()
         self.status = QLabel("Open a point set: File → Open, or drop a file here.")
         self.statusBar().addWidget(self.status, 1)
@@ -56,6 +58,7 @@ class MainWindow(QMainWindow):
         self._add_dock("Alpha", self.alpha_panel, Qt.DockWidgetArea.RightDockWidgetArea)
         self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
         self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
+        self._add_dock("Signatures", self.signatures_panel, Qt.DockWidgetArea.BottomDockWidgetArea)
         self.menus = build_menus(self)
         self._connect()
         self._restore_layout()

@@ -228,3 +228,14 @@ def test_newer_open_wins_over_older(window, qtbot, points_file) -> None:
     qtbot.wait(50)
     assert window.model.dataset.path == second
     assert len(window.model.dataset.ac.points) == 800
+
+
+def test_signature_cursor_follows_alpha(opened, qtbot) -> None:
+    """The signature plots' cursor sits at the current alpha after a key step."""
+    panel = opened.signatures_panel
+    if opened.model.dataset.signatures is None:
+        pytest.skip("core has no signatures yet")
+    press(qtbot, opened, Qt.Key.Key_Right)
+    assert panel.cursors
+    for cursor in panel.cursors:
+        assert cursor.get_xdata()[0] == pytest.approx(opened.model.alpha)
