@@ -1,7 +1,7 @@
 """Union-find over a filtration, done by scipy's compiled graph routines instead of Python loops.
 
-`spanning_forest` gives the edges that merge components when edges arrive in a given order
-(Kruskal's minimum spanning forest with the arrival rank as weight). `younger_roots` applies the
+`spanning_forest` gives the edges that merge components when edges arrive in order of weight
+(Kruskal's minimum spanning forest). `younger_roots` applies the
 elder rule to those merges (which component dies at each one) by divide and conquer over the
 arrival order, one `connected_components` call per halving level: O(m log m) in C plus numpy.
 """
@@ -13,20 +13,18 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components, minimum_spanning_tree
 
 
-def spanning_forest(n_nodes: int, u: np.ndarray, v: np.ndarray, order: np.ndarray) -> np.ndarray:
-    """Edges that join two components when edges (u, v) are added in `order`: (f,) int64 ids.
+def spanning_forest(n_nodes: int, u: np.ndarray, v: np.ndarray, weight: np.ndarray) -> tuple:
+    """A minimum spanning forest of edges (u, v) with positive weights, edges by weight.
 
-    Pairs (u, v) must be distinct and u != v (duplicate pairs would be summed by scipy). The
-    result lists edge ids in arrival order. Edges that close a cycle are left out.
+    For every w, its edges of weight <= w span the subgraph of all edges of weight <= w, so
+    they count the merges of a filtration in which edges arrive by weight (ties in any order).
+    Pairs (u, v) must be distinct (scipy would sum duplicates) and weights > 0 (0 = no edge).
+    Returns (weights, a, b): (f,) float64 ascending and (f,) int64 end nodes of each edge.
     """
-    if len(order) == 0:
-        return np.zeros(0, dtype=np.int64)
-    rank = np.empty(len(order), dtype=np.float64)
-    rank[order] = np.arange(1, len(order) + 1, dtype=np.float64)
-    graph = coo_matrix((rank, (u, v)), shape=(n_nodes, n_nodes)).tocsr()
-    tree = minimum_spanning_tree(graph)
-    arrivals = np.sort(tree.data).astype(np.int64) - 1
-    return np.asarray(order, dtype=np.int64)[arrivals]
+    graph = coo_matrix((np.asarray(weight, dtype=np.float64), (u, v)), shape=(n_nodes, n_nodes))
+    tree = minimum_spanning_tree(graph.tocsr()).tocoo()
+    order = np.argsort(tree.data, kind="stable")
+    return tree.data[order], tree.row[order].astype(np.int64), tree.col[order].astype(np.int64)
 
 
 def younger_roots(key: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:

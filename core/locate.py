@@ -72,18 +72,38 @@ def barycentric(points: np.ndarray, cells: np.ndarray, q: np.ndarray) -> np.ndar
     Signed volumes with one vertex swapped for the query, relative to the query for accuracy;
     a flat cell gets coordinates scaled by the largest swapped volume instead of its own.
     """
-    rel = points[cells] - q[:, None, :]
-    dim = q.shape[1]
-    swapped = np.empty((len(q), dim + 1))
-    for j in range(dim + 1):
-        verts = rel.copy()
-        verts[:, j] = 0.0
-        swapped[:, j] = np.linalg.det(verts[:, 1:] - verts[:, :1])
+    swapped = swapped_volumes(points[cells] - q[:, None, :])
     total = swapped.sum(axis=1)
-    flat = np.abs(total) <= LOCATE_RTOL * np.abs(swapped).max(axis=1, initial=0.0)
-    scale = np.where(flat, -np.abs(swapped).max(axis=1, initial=0.0), total)
+    largest = np.abs(swapped).max(axis=1, initial=0.0)
+    scale = np.where(np.abs(total) <= LOCATE_RTOL * largest, -largest, total)
     scale[scale == 0.0] = 1.0
     return swapped / scale[:, None]
+
+
+def swapped_volumes(rel: np.ndarray) -> np.ndarray:
+    """(a, dim + 1) dim!-volumes of each cell with vertex j moved to the origin (the query).
+
+    rel: (a, dim + 1, dim) vertices relative to the query. Expanding the volume determinant,
+    only the terms without the moved vertex survive: one triple product (3D) or cross (2D).
+    """
+    if rel.shape[2] == 2:
+        w0, w1, w2 = rel[:, 0], rel[:, 1], rel[:, 2]
+        cross = [_cross2(w1, w2), -_cross2(w0, w2), _cross2(w0, w1)]
+        return np.stack(cross, axis=1)
+    w0, w1, w2, w3 = rel[:, 0], rel[:, 1], rel[:, 2], rel[:, 3]
+    c23, c01 = np.cross(w2, w3), np.cross(w0, w1)
+    dots = [_dot(w1, c23), -_dot(w0, c23), _dot(c01, w3), -_dot(c01, w2)]
+    return np.stack(dots, axis=1)
+
+
+def _cross2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(a,) z of the cross product of (a, 2) vectors."""
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(a,) row-wise dot products of (a, 3) vectors."""
+    return np.einsum("ij,ij->i", a, b)
 
 
 def query_points(queries: object, dim: int) -> np.ndarray:

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .topology import Topology, ascending
+from .topology import Topology, ascending, ascending_order
 
 #: Column order of `Signatures.counts`: the four classes of `AlphaComplex.classify`.
 CLASSES = ("exterior", "singular", "regular", "interior")
@@ -31,7 +31,8 @@ class Signatures:
     solid_components: np.ndarray  # (s,) int64
     measure: np.ndarray  # (s,) float64
     boundary_measure: np.ndarray  # (s,) float64
-    thresholds: tuple = field(repr=False)  # per k: ascending (enter, regular, interior) arrays
+    intervals: tuple = field(repr=False)  # per k: the table's (n_k, 3) intervals
+    _sorted: dict = field(default_factory=dict, repr=False)  # k -> sorted thresholds, lazily
 
     def index(self, alpha: float) -> int:
         """Row of the spectrum entry in force at alpha (-1 below the first entry)."""
@@ -39,33 +40,57 @@ class Signatures:
 
     def counts(self, k: int) -> np.ndarray:
         """(s, 4) int64 numbers of k-simplices per class (CLASSES order) at every entry."""
-        return class_counts(self.thresholds[k], self.alphas)
+        return class_counts(self._thresholds(k), self.alphas)
 
     def counts_at(self, alpha: float) -> np.ndarray:
         """(dim + 1, 4) int64 numbers of k-simplices per class at one alpha."""
         at = np.array([alpha], dtype=np.float64)
-        return np.concatenate([class_counts(t, at) for t in self.thresholds])
+        return np.concatenate([class_counts(self._thresholds(k), at) for k in range(self.dim + 1)])
+
+    def _thresholds(self, k: int) -> tuple[np.ndarray, ...]:
+        """Ascending (enter, regular, interior) of k-simplices, sorted on first use."""
+        if k not in self._sorted:
+            iv = self.intervals[k]
+            enter = ascending(iv[:, 0])
+            rest = (enter, enter) if k == self.dim else (ascending(iv[:, 1]), ascending(iv[:, 2]))
+            self._sorted[k] = (enter, *rest)
+        return self._sorted[k]
 
 
 def compute_signatures(ac, topology: Topology) -> Signatures:
     """Signatures of an AlphaComplex over its whole spectrum."""
     dim = ac.dim
     alphas = np.asarray(ac.spectrum(), dtype=np.float64)
-    thresholds = tuple(_thresholds(ac.intervals(k), k == dim) for k in range(dim + 1))
-    facet_sizes = facet_measures(ac.points, ac.simplices(dim - 1))
-    facet_iv = np.asarray(ac.intervals(dim - 1), dtype=np.float64)
+    cell_enter = np.asarray(ac.intervals(dim)[:, 0], dtype=np.float64)
+    order = ascending_order(cell_enter)
+    cells_in = np.searchsorted(cell_enter[order], alphas, side="right")
+    measure = np.concatenate([[0.0], np.cumsum(np.asarray(ac.cell_measures())[order])])
+    boundary = boundary_sums(ac.facet_cells(), order,
+                             facet_measures(ac.points, ac.simplices(dim - 1)))
     return Signatures(
         dim=dim,
         alphas=_ro(alphas),
         betti=_ro(topology.betti_many(alphas)),
         solid_components=_ro(topology.solid_components(alphas)),
-        measure=_ro(running_sum(ac.intervals(dim)[:, 0], ac.cell_measures(), alphas)),
-        boundary_measure=_ro(
-            running_sum(facet_iv[:, 1], facet_sizes, alphas)
-            - running_sum(facet_iv[:, 2], facet_sizes, alphas)
-        ),
-        thresholds=thresholds,
+        measure=_ro(measure[cells_in]),
+        boundary_measure=_ro(boundary[cells_in]),
+        intervals=tuple(ac.intervals(k) for k in range(dim + 1)),
     )
+
+
+def boundary_sums(facet_cells: np.ndarray, cell_order: np.ndarray, sizes: np.ndarray):
+    """(c + 1,) float64 size of the REGULAR facets once the first j cells (by enter) are in.
+
+    A facet turns regular with the first of its cells and interior with the second (never on
+    the hull), so both events are cell ranks: two bincounts and a cumulative sum, no sort.
+    """
+    rank = np.empty(len(cell_order), dtype=np.int64)
+    rank[cell_order] = np.arange(len(cell_order))
+    sides = np.where(facet_cells >= 0, rank[np.maximum(facet_cells, 0)], len(cell_order))
+    first, second = sides.min(axis=1), sides.max(axis=1)
+    width = len(cell_order) + 1
+    change = np.bincount(first, sizes, width) - np.bincount(second, sizes, width)
+    return np.concatenate([[0.0], np.cumsum(change[:-1])])
 
 
 def class_counts(thresholds: tuple, alphas: np.ndarray) -> np.ndarray:
@@ -77,31 +102,13 @@ def class_counts(thresholds: tuple, alphas: np.ndarray) -> np.ndarray:
     ).astype(np.int64)
 
 
-def running_sum(events: np.ndarray, weights: np.ndarray, alphas: np.ndarray) -> np.ndarray:
-    """(s,) float64 sum of weights whose event alpha <= each alpha; inf events never count."""
-    events = np.asarray(events, dtype=np.float64)
-    order = np.argsort(events, kind="stable")
-    totals = np.concatenate([[0.0], np.cumsum(np.asarray(weights, dtype=np.float64)[order])])
-    return totals[np.searchsorted(events[order], alphas, side="right")]
-
-
 def facet_measures(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
     """(n_f,) float64 length (2D edges) or area (3D triangles) of (n_f, dim) facets."""
-    p = np.asarray(points, dtype=np.float64)
-    f = np.asarray(facets)
-    edges = [p[f[:, j]] - p[f[:, 0]] for j in range(1, f.shape[1])]
-    if len(edges) == 1:
-        return np.linalg.norm(edges[0], axis=1)
-    return np.linalg.norm(np.cross(edges[0], edges[1]), axis=1) / math.factorial(2)
-
-
-def _thresholds(intervals: np.ndarray, is_cell: bool) -> tuple[np.ndarray, ...]:
-    """Ascending (enter, regular, interior) of one dimension (one shared array for cells)."""
-    iv = np.asarray(intervals, dtype=np.float64)
-    enter = ascending(iv[:, 0])
-    if is_cell:
-        return enter, enter, enter
-    return enter, ascending(iv[:, 1]), ascending(iv[:, 2])
+    corners = np.asarray(points, dtype=np.float64)[np.asarray(facets)]
+    if corners.shape[1] == 2:
+        return np.linalg.norm(corners[:, 1] - corners[:, 0], axis=1)
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    return np.linalg.norm(normal, axis=1) / math.factorial(2)
 
 
 def _ro(array: np.ndarray) -> np.ndarray:

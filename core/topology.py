@@ -59,54 +59,57 @@ def build_topology(ac) -> Topology:
     """The Topology of an AlphaComplex, from its public table; O(n log n)."""
     dim = ac.dim
     enter = [np.asarray(ac.intervals(k)[:, 0], dtype=np.float64) for k in range(dim + 1)]
-    enter_sorted = tuple(ascending(e) for e in enter)
-    cell_enter = enter[dim]
     facet_cells = np.asarray(ac.facet_cells(), dtype=np.int64)
     edges = np.asarray(ac.simplices(1), dtype=np.int64)
-    vertex_ids = spanning_forest(
-        len(enter[0]), edges[:, 0], edges[:, 1], np.argsort(enter[1], kind="stable")
-    )
-    dual_u, dual_v, dual_ids = dual_forest(facet_cells, enter[dim - 1], len(cell_enter))
+    vertex_forest, _, _ = spanning_forest(len(enter[0]), edges[:, 0], edges[:, 1], enter[1])
+    dual_values, dual_edges = dual_forest(facet_cells, enter[dim - 1], len(enter[dim]))
     return Topology(
         dim=dim,
-        n_cells=len(cell_enter),
-        enter_sorted=enter_sorted,
-        vertex_forest=_frozen(enter[1][vertex_ids]),
-        dual_forest=_frozen(enter[dim - 1][dual_ids][::-1]),
-        dual_edges=_frozen(np.stack([dual_u, dual_v], axis=1)),
-        solid_forest=_frozen(solid_forest(facet_cells, cell_enter)),
+        n_cells=len(enter[dim]),
+        enter_sorted=tuple(ascending(e) for e in enter),
+        vertex_forest=_frozen(vertex_forest),
+        dual_forest=_frozen(dual_values[::-1]),
+        dual_edges=_frozen(dual_edges),
+        solid_forest=_frozen(solid_forest(facet_cells, enter[dim])),
     )
 
 
 def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) -> tuple:
     """Spanning forest of the complement's dual graph taken in decreasing alpha.
 
-    facet_cells: (n_f, 2) int64, -1 = outside. Returns (u, v, ids): (fd,) int64 dual nodes of
-    the forest edges in merge order (outside node = n_cells) and their facet rows.
+    facet_cells: (n_f, 2) int64, -1 = outside. Returns (enter, edges): (fd,) float64 facet
+    enter values in merge order (descending) and (fd, 2) int64 their dual nodes (cells, and
+    n_cells for the outside). A cell with several hull facets keeps its first to arrive.
     """
-    sides = np.where(facet_cells < 0, n_cells, facet_cells)
+    order = ascending_order(facet_enter)[::-1]
+    sides = np.where(facet_cells[order] < 0, n_cells, facet_cells[order])
     u, v = sides.min(axis=1), sides.max(axis=1)
-    order = np.argsort(-facet_enter, kind="stable")
-    rank = np.empty(len(order), dtype=np.int64)
-    rank[order] = np.arange(len(order))
-    first_hull = np.full(n_cells + 1, len(order), dtype=np.int64)
     hull = v == n_cells
-    np.minimum.at(first_hull, u[hull], rank[hull])
-    keep = np.flatnonzero((u != v) & (~hull | (rank == first_hull[u])))
-    sub = spanning_forest(n_cells + 1, u[keep], v[keep], np.argsort(rank[keep], kind="stable"))
-    ids = keep[sub]
-    return u[ids], v[ids], ids
+    first_hull = np.full(n_cells + 1, len(order), dtype=np.int64)
+    np.minimum.at(first_hull, u[hull], np.flatnonzero(hull))
+    keep = (u != v) & (~hull | (np.arange(len(order)) == first_hull[u]))
+    arrival = np.flatnonzero(keep)
+    ranks, a, b = spanning_forest(n_cells + 1, u[keep], v[keep], arrival + 1.0)
+    facets = order[ranks.astype(np.int64) - 1]
+    return facet_enter[facets], np.stack([a, b], axis=1)
 
 
 def solid_forest(facet_cells: np.ndarray, cell_enter: np.ndarray) -> np.ndarray:
     """(fs,) float64 ascending alphas at which an inner facet first joins two separate solids."""
-    inner = np.flatnonzero((facet_cells >= 0).all(axis=1))
-    a, b = facet_cells[inner, 0], facet_cells[inner, 1]
-    joined = np.maximum(cell_enter[a], cell_enter[b])
-    ids = spanning_forest(
-        len(cell_enter), np.minimum(a, b), np.maximum(a, b), np.argsort(joined, kind="stable")
-    )
-    return joined[ids]
+    inner = facet_cells[(facet_cells >= 0).all(axis=1)]
+    a, b = inner.min(axis=1), inner.max(axis=1)
+    order = ascending_order(cell_enter)
+    rank = np.empty(len(cell_enter), dtype=np.float64)
+    rank[order] = np.arange(1, len(cell_enter) + 1)
+    joined, _, _ = spanning_forest(len(cell_enter), a, b, np.maximum(rank[a], rank[b]))
+    return cell_enter[order[joined.astype(np.int64) - 1]]
+
+
+def ascending_order(values: np.ndarray) -> np.ndarray:
+    """(n,) int64 stable ascending order; the identity (no sort) for already sorted values."""
+    if len(values) < 2 or bool(np.all(values[1:] >= values[:-1])):
+        return np.arange(len(values))
+    return np.argsort(values, kind="stable")
 
 
 def ascending(values: np.ndarray) -> np.ndarray:
