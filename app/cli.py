@@ -1,0 +1,213 @@
+"""`alphascoop info` and `alphascoop export`: the core on the command line (no Qt).
+
+Errors are one line on stderr with a non-zero exit status; progress bars appear on stderr
+only when it is a terminal.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from collections.abc import Sequence
+
+import numpy as np
+
+from core.errors import AlphaScoopError
+
+CLASS_NAMES = ("exterior", "singular", "regular", "interior")
+SIMPLEX_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
+
+
+class UsageError(Exception):
+    """A bad command line (reported in one line, exit status 2)."""
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse that raises instead of printing usage and exiting."""
+
+    def error(self, message: str):
+        raise UsageError(message)
+
+
+def radius(text: str) -> float:
+    """A finite alpha radius >= 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"alpha must be a number, not {text!r}") from None
+    if not 0.0 <= value < float("inf"):
+        raise argparse.ArgumentTypeError(f"alpha must be a finite radius >= 0, not {text!r}")
+    return value
+
+
+def count(text: str) -> int:
+    """A positive whole number."""
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive whole number, not {text!r}")
+    return int(text)
+
+
+def _common(sub: argparse.ArgumentParser) -> None:
+    """Options shared by info and export."""
+    sub.add_argument("file", help="point file (see README: Formats)")
+    sub.add_argument("--columns", metavar="A,B[,C]", help="coordinate columns (names or 0-based)")
+    sub.add_argument("--subsample", type=count, metavar="N", help="thin to at most N points")
+    sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
+
+
+def build_parser() -> Parser:
+    """The subcommand parser."""
+    parser = Parser(prog="alphascoop", description="Alpha shapes from the command line.")
+    subs = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    info = subs.add_parser("info", help="load report, spectrum, optimal alpha, shape summary")
+    _common(info)
+    info.add_argument("--alpha", type=radius, metavar="R", help="alpha radius (default optimal)")
+    info.add_argument("--json", action="store_true", help="print JSON instead of text")
+    export = subs.add_parser("export", help="write the shape at one alpha (format from -o)")
+    _common(export)
+    export.add_argument("-o", "--output", required=True, metavar="OUT", help="output file")
+    choice = export.add_mutually_exclusive_group()
+    choice.add_argument("--alpha", type=radius, metavar="R", help="alpha radius")
+    choice.add_argument("--optimal", type=count, nargs="?", const=1, metavar="K",
+                        help="optimal alpha for at most K solid components (default)")
+    export.add_argument("--manifold", action="store_true", help="split where the shape touches")
+    export.add_argument("--sidecar", action="store_true", help="also write OUT.json metadata")
+    export.add_argument("--table", action="store_true", help="write the interval table "
+                        "(.npz or .csv) instead of the shape")
+    return parser
+
+
+def _progress():
+    """A (callback, close) pair drawing a tqdm bar on stderr, or doing nothing off a terminal."""
+    if not sys.stderr.isatty():
+        return None, lambda: None
+    from tqdm import tqdm
+
+    bar = tqdm(total=100, file=sys.stderr, unit="%", leave=False)
+
+    def update(fraction: float, stage: str) -> None:
+        bar.set_description(stage)
+        bar.update(max(0, round(100 * fraction) - bar.n))
+
+    return update, bar.close
+
+
+def load(args) -> tuple:
+    """(PointSet, AlphaComplex, seconds, from cache?) for the file and options."""
+    from core.cache import build_cached, is_cached
+    from core.io import read_points
+
+    ps = read_points(args.file, columns=args.columns, subsample=args.subsample)
+    cached = not args.no_cache and is_cached(ps)
+    update, close = _progress()
+    start = time.perf_counter()
+    try:
+        ac = build_cached(ps, use_cache=not args.no_cache, progress=update)
+    finally:
+        close()
+    return ps, ac, time.perf_counter() - start, cached
+
+
+def _optimal(ac, k: int = 1) -> float:
+    """ac.optimal_alpha(k), with a clear error where the core has none."""
+    if not hasattr(ac, "optimal_alpha"):
+        raise AlphaScoopError("this build of the core has no optimal alpha; pass --alpha R")
+    return float(ac.optimal_alpha(k))
+
+
+def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
+    """Everything `info` reports, as a JSON-ready dict."""
+    optimal = _optimal(ac)
+    alpha = optimal if alpha is None else alpha
+    spectrum = np.asarray(ac.spectrum())
+    shape = ac.shape(alpha)
+    classes = {SIMPLEX_NAMES[k]: dict(zip(CLASS_NAMES, np.bincount(
+        ac.classify(alpha, k), minlength=4).tolist(), strict=True)) for k in range(ac.dim + 1)}
+    return {
+        "load": ps.report.to_dict(),
+        "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
+                    "from_cache": cached,
+                    **{SIMPLEX_NAMES[k]: len(ac.simplices(k)) for k in range(ac.dim + 1)}},
+        "spectrum": {"count": len(spectrum), "min": float(spectrum[1 if len(spectrum) > 1 else 0]),
+                     "max": float(spectrum[-1])},
+        "optimal_alpha": optimal,
+        "alpha": alpha,
+        "betti": [int(b) for b in ac.betti(alpha)] if hasattr(ac, "betti") else None,
+        "volume" if ac.dim == 3 else "area": shape.measure,
+        "classes": classes,
+    }
+
+
+def _text(info: dict, lines: list[str]) -> str:
+    """The human-readable form of `summary`."""
+    cx, sp = info["complex"], info["spectrum"]
+    measure = "volume" if "volume" in info else "area"
+    lines = [*lines,
+        f"complex     {cx['dim']}D, " + ", ".join(
+            f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
+        + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
+        f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}",
+        f"optimal     alpha {info['optimal_alpha']:.6g}",
+        f"at alpha    {info['alpha']:.6g}",
+    ]
+    if info["betti"] is not None:
+        lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))
+    lines.append(f"{measure:<12}{info[measure]:.6g}")
+    lines.append(f"{'classes':<12}" + "".join(f"{c:>10}" for c in CLASS_NAMES))
+    for name, counts in info["classes"].items():
+        lines.append(f"  {name:<10}" + "".join(f"{counts[c]:>10,}" for c in CLASS_NAMES))
+    return "\n".join(lines)
+
+
+def cmd_info(args) -> int:
+    """Print the load report and the shape summary."""
+    ps, ac, seconds, cached = load(args)
+    info = summary(ps, ac, seconds, cached, args.alpha)
+    print(json.dumps(info, indent=2) if args.json else _text(info, ps.report.lines()))
+    return 0
+
+
+def cmd_export(args) -> int:
+    """Write the shape (or the table) and print one line about it."""
+    from core.export import write_shape, write_table
+
+    ac = load(args)[1]
+    if args.table:
+        write_table(ac, args.output)
+        print(f"wrote {args.output} (interval table, {sum(ac.counts()):,} simplices)")
+        return 0
+    alpha = args.alpha if args.alpha is not None else _optimal(ac, args.optimal or 1)
+    report = write_shape(ac, alpha, args.output, manifold=args.manifold, sidecar=args.sidecar,
+                         source=args.file)
+    print(report.line())
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run `alphascoop info|export ...`; return the exit status (0 = success)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        args = build_parser().parse_args(argv)
+        return cmd_info(args) if args.command == "info" else cmd_export(args)
+    except UsageError as exc:
+        print(f"alphascoop: error: {exc} (see alphascoop {' '.join(argv[:1])} --help)",
+              file=sys.stderr)
+        return 2
+    except AlphaScoopError as exc:
+        print(f"alphascoop: error: {exc}", file=sys.stderr)
+        return 1
+    except MemoryError:
+        print("alphascoop: error: not enough memory for this point set (try --subsample N)",
+              file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("alphascoop: interrupted", file=sys.stderr)
+        return 130
+    except SystemExit as exc:  # --help
+        return int(exc.code or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

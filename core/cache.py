@@ -1,0 +1,108 @@
+"""Re-open instantly: interval tables cached by the content hash of the points.
+
+Entries live in platformdirs' user cache dir ("alphascoop/tables", or $ALPHASCOOP_CACHE_DIR)
+as the .npz files `AlphaComplex.save` writes. A corrupt or unreadable entry is deleted and
+rebuilt, never an error; a cache that cannot be written is simply skipped.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import os
+import zipfile
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from core.complex import AlphaComplex
+from core.errors import AlphaScoopError
+
+CACHE_VERSION = 1  # bump when the saved table layout or the build rules change
+MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this
+Progress = Callable[[float, str], None]
+
+
+def cache_dir() -> Path:
+    """The folder holding cached tables ($ALPHASCOOP_CACHE_DIR overrides the platform one)."""
+    override = os.environ.get("ALPHASCOOP_CACHE_DIR")
+    if override:
+        return Path(override)
+    from platformdirs import user_cache_dir
+
+    return Path(user_cache_dir("alphascoop")) / "tables"
+
+
+def points_key(points: np.ndarray) -> str:
+    """Hex digest of the points' shape and float64 bytes, plus the cache version."""
+    arr = np.ascontiguousarray(points, dtype=np.float64)
+    digest = hashlib.blake2b(digest_size=20)
+    digest.update(f"alphascoop-table-v{CACHE_VERSION}:{arr.shape}".encode())
+    digest.update(memoryview(arr).cast("B"))
+    return digest.hexdigest()
+
+
+def entry_path(points: np.ndarray) -> Path:
+    """Where the table of these (n, d) points is (or would be) cached."""
+    return cache_dir() / f"{points_key(points)}.npz"
+
+
+def is_cached(pointset) -> bool:
+    """True when a cache entry exists for these points (it may still prove unreadable)."""
+    return entry_path(np.asarray(getattr(pointset, "points", pointset))).is_file()
+
+
+def _load(path: Path, n_points: int) -> AlphaComplex | None:
+    """The cached complex, or None (and the entry removed) if it is missing or unusable."""
+    if not path.is_file():
+        return None
+    try:
+        ac = AlphaComplex.load(path)
+        if len(ac.input_index) != n_points:
+            raise ValueError("cached table was built from other points")
+        return ac
+    except (AlphaScoopError, OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        with contextlib.suppress(OSError):
+            path.unlink()
+        return None
+
+
+def _store(ac: AlphaComplex, path: Path) -> None:
+    """Save into the cache, ignoring a cache folder that cannot be written."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        ac.save(path)
+        prune(path.parent)
+    except (OSError, AlphaScoopError):
+        return
+
+
+def prune(folder: Path, max_bytes: int = MAX_CACHE_BYTES) -> None:
+    """Delete the least recently used entries until the folder holds at most max_bytes."""
+    entries = sorted(folder.glob("*.npz"), key=lambda p: p.stat().st_mtime, reverse=True)
+    total = 0
+    for entry in entries:
+        total += entry.stat().st_size
+        if total > max_bytes:
+            with contextlib.suppress(OSError):
+                entry.unlink()
+
+
+def build_cached(pointset, *, use_cache: bool = True,
+                 progress: Progress | None = None) -> AlphaComplex:
+    """AlphaComplex of pointset.points (or an (n, d) array), from the cache when possible."""
+    points = np.asarray(getattr(pointset, "points", pointset), dtype=np.float64)
+    if not use_cache:
+        return AlphaComplex.from_points(points, progress=progress)
+    path = entry_path(points)
+    ac = _load(path, len(points))
+    if ac is not None:
+        with contextlib.suppress(OSError):
+            os.utime(path)  # mark as recently used
+        if progress is not None:
+            progress(1.0, "loaded from cache")
+        return ac
+    ac = AlphaComplex.from_points(points, progress=progress)
+    _store(ac, path)
+    return ac
