@@ -69,11 +69,21 @@ def export_table(ac, path: Path) -> str:
     return describe_written(path, result)
 
 
+def table_formats() -> dict[str, str]:
+    """Extensions the table exporter writes."""
+    try:
+        from core.export import TABLE_FORMATS
+    except ImportError:
+        return {".npz": "interval table, NumPy archive"}
+    return dict(TABLE_FORMATS)
+
+
 def describe_written(path: Path, result: object) -> str:
-    """One line for the user: the file, its size, and the writer's own summary if any."""
+    """One line for the user: the writer's own summary, else the file and its size."""
+    if hasattr(result, "line"):
+        return result.line()
     size = path.stat().st_size if path.exists() else 0
-    extra = f": {result}" if isinstance(result, str) and result else ""
-    return f"Wrote {path} ({size:,} bytes){extra}"
+    return f"Wrote {path} ({size:,} bytes)"
 
 
 def save_screenshot(plotter, path: Path) -> str:

@@ -59,12 +59,12 @@ def export_shape(window) -> None:
 
 
 def export_table(window) -> None:
-    """File → Export table: the interval table (.npz), to reopen instantly."""
+    """File → Export table: the interval table (.npz or .csv) for analysis elsewhere."""
     if window.model.dataset is None:
         return
     stem = window.model.dataset.path.stem
     path = file_actions.ask_save_path(window, window.prefs, "Export table",
-                                      {".npz": "Alpha Scoop table"}, f"{stem}_table")
+                                      file_actions.table_formats(), f"{stem}_table")
     if path:
         ac = window.model.dataset.ac
         run_writer(window, "Export table", lambda: file_actions.export_table(ac, path))

@@ -9,6 +9,7 @@ os.environ["QT_API"] = "pyside6"
 import shutil
 import subprocess
 import sys
+import tempfile
 from collections.abc import Iterator
 
 import numpy as np
@@ -18,6 +19,7 @@ XVFB_ARGS = ("-screen", "0", "1280x1024x24", "-nolisten", "tcp")
 XVFB_STOP_TIMEOUT_S = 20.0
 XVFB_KEY = pytest.StashKey[subprocess.Popen]()
 XVFB_ERROR_KEY = pytest.StashKey[str]()
+CACHE_KEY = pytest.StashKey[str]()
 NO_XVFB = (
     "GUI tests need an X display, and Xvfb is not installed: run ./.ci/setup "
     "(or apt-get install xvfb libxcb-icccm4 libxcb-keysyms1), or set DISPLAY."
@@ -42,7 +44,10 @@ def start_xvfb(xvfb: str) -> subprocess.Popen:
 
 
 def pytest_sessionstart(session: pytest.Session) -> None:
-    """Give the session a display of its own when the machine has none."""
+    """Private table cache for the session; a display of its own when the machine has none."""
+    cache = tempfile.mkdtemp(prefix="alphascoop-test-cache-")
+    session.config.stash[CACHE_KEY] = cache
+    os.environ["ALPHASCOOP_CACHE_DIR"] = cache
     if os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"):
         return
     xvfb = shutil.which("Xvfb")
@@ -53,7 +58,10 @@ def pytest_sessionstart(session: pytest.Session) -> None:
 
 
 def pytest_sessionfinish(session: pytest.Session) -> None:
-    """Stop the Xvfb this session started, if any."""
+    """Remove the session's cache; stop the Xvfb this session started, if any."""
+    cache = session.config.stash.get(CACHE_KEY, None)
+    if cache:
+        shutil.rmtree(cache, ignore_errors=True)
     process = session.config.stash.get(XVFB_KEY, None)
     if process is None:
         return

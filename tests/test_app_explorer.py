@@ -239,3 +239,21 @@ def test_signature_cursor_follows_alpha(opened, qtbot) -> None:
     assert panel.cursors
     for cursor in panel.cursors:
         assert cursor.get_xdata()[0] == pytest.approx(opened.model.alpha)
+
+
+@pytest.mark.parametrize(("action", "name"), [("export_shape", "shape.ply"),
+                                              ("export_table", "table.npz"),
+                                              ("screenshot", "view.png")])
+def test_file_menu_writes_and_reports(opened, tmp_path, monkeypatch, action, name) -> None:
+    """Export shape/table and screenshot write the chosen file and say what they wrote."""
+    target = tmp_path / name
+    monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
+                        lambda *args, **kwargs: (str(target), ""))
+    warnings: list[str] = []
+    monkeypatch.setattr("app.menus.QMessageBox.warning", lambda *args: warnings.append(args[-1]))
+    opened.menus[action].trigger()
+    assert warnings == []
+    assert target.stat().st_size > 0
+    assert str(target) in opened.status.text()
+    leftovers = [p.name for p in tmp_path.iterdir() if p.name.startswith("tmp") or ".tmp" in p.name]
+    assert leftovers == []
