@@ -49,15 +49,16 @@ def optimal_alpha(signatures: Signatures, cover: float, n_components: int = 1) -
 def stable_ranges(signatures: Signatures, k: int | None = None) -> list[AlphaRange]:
     """The k (default all) longest maximal ranges of constant Betti numbers on a log scale.
 
-    The range starting at alpha 0 (bare points) and the unbounded last one (the hull) are left
-    out: neither is a shape worth suggesting.
+    Left out, as no shape worth suggesting: the range starting at alpha 0 (bare points), the
+    unbounded last one (the hull), and dust (more components than half the points).
     """
     alphas, betti = signatures.alphas, signatures.betti
     if len(alphas) < 2:
         return []
+    n_points = int(betti[0, 0])
     starts = np.concatenate([[0], np.flatnonzero((betti[1:] != betti[:-1]).any(axis=1)) + 1])
     ends = np.concatenate([starts[1:], [len(alphas)]])
-    bounded = (ends < len(alphas)) & (alphas[starts] > 0)
+    bounded = (ends < len(alphas)) & (alphas[starts] > 0) & (2 * betti[starts, 0] <= n_points)
     starts, ends = starts[bounded], ends[bounded]
     low, high = alphas[starts], alphas[ends]
     span = np.log(high / low)

@@ -140,6 +140,7 @@ def test_suggestions_are_ranked_constant_ranges(ac: AlphaComplex) -> None:
         inside = (sig.alphas >= r.low) & (sig.alphas < r.high)
         assert {tuple(b) for b in sig.betti[inside]} == {r.betti}
         assert ac.betti(r.alpha) == r.betti
+        assert 2 * r.betti[0] <= len(ac.points)
         assert tuple(sig.betti[sig.index(r.high)]) != r.betti
     assert ac.suggest_alphas(k=0) == ()
     with pytest.raises(InputError):
