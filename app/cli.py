@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 from collections.abc import Sequence
@@ -171,8 +172,13 @@ def cmd_info(args) -> int:
 
 def cmd_export(args) -> int:
     """Write the shape (or the table) and print one line about it."""
-    from core.export import write_shape, write_table
+    from core.export import SHAPE_FORMATS, TABLE_FORMATS, write_shape, write_table
 
+    formats = TABLE_FORMATS if args.table else SHAPE_FORMATS
+    ext = os.path.splitext(args.output)[1].lower()
+    if ext not in formats:  # before the build, which may take a while
+        raise AlphaScoopError(f"{args.output}: cannot export to {ext or 'no extension'!r}; "
+                              f"choose one of {' '.join(formats)}")
     ac = load(args)[1]
     if args.table:
         write_table(ac, args.output)

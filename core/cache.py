@@ -58,6 +58,8 @@ def _load(path: Path, n_points: int) -> AlphaComplex | None:
     if not path.is_file():
         return None
     try:
+        if not zipfile.is_zipfile(path):
+            raise ValueError("not an .npz archive")
         ac = AlphaComplex.load(path)
         if len(ac.input_index) != n_points:
             raise ValueError("cached table was built from other points")

@@ -46,6 +46,7 @@ BAD_FILES = {
     "binary.xyz": b"\x00\x01\x02\x03" * 100,
     "all_nan.xyz": "nan nan nan\nnan 1 2\n",
     "garbage.npy": b"not numpy at all",
+    "broken.npz": b"PK\x03\x04 broken zip",
     "pickled.npy": b"\x93NUMPY\x01\x00v\x00{'descr': '|O', 'fortran_order': False, "
                    b"'shape': (1,), }" + b" " * 60 + b"\n" + b"\x80\x04N.",
     "garbage.pcd": "# .PCD v0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"

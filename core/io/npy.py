@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -32,29 +33,26 @@ def _from_array(arr: np.ndarray, path: Path, columns=None) -> np.ndarray:
     return arr[:, : min(arr.shape[1], 3)].astype(np.float64)
 
 
-def _load(path: Path):
-    """np.load without pickles, with loader errors turned into format errors."""
-    try:
-        return np.load(path, allow_pickle=False)
-    except (ValueError, OSError, EOFError) as exc:
-        raise FileFormatError(f"{path}: not a readable NumPy file ({exc})") from None
-
-
 def read_npy(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """Points (and for .npz any normals/colors/weights arrays of matching length)."""
-    data = _load(path)
-    if isinstance(data, np.ndarray):
-        return _from_array(data, path, columns), {}, ()
-    with data:
-        keys = list(data.files)
-        key = next((k for k in POINT_KEYS if k in keys), keys[0] if len(keys) == 1 else None)
-        if key is None:
-            raise FileFormatError(f"{path}: no points array (looked for {', '.join(POINT_KEYS)};"
-                                  f" found {', '.join(keys) or 'nothing'})")
+    with open(path, "rb") as fh:  # our handle: np.load leaks its own when a zip is broken
         try:
-            points = _from_array(data[key], path, columns)
-            attrs = {ATTRIBUTE_KEYS[k]: data[k] for k in keys if k in ATTRIBUTE_KEYS}
-        except ValueError as exc:
-            raise FileFormatError(f"{path}: unreadable array ({exc})") from None
+            data = np.load(fh, allow_pickle=False)
+            if isinstance(data, np.ndarray):
+                return _from_array(data, path, columns), {}, ()
+            return _from_archive(data, path, columns)
+        except (ValueError, OSError, EOFError, KeyError, zipfile.BadZipFile) as exc:
+            raise FileFormatError(f"{path}: not a readable NumPy file ({exc})") from None
+
+
+def _from_archive(data, path: Path, columns) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
+    """Points and attributes from an open NpzFile."""
+    keys = list(data.files)
+    key = next((k for k in POINT_KEYS if k in keys), keys[0] if len(keys) == 1 else None)
+    if key is None:
+        raise FileFormatError(f"{path}: no points array (looked for {', '.join(POINT_KEYS)};"
+                              f" found {', '.join(keys) or 'nothing'})")
+    points = _from_array(data[key], path, columns)
+    attrs = {ATTRIBUTE_KEYS[k]: data[k] for k in keys if k in ATTRIBUTE_KEYS}
     attrs = {k: v for k, v in attrs.items() if len(v) == len(points)}
     return points, attrs, (f"points from array {key!r}",)

@@ -1,0 +1,141 @@
+"""`alphascoop info` / `export` end to end on the shared real files (small ones)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.cli import main
+
+DATA = Path("/work/shared/data")
+needs_data = pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is absent")
+
+
+@pytest.fixture(autouse=True)
+def cache(tmp_path, monkeypatch):
+    """Every test gets its own empty table cache."""
+    monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
+    return tmp_path / "cache"
+
+
+def run(capsys, *argv) -> tuple[int, str, str]:
+    """(exit status, stdout, stderr) of main(argv)."""
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@needs_data
+def test_info_text_milk(capsys):
+    code, out, err = run(capsys, "info", DATA / "milk.pcd")
+    assert code == 0 and err == ""  # no progress bar when stderr is not a terminal
+    assert "13,704 of 13,704 read" in out and "betti" in out and "tetrahedra" in out
+
+
+@needs_data
+def test_info_json_airports_and_cache(capsys):
+    code, out, _ = run(capsys, "info", DATA / "us_airports.csv", "--json")
+    info = json.loads(out)
+    assert code == 0 and info["load"]["n_points"] == 3376 and info["complex"]["dim"] == 2
+    assert info["alpha"] == info["optimal_alpha"] and info["area"] > 0
+    assert not info["complex"]["from_cache"]
+    edges = info["classes"]["edges"]
+    assert sum(edges.values()) == info["complex"]["edges"]
+    code, out, _ = run(capsys, "info", DATA / "us_airports.csv", "--json", "--alpha", "2")
+    again = json.loads(out)
+    assert again["complex"]["from_cache"] and again["alpha"] == 2.0
+    assert again["area"] < info["area"]
+
+
+@needs_data
+def test_info_duplicates_and_columns(capsys):
+    code, out, _ = run(capsys, "info", DATA / "plane_flat.laz", "--json", "--alpha", "0.02")
+    assert code == 0 and json.loads(out)["load"]["n_duplicates"] == 9850
+    code, out, _ = run(capsys, "info", DATA / "us_airports.csv", "--json", "--alpha", "1",
+                       "--columns", "latitude,longitude")
+    assert code == 0 and json.loads(out)["load"]["bbox"][0][0] == pytest.approx(7.36722)
+
+
+@needs_data
+def test_export_manifold_ply_with_sidecar(capsys, tmp_path):
+    import trimesh
+
+    out_file = tmp_path / "milk.ply"
+    code, out, _ = run(capsys, "export", DATA / "milk.pcd", "-o", out_file, "--manifold",
+                       "--sidecar", "--optimal")
+    assert code == 0 and out.startswith(f"wrote {out_file}")
+    meta = json.loads(Path(f"{out_file}.json").read_text())
+    mesh = trimesh.load(str(out_file), process=False)
+    assert len(mesh.faces) == meta["n_regular_facets"] > 0
+    assert "manifold_split" in meta and meta["source"].endswith("milk.pcd")
+
+
+@needs_data
+def test_export_geojson_area_and_optimal_k(capsys, tmp_path):
+    import shapely
+
+    code, _, _ = run(capsys, "export", DATA / "us_airports.csv", "-o", tmp_path / "a.geojson",
+                     "--alpha", "1.5")
+    doc = json.loads((tmp_path / "a.geojson").read_text())
+    geom = shapely.geometry.shape(doc["features"][0]["geometry"])
+    assert code == 0 and geom.area == pytest.approx(doc["features"][0]["properties"]["area"])
+    code, out, _ = run(capsys, "export", DATA / "us_airports.csv", "-o", tmp_path / "a.wkt",
+                       "--optimal", "20")
+    assert code == 0 and "WKT" in out
+
+
+@needs_data
+def test_export_table_and_subsample(capsys, tmp_path):
+    code, _, _ = run(capsys, "export", DATA / "plane_flat.laz", "-o", tmp_path / "t.npz",
+                     "--table", "--subsample", "2000", "--no-cache")
+    with np.load(tmp_path / "t.npz", allow_pickle=False) as z:
+        assert code == 0 and len(z["points"]) <= 2000
+
+
+BAD_CALLS = {
+    "missing file": (["export", "nope.ply", "-o", "x.ply"], 1, "no such file"),
+    "negative alpha": (["info", "F", "--alpha", "-1"], 2, "radius >= 0"),
+    "both alphas": (["export", "F", "-o", "x.ply", "--alpha", "1", "--optimal"], 2,
+                    "not allowed with"),
+    "no output": (["export", "F"], 2, "required: -o"),
+    "bad subsample": (["info", "F", "--subsample", "zero"], 2, "positive whole number"),
+    "no command": ([], 2, "required"),
+    "unknown command": (["frobnicate"], 2, "invalid choice"),
+    "unknown out ext": (["export", "F", "-o", "x.abc", "--alpha", "0.01"], 1, "cannot export"),
+    "3d to geojson": (["export", "F", "-o", "x.geojson", "--alpha", "0.01"], 1, "2D polygons"),
+    "bad file": (["info", "BAD"], 1, "truncated PLY"),
+}
+
+
+@needs_data
+@pytest.mark.parametrize("case", sorted(BAD_CALLS))
+def test_bad_calls_give_one_line(capsys, tmp_path, monkeypatch, case):
+    argv, status, message = BAD_CALLS[case]
+    bad = tmp_path / "bad.ply"
+    bad.write_text("ply\nformat ascii 1.0\nelement vertex 9\nproperty float x\n"
+                   "property float y\nend_header\n1 2\n")
+    monkeypatch.chdir(tmp_path)
+    argv = [str(DATA / "milk.pcd") if a == "F" else str(bad) if a == "BAD" else a for a in argv]
+    code, out, err = run(capsys, *argv)
+    assert code == status and out == ""
+    assert len(err.strip().splitlines()) == 1 and message in err and "Traceback" not in err
+
+
+def test_help_exits_zero(capsys):
+    code, out, _ = run(capsys, "export", "--help")
+    assert code == 0 and "--manifold" in out
+
+
+@needs_data
+def test_entry_point_subprocess(tmp_path):
+    env = {"ALPHASCOOP_CACHE_DIR": str(tmp_path), "PATH": "/usr/bin:/bin"}
+    result = subprocess.run([sys.executable, "-m", "app", "info", str(DATA / "milk.pcd"),
+                             "--alpha", "0.01"], capture_output=True, text=True, timeout=300,
+                            env=env, cwd=Path(__file__).resolve().parents[1])
+    assert result.returncode == 0, result.stderr
+    assert "volume" in result.stdout and result.stderr == ""
