@@ -27,8 +27,8 @@ class Signatures:
 
     dim: int
     alphas: np.ndarray  # (s,) float64 ascending, == ac.spectrum()
-    betti: np.ndarray  # (s, dim) int64: b0, b1 (, b2)
-    solid_components: np.ndarray  # (s,) int64
+    betti: np.ndarray  # (s, dim) int32: b0, b1 (, b2)
+    solid_components: np.ndarray  # (s,) int32
     measure: np.ndarray  # (s,) float64
     boundary_measure: np.ndarray  # (s,) float64
     intervals: tuple = field(repr=False)  # per k: the table's (n_k, 3) intervals

@@ -35,23 +35,23 @@ class Topology:
         return tuple(int(b) for b in self.betti_many(np.array([alpha], dtype=np.float64))[0])
 
     def betti_many(self, alphas: np.ndarray) -> np.ndarray:
-        """(s, dim) int64 Betti numbers at every alpha of the (s,) array `alphas`."""
+        """(s, dim) int32 Betti numbers at every alpha of the (s,) array `alphas`."""
         alphas = np.asarray(alphas, dtype=np.float64)
         n_in = [np.searchsorted(e, alphas, side="right") for e in self.enter_sorted]
         b0 = n_in[0] - np.searchsorted(self.vertex_forest, alphas, side="right")
         open_forest = len(self.dual_forest) - np.searchsorted(self.dual_forest, alphas, "right")
         cavities = (self.n_cells - n_in[self.dim]) - open_forest
         if self.dim == 2:
-            return np.stack([b0, cavities], axis=1).astype(np.int64)
+            return np.stack([b0, cavities], axis=1).astype(np.int32)
         chi = n_in[0] - n_in[1] + n_in[2] - n_in[3]
-        return np.stack([b0, b0 + cavities - chi, cavities], axis=1).astype(np.int64)
+        return np.stack([b0, b0 + cavities - chi, cavities], axis=1).astype(np.int32)
 
     def solid_components(self, alphas: np.ndarray) -> np.ndarray:
-        """(s,) int64 number of facet-connected groups of cells in the complex at each alpha."""
+        """(s,) int32 number of facet-connected groups of cells in the complex at each alpha."""
         alphas = np.asarray(alphas, dtype=np.float64)
         cells_in = np.searchsorted(self.enter_sorted[self.dim], alphas, side="right")
         return (cells_in - np.searchsorted(self.solid_forest, alphas, side="right")).astype(
-            np.int64
+            np.int32
         )
 
 
