@@ -57,15 +57,17 @@ def _cpu_key(key: str) -> str | None:
 
 
 def ratios(flat: dict) -> list[dict]:
-    """One dict per goal: value, reference, ratio, goal and passed (None when not measured)."""
+    """One dict per goal: value, reference, ratios and passed / cpu_passed (None: not measured)."""
     rows = []
     for label, num, den, op, goal, issue in GOALS:
         value, ref = flat.get(num), flat.get(den)
         ratio = _ratio(value, ref)
         cpu_ratio = _ratio(flat.get(_cpu_key(num)), flat.get(_cpu_key(den)))
-        passed = None if ratio is None else bool(COMPARE[op](ratio, goal))
+        passed, cpu_passed = (None if r is None else bool(COMPARE[op](r, goal))
+                              for r in (ratio, cpu_ratio))
         rows.append({"figure": label, "value": value, "reference": ref, "ratio": ratio,
                      "cpu_ratio": cpu_ratio, "goal": f"{op} {goal:g}", "passed": passed,
+                     "cpu_passed": cpu_passed,
                      "issue": issue})
     return rows
 
@@ -73,6 +75,14 @@ def ratios(flat: dict) -> list[dict]:
 def _ratio(value: float | None, ref: float | None) -> float | None:
     """value / ref, or None when either is missing or ref is zero."""
     return value / ref if value is not None and ref else None
+
+
+def _verdict(passed: bool | None, cpu_passed: bool | None) -> str:
+    """PASS / FAIL / n/a on wall time, with the CPU-time verdict added when it differs."""
+    word = {True: "PASS", False: "FAIL", None: "n/a"}
+    if cpu_passed is None or cpu_passed == passed:
+        return word[passed]
+    return f"{word[passed]} (cpu: {word[cpu_passed]})"
 
 
 def _num(value: float | None, digits: int = 3) -> str:
@@ -97,7 +107,7 @@ def format_tables(n: int, results: dict, rows: list[dict]) -> str:
     lines += ["", "| figure | value s/MiB | reference | ratio | cpu ratio | goal | pass |",
               "|---|---|---|---|---|---|---|"]
     for row in rows:
-        verdict = {True: "PASS", False: "FAIL", None: "n/a"}[row["passed"]]
+        verdict = _verdict(row["passed"], row["cpu_passed"])
         lines.append(f"| {row['figure']} | {_num(row['value'])} | {_num(row['reference'])} | "
                      f"{_num(row['ratio'])} | {_num(row['cpu_ratio'])} | {row['goal']} | "
                      f"{verdict} |")

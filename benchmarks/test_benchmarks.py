@@ -9,7 +9,7 @@ import pytest
 from bench_core import main
 from datasets import TORUS_R, TORUS_TUBE, noisy_torus
 from isolate import Probe, run_isolated
-from report import figures, ratios
+from report import figures, format_tables, ratios
 
 
 def _allocate(mib: int) -> dict:
@@ -81,7 +81,16 @@ def test_open3d_is_compared_at_the_same_alpha_on_both_clocks():
     assert flat["shape.worst_seconds"] == 0.9
     row = ratios(flat)[-1]
     assert row["ratio"] == pytest.approx(0.2) and row["cpu_ratio"] == pytest.approx(0.25)
-    assert row["passed"] is False
+    assert row["passed"] is False and row["cpu_passed"] is False
+
+
+def test_verdict_shows_the_cpu_clock_when_it_disagrees():
+    flat = figures({"scipy": {"seconds": 2.0, "cpu_seconds": 1.0},
+                    "build": {"seconds": 2.4, "cpu_seconds": 2.0}})
+    row = ratios(flat)[0]
+    assert (row["passed"], row["cpu_passed"]) == (True, False)
+    table = format_tables(10, {}, [row])
+    assert "| PASS (cpu: FAIL) |" in table
 
 
 def test_end_to_end_small_run_writes_json(tmp_path, capsys):
