@@ -51,6 +51,9 @@ BAD_FILES = {
                    b"'shape': (1,), }" + b" " * 60 + b"\n" + b"\x80\x04N.",
     "garbage.pcd": "# .PCD v0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
                    "WIDTH 1000000\nHEIGHT 1\nPOINTS 1000000\nDATA binary\n" + "x" * 30,
+    "bogus_count.pcd": "# .PCD v0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                       "WIDTH 1000000000000\nHEIGHT 1\nPOINTS 1000000000000\n"
+                       "DATA binary_compressed\n" + "\x10\0\0\0\x20\0\0\0" + "x" * 16,
     "garbage.las": b"LASF" + b"\0" * 300,
     "garbage.laz": b"not a laz file" * 10,
     "garbage.stl": b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\n",
@@ -90,3 +93,22 @@ def test_truncated_ply_message(tmp_path):
     path = _write(tmp_path, "t.ply", BAD_FILES["trunc_binary.ply"])
     with pytest.raises(FileFormatError, match="truncated"):
         read_points(path)
+
+
+@pytest.mark.parametrize("ext", ["las", "laz"])
+def test_las_bogus_point_count_and_truncation(tmp_path, ext):
+    import struct
+
+    import laspy
+
+    las = laspy.LasData(laspy.LasHeader(point_format=3, version="1.2"))
+    las.x, las.y, las.z = np.random.default_rng(0).uniform(size=(3, 10))
+    las.write(tmp_path / f"ok.{ext}")
+    raw = bytearray((tmp_path / f"ok.{ext}").read_bytes())
+    (tmp_path / f"cut.{ext}").write_bytes(raw[:-60])
+    raw[107:111] = struct.pack("<I", 4_000_000_000)  # legacy point count in the header
+    (tmp_path / f"huge.{ext}").write_bytes(raw)
+    with pytest.raises(FileFormatError, match="truncated"):
+        read_points(tmp_path / f"huge.{ext}")
+    with pytest.raises(FileFormatError, match=f"cut.{ext}"):
+        read_points(tmp_path / f"cut.{ext}")

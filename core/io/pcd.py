@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,34 @@ def _unpack_rgb(packed: np.ndarray) -> np.ndarray:
     return np.column_stack([(as_int >> s) & 0xFF for s in (16, 8, 0)]).astype(np.uint8)
 
 
+MAX_LZF_RATIO = 200  # a compressed body claiming more than this expansion is bogus
+HEADER_LINES = 20
+
+
+def _check_size(path: Path) -> None:
+    """Refuse headers whose POINTS x row size the body cannot hold (before any allocation)."""
+    fields: dict[str, list[str]] = {}
+    with open(path, "rb") as fh:
+        for _ in range(HEADER_LINES):
+            words = fh.readline().decode("ascii", "replace").split()
+            if words and not words[0].startswith("#"):
+                fields[words[0].upper()] = words[1:]
+            if words and words[0].upper() == "DATA":
+                break
+        body = os.fstat(fh.fileno()).st_size - fh.tell()
+    try:
+        n = int(fields["POINTS"][0])
+        row = sum(int(s) * int(c) for s, c in zip(fields["SIZE"], fields.get(
+            "COUNT", ["1"] * len(fields["SIZE"])), strict=False))
+        kind = fields["DATA"][0].lower()
+    except (KeyError, IndexError, ValueError):
+        raise FileFormatError(f"{path}: bad PCD header (POINTS, SIZE or DATA missing)") from None
+    limit = {"binary": body, "binary_compressed": body * MAX_LZF_RATIO}.get(kind, body * 64)
+    if n * row > limit or n < 0:
+        raise FileFormatError(f"{path}: truncated PCD (header claims {n:,} points, "
+                              f"the file holds {body:,} bytes of data)")
+
+
 def _load(path: Path):
     """pypcd4's PointCloud, with any parser failure as a format error naming the file."""
     from pypcd4 import PointCloud
@@ -30,6 +59,7 @@ def _load(path: Path):
 
 def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, 3) xyz and normals/colours/intensity when the PCD has those fields."""
+    _check_size(path)
     cloud = _load(path)
     fields = tuple(cloud.fields)
     if not {"x", "y"}.issubset(fields):
