@@ -106,19 +106,26 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", a, b)
 
 
-def query_points(queries: object, dim: int) -> np.ndarray:
-    """(k, dim) float64 finite query points, or InputError saying what is wrong."""
+def query_points(queries: object, dim: int, ambient_dim: int, to_ambient) -> np.ndarray:
+    """(k, dim) float64 finite query points in the complex's coordinates, or InputError.
+
+    For planar 3D input (dim 2, ambient_dim 3), (k, 3) queries are projected onto the plane
+    through `to_ambient`, the complex's affine map back to the input space.
+    """
     try:
         q = np.asarray(queries, dtype=np.float64)
     except (TypeError, ValueError) as exc:
         raise InputError(f"query points must be numbers: {exc}") from None
-    if q.ndim == 1 and q.shape[0] == dim:
+    if q.ndim == 1 and q.shape[0] in (dim, ambient_dim):
         q = q[None, :]
-    if q.ndim != 2 or q.shape[1] != dim:
+    if q.ndim != 2 or q.shape[1] not in (dim, ambient_dim):
         raise InputError(
-            f"query points must be an array of shape (k, {dim}) in the complex's coordinates, "
-            f"got shape {q.shape}"
+            f"query points must be an array of shape (k, {ambient_dim}), got shape {q.shape}"
         )
     if not np.isfinite(q).all():
         raise InputError("query points contain NaN or infinite values")
-    return q
+    if q.shape[1] == dim:
+        return q
+    origin = to_ambient(np.zeros((1, dim)))
+    basis = to_ambient(np.eye(dim)) - origin
+    return (q - origin) @ np.linalg.pinv(basis)

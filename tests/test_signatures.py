@@ -183,9 +183,26 @@ def test_contains_vertices_and_bad_input(ac: AlphaComplex) -> None:
     assert ac.contains(ac.points, np.inf).all()
     assert not ac.contains(ac.points, 0.0).any()
     assert ac.contains(np.full(ac.dim, 0.5), np.inf).tolist() == [True]
-    for bad in (np.zeros((3, ac.dim + 1)), [[np.nan] * ac.dim], "points", np.zeros((2, 2, 2))):
+    for bad in (np.zeros((3, 4)), [[np.nan] * ac.dim], "points", np.zeros((2, 2, 2))):
         with pytest.raises(InputError):
             ac.contains(bad, 1.0)
+
+
+def test_planar_3d_input_matches_its_2d_complex() -> None:
+    rng = np.random.default_rng(3)
+    flat = rng.random((300, 2))
+    basis = np.array([[0.6, 0.0, 0.8], [0.0, 1.0, 0.0]])
+    tilted = AlphaComplex.from_points(flat @ basis + [1.0, 2.0, 3.0])
+    plain = AlphaComplex.from_points(flat)
+    assert (tilted.dim, tilted.ambient_dim) == (2, 3)
+    one, two = tilted.signatures(), plain.signatures()
+    for alpha in np.quantile(two.alphas, [0.01, 0.2, 0.5, 0.8]) * (1 + 1e-7):
+        assert tilted.betti(alpha) == plain.betti(alpha)
+        assert one.measure[one.index(alpha)] == pytest.approx(two.measure[two.index(alpha)])
+        queries = rng.random((500, 2))
+        np.testing.assert_array_equal(tilted.contains(queries @ basis + [1.0, 2.0, 3.0], alpha),
+                                      plain.contains(queries, alpha))
+    assert tilted.optimal_alpha() == pytest.approx(plain.optimal_alpha())
 
 
 @pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is not available")
