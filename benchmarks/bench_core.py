@@ -35,6 +35,8 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     args.n = args.n or [200_000]
     if min(args.n) < 4 or args.reps < 1:
         parser.error("--n must be at least 4 and --reps at least 1")
+    if args.json and not os.path.isdir(os.path.dirname(os.path.abspath(args.json))):
+        parser.error(f"--json: the folder of {args.json} does not exist")
     return args
 
 
@@ -83,18 +85,17 @@ def run_size(n: int, args: argparse.Namespace, folder: str) -> dict:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the benchmark for every --n, print the tables, optionally write JSON."""
+    """Run the benchmark for every --n, print the tables, write JSON after each size."""
     args = parse_args(argv)
-    runs = {}
+    machine = {"python": platform.python_version(), "cpus": os.cpu_count(),
+               "platform": platform.platform()}
+    payload = {"machine": machine, "seed": args.seed, "reps": args.reps, "runs": {}}
     with tempfile.TemporaryDirectory(prefix="alphascoop-bench-") as folder:
         for n in args.n:
-            runs[str(n)] = run_size(n, args, folder)
-            print(runs[str(n)]["table"] + "\n", flush=True)
-    if args.json:
-        machine = {"python": platform.python_version(), "cpus": os.cpu_count(),
-                   "platform": platform.platform()}
-        report.write_json(args.json, {"machine": machine, "seed": args.seed,
-                                      "reps": args.reps, "runs": runs})
+            payload["runs"][str(n)] = run = run_size(n, args, folder)
+            print(run["table"] + "\n", flush=True)
+            if args.json:
+                report.write_json(args.json, payload)
     return 0
 
 

@@ -101,3 +101,10 @@ def test_end_to_end_small_run_writes_json(tmp_path, capsys):
     assert run["results"]["scipy"]["cells"] > 300
     assert len(run["ratios"]) == 7
     assert "| build / scipy Delaunay (time) |" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv", [["--n", "3"], ["--reps", "0"], ["--json", "/no/such/dir/x.json"]])
+def test_bad_options_exit_with_a_message(argv, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2 and "error:" in capsys.readouterr().err
