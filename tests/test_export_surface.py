@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from core import AlphaComplex
 from core.export import write_shape
@@ -28,6 +30,8 @@ def ball() -> AlphaComplex:
 def signed_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
     """Divergence theorem: sum of det(a, b, c) / 6 over the triangles (about their centroid)."""
     v = np.asarray(vertices, dtype=np.float64)
+    if len(faces) == 0:
+        return 0.0
     v = v - v.mean(axis=0)
     a, b, c = (v[faces[:, i]] for i in range(3))
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
@@ -173,3 +177,17 @@ def test_bunny_manifold_surface_volume(tmp_path):
     assert np.all(edge_face_counts(np.asarray(mesh.faces)) == 2)
     assert signed_volume(mesh.vertices, np.asarray(mesh.faces)) == pytest.approx(
         shape.measure, rel=1e-9)
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(0, 10_000), st.floats(0.05, 0.4))
+def test_manifold_split_on_lattices(seed, alpha):
+    rng = np.random.default_rng(seed)
+    points = np.unique(np.round(rng.uniform(size=(150, 3)), 1 + seed % 2), axis=0)
+    ac = AlphaComplex.from_points(points)
+    shape = ac.shape(alpha)
+    v, f, report = surface_arrays(ac, shape, manifold=True)
+    if len(f):
+        assert np.all(edge_face_counts(f) == 2) and report.unresolved_edges == 0
+        assert np.all(vertex_fans(f)[np.unique(f)] == 1)
+    assert signed_volume(v, f) == pytest.approx(shape.measure, rel=1e-9, abs=1e-12)
