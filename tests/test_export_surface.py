@@ -163,6 +163,18 @@ def test_sidecar_json(tmp_path, ball):
 
 
 @pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is absent")
+def test_milk_manifold_split_resolves_every_edge():
+    from core.io import read_points
+
+    ac = AlphaComplex.from_points(read_points(DATA / "milk.pcd").points)
+    shape = ac.shape(0.003)  # thousands of non-manifold edges on the depth planes
+    v, f, report = surface_arrays(ac, shape, manifold=True)
+    assert report.nonmanifold_edges > 1000 and report.unresolved_edges == 0
+    assert np.all(edge_face_counts(f) == 2) and np.all(vertex_fans(f)[np.unique(f)] == 1)
+    assert signed_volume(v, f) == pytest.approx(shape.measure, rel=1e-9)
+
+
+@pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is absent")
 def test_bunny_manifold_surface_volume(tmp_path):
     import trimesh
 

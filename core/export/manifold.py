@@ -104,9 +104,13 @@ def _fans(faces, corner_vertex, wedge, n_faces) -> tuple[np.ndarray, np.ndarray]
     return label, label[3 * np.arange(n_faces)[:, None] + local]
 
 
-def _overfull_half_edges(new_faces: np.ndarray, n: int) -> np.ndarray:
-    """(3r,) bool: half-edges (3f+i, opposite corner i) on an edge with more than two faces."""
-    ends = new_faces[:, [1, 2, 2, 0, 0, 1]].reshape(-1, 2)  # edge opposite corner 0, 1, 2
+def _overfull_half_edges(corners: np.ndarray, n: int) -> np.ndarray:
+    """(3r,) bool: half-edges (3f+i, opposite corner i) on an edge with more than two faces.
+
+    corners: (r, 3) vertex-copy labels of each face's corners, in the same corner order as
+    the half-edge ids (n = number of labels).
+    """
+    ends = corners[:, [1, 2, 2, 0, 0, 1]].reshape(-1, 2)  # edge opposite corner 0, 1, 2
     ends = np.sort(ends, axis=1).astype(np.int64)
     keys = ends[:, 0] * n + ends[:, 1]
     order = np.argsort(keys, kind="stable")
@@ -146,7 +150,7 @@ def split_nonmanifold(ac, shape) -> tuple[np.ndarray, np.ndarray, ManifoldReport
     for _ in range(MAX_ROUNDS):
         wedge = np.where(use_empty[edge], empty + solid.max() + 1, solid)
         label, new_faces = _fans(faces, corner_vertex, wedge, len(faces))
-        bad = _overfull_half_edges(new_faces, int(label.max()) + 1)
+        bad = _overfull_half_edges(label.reshape(-1, 3), int(label.max()) + 1)  # row order
         if not bad.any():
             break
         use_empty[edge[bad]] ^= True
