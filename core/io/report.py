@@ -10,8 +10,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from core.io.subsample import subsample_indices
+from core.tolerances import FLAT_RTOL
 
-PLANAR_RTOL = 1e-9  # smallest/largest singular value below this: the points lie on a plane
 SPACING_SAMPLE = 100_000  # query points used to estimate the median nearest-neighbour distance
 
 
@@ -98,7 +98,7 @@ def is_planar(points: np.ndarray) -> bool:
         return True
     centred = points - points.mean(axis=0)
     s = np.linalg.svd(centred, compute_uv=False)
-    return bool(s[-1] <= PLANAR_RTOL * s[0])
+    return bool(s[-1] <= FLAT_RTOL * s[0])
 
 
 def median_spacing(points: np.ndarray, seed: int = 0) -> float:
