@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .forest import spanning_forest
+from .locate import checked_alpha
 
 
 @dataclass(frozen=True, eq=False)
@@ -31,8 +32,9 @@ class Topology:
     solid_forest: np.ndarray  # (fs,) float64 ascending alpha at which facets join solid parts
 
     def betti(self, alpha: float) -> tuple[int, ...]:
-        """(b0, b1) in 2D, (b0, b1, b2) in 3D at one alpha."""
-        return tuple(int(b) for b in self.betti_many(np.array([alpha], dtype=np.float64))[0])
+        """(b0, b1) in 2D, (b0, b1, b2) in 3D at one alpha (a radius >= 0)."""
+        at = np.array([checked_alpha(alpha)], dtype=np.float64)
+        return tuple(int(b) for b in self.betti_many(at)[0])
 
     def betti_many(self, alphas: np.ndarray) -> np.ndarray:
         """(s, dim) int32 Betti numbers at every alpha of the (s,) array `alphas`."""

@@ -186,6 +186,11 @@ def test_contains_vertices_and_bad_input(ac: AlphaComplex) -> None:
     for bad in (np.zeros((3, 4)), [[np.nan] * ac.dim], "points", np.zeros((2, 2, 2))):
         with pytest.raises(InputError):
             ac.contains(bad, 1.0)
+    for alpha in (-1.0, float("nan"), "big", None):
+        with pytest.raises(InputError):
+            ac.contains(ac.points[:2], alpha)
+        with pytest.raises(InputError):
+            ac.betti(alpha)
 
 
 def test_planar_3d_input_matches_its_2d_complex() -> None:
