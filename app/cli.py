@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shutil
 import sys
 import time
 from collections.abc import Sequence
@@ -86,7 +87,10 @@ def _progress():
         return None, lambda: None
     from tqdm import tqdm
 
-    bar = tqdm(total=100, file=sys.stderr, unit="%", leave=False)
+    size = shutil.get_terminal_size()  # 80x24 where a terminal reports 0 (tqdm then hides)
+    bar = tqdm(total=100, file=sys.stderr, leave=False, ncols=min(size.columns, 100),
+               nrows=size.lines,
+               bar_format="{desc} {percentage:3.0f}%|{bar}| {elapsed}")
 
     def update(fraction: float, stage: str) -> None:
         bar.set_description(stage)

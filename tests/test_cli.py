@@ -139,3 +139,30 @@ def test_entry_point_subprocess(tmp_path):
                             env=env, cwd=Path(__file__).resolve().parents[1])
     assert result.returncode == 0, result.stderr
     assert "volume" in result.stdout and result.stderr == ""
+
+
+@needs_data
+@pytest.mark.skipif(sys.platform == "win32", reason="needs a pseudo-terminal")
+def test_progress_bar_on_a_terminal(tmp_path):
+    import os
+    import pty
+
+    pid, fd = pty.fork()
+    if pid == 0:  # child: run the CLI with stderr on the pseudo-terminal
+        os.environ["ALPHASCOOP_CACHE_DIR"] = str(tmp_path)
+        os.chdir(Path(__file__).resolve().parents[1])
+        os.execv(sys.executable, [sys.executable, "-m", "app", "info",
+                                  str(DATA / "milk.pcd"), "--alpha", "0.01"])
+    chunks = []
+    while True:
+        try:
+            chunk = os.read(fd, 65536)
+        except OSError:
+            break
+        if not chunk:
+            break
+        chunks.append(chunk)
+    _, status = os.waitpid(pid, 0)
+    text = b"".join(chunks).decode(errors="replace")
+    assert os.waitstatus_to_exitcode(status) == 0
+    assert any("interval table" in s and "%|" in s for s in text.split("\r"))

@@ -186,3 +186,16 @@ def test_subsample_at_most_target_and_distinct(seed, target, method):
     idx = subsample_indices(points, target, method=method, seed=seed)
     assert len(idx) <= target and len(np.unique(idx)) == len(idx)
     assert len(idx) >= (1 if method == "voxel" else target)
+
+
+def test_report_planar_and_spacing(tmp_path):
+    rng = np.random.default_rng(9)
+    xy = rng.uniform(size=(300, 2))
+    tilted = np.column_stack([xy, 2.0 * xy[:, 0] - xy[:, 1] + 5.0])
+    np.save(tmp_path / "plane.npy", tilted)
+    np.save(tmp_path / "solid.npy", rng.uniform(size=(300, 3)))
+    np.save(tmp_path / "grid.npy", np.mgrid[0:10, 0:10].reshape(2, -1).T * 0.5)
+    assert read_points(tmp_path / "plane.npy").report.planar
+    assert not read_points(tmp_path / "solid.npy").report.planar
+    grid = read_points(tmp_path / "grid.npy").report
+    assert grid.dim == 2 and grid.spacing == 0.5 and grid.bbox == ((0.0, 0.0), (4.5, 4.5))
