@@ -185,8 +185,7 @@ def cmd_export(args) -> int:
                               f"choose one of {' '.join(formats)}")
     ac = load(args)[1]
     if args.table:
-        write_table(ac, args.output)
-        print(f"wrote {args.output} (interval table, {sum(ac.counts()):,} simplices)")
+        print(write_table(ac, args.output).line())
         return 0
     alpha = args.alpha if args.alpha is not None else _optimal(ac, args.optimal or 1)
     report = write_shape(ac, alpha, args.output, manifold=args.manifold, sidecar=args.sidecar,

@@ -59,7 +59,9 @@ def test_vtu_field_data_in_vtk(tmp_path, cloud):
 
 
 def test_table_npz_layout(tmp_path, cloud):
-    write_table(cloud, tmp_path / "t.npz")
+    report = write_table(cloud, tmp_path / "t.npz")
+    assert report.n_faces == sum(len(cloud.simplices(k)) for k in range(4))
+    assert "interval table" in report.line()
     with np.load(tmp_path / "t.npz", allow_pickle=False) as z:
         assert str(z["format"]) == "alphascoop-intervals" and int(z["dim"]) == 3
         np.testing.assert_array_equal(z["points"], cloud.points)

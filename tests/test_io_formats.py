@@ -199,3 +199,11 @@ def test_report_planar_and_spacing(tmp_path):
     assert not read_points(tmp_path / "solid.npy").report.planar
     grid = read_points(tmp_path / "grid.npy").report
     assert grid.dim == 2 and grid.spacing == 0.5 and grid.bbox == ((0.0, 0.0), (4.5, 4.5))
+
+
+def test_text_crlf_trailing_delimiter_and_weights(tmp_path):
+    path = tmp_path / "p.csv"
+    path.write_bytes(b"X,Y,Z,Weight,\r\n1,2,3,0.5,\r\n4,5,6,0.25,\r\n7,8,9.5,1,\r\n")
+    ps = read_points(path)
+    np.testing.assert_array_equal(ps.points, [[1, 2, 3], [4, 5, 6], [7, 8, 9.5]])
+    np.testing.assert_array_equal(ps.attributes["weights"], [0.5, 0.25, 1])

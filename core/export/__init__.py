@@ -45,7 +45,7 @@ class ExportReport:
 
     path: str
     format: str
-    alpha: float
+    alpha: float | None
     n_vertices: int = 0
     n_faces: int = 0
     measure: float = 0.0
@@ -56,6 +56,8 @@ class ExportReport:
 
     def line(self) -> str:
         """One-line summary for the CLI and the status bar."""
+        if self.alpha is None:
+            return f"wrote {self.path} (interval table, {self.n_faces:,} simplices)"
         parts = [f"wrote {self.path} ({self.format}, alpha {self.alpha:.6g}"]
         if self.n_faces:
             parts.append(f", {self.n_vertices:,} vertices, {self.n_faces:,} faces")
@@ -129,8 +131,11 @@ def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = F
                         measure=float(shape.measure), sidecar=side, metadata=meta, **fields)
 
 
-def write_table(ac, path: str | os.PathLike) -> None:
-    """Write the interval table as .npz (layout in core/export/table.py) or .csv, atomically."""
+def write_table(ac, path: str | os.PathLike) -> ExportReport:
+    """Write the interval table as .npz (layout in core/export/table.py) or .csv, atomically.
+
+    The report's n_faces counts the simplices of every dimension; its alpha is None.
+    """
     path = Path(path)
     ext = _extension(path, TABLE_FORMATS)
     try:
@@ -138,3 +143,6 @@ def write_table(ac, path: str | os.PathLike) -> None:
             TABLE_WRITERS[ext](tmp, ac)
     except OSError as exc:
         raise FileFormatError(f"{path}: cannot write ({exc.strerror or exc})") from None
+    n = sum(len(ac.simplices(k)) for k in range(ac.dim + 1))
+    return ExportReport(path=str(path), format=ext.lstrip(".").upper(), alpha=None,
+                        n_vertices=len(ac.points), n_faces=n)

@@ -12,6 +12,7 @@ import plyfile
 from core.errors import FileFormatError
 
 NORMAL_NAMES = ("nx", "ny", "nz")
+WEIGHT_NAMES = ("weight", "weights")
 COLOR_NAMES = (("red", "green", "blue"), ("r", "g", "b"), ("diffuse_red", "diffuse_green",
                                                            "diffuse_blue"))
 
@@ -106,7 +107,8 @@ def _attributes(table: np.ndarray) -> dict[str, np.ndarray]:
             break
     for name in table.dtype.names:
         if name not in used and table.dtype[name].shape == ():
-            attrs[name] = np.asarray(table[name], dtype=np.float64)
+            key = "weights" if name in WEIGHT_NAMES else name
+            attrs[key] = np.asarray(table[name], dtype=np.float64)
     return attrs
 
 
