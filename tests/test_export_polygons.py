@@ -93,6 +93,12 @@ def test_planar_3d_input_exports_polygons(tmp_path):
     write_shape(ac, 0.1, tmp_path / "s.wkt")
     geom = shapely.from_wkt((tmp_path / "s.wkt").read_text())
     assert geom.area == pytest.approx(ac.shape(0.1).measure, rel=1e-9)
+    write_shape(ac, 0.1, tmp_path / "s.geojson")
+    props = json.loads((tmp_path / "s.geojson").read_text())["features"][0]["properties"]
+    origin, axes = np.array(props["plane_origin"]), np.array(props["plane_axes"])
+    corner = np.asarray(geom.geoms[0].exterior.coords)[0]
+    lifted = origin + corner @ axes  # back on the tilted plane z = x/2 + y/4
+    assert lifted[2] == pytest.approx(0.5 * lifted[0] + 0.25 * lifted[1])
 
 
 @settings(max_examples=25, deadline=None)

@@ -71,6 +71,7 @@ TEXT_CASES = {
     "semi.csv": ("X;Y;Z\n", ";", None),
     "cloudcompare.txt": ("//X,Y,Z\n", ",", None),
     "leica.pts": ("50\n", " ", None),
+    "units.csv": ("X [m],Y [m],Z (m)\n", ",", None),
 }
 
 

@@ -44,6 +44,11 @@ def shape_metadata(ac, shape, source: str | os.PathLike | None = None) -> dict:
         "n_singular": [len(shape.singular(k)) for k in range(ac.dim)],
         "volume" if ac.dim == 3 else "area": float(shape.measure),
     }
+    if ac.dim < ac.ambient_dim:  # planar 3D input: 2D outputs are in the plane's frame
+        origin = np.asarray(ac.to_ambient(np.zeros((1, ac.dim))))[0]
+        axes = np.asarray(ac.to_ambient(np.eye(ac.dim))) - origin
+        meta["plane_origin"] = origin.tolist()
+        meta["plane_axes"] = axes.tolist()
     betti = betti_numbers(ac, shape.alpha)
     if betti is not None:
         meta["betti"] = betti

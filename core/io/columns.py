@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 
 from core.errors import FileFormatError
@@ -24,8 +25,9 @@ ATTRIBUTE_NAMES = {
 
 
 def clean_name(name: str) -> str:
-    """Lower-case a header cell, dropping quotes, a leading '//' or '#', and spaces."""
-    return name.strip().strip("\"'").lstrip("/#").strip().lower()
+    """Lower-case a header cell, dropping quotes, a leading '//' or '#', units and spaces."""
+    name = re.sub(r"[\[(].*?[\])]", "", name.strip().strip("\"'"))  # 'X [m]', 'lat (deg)'
+    return name.lstrip("/#").strip().lower()
 
 
 def _find(names: list[str], options: Sequence[str]) -> int | None:
