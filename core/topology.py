@@ -115,7 +115,7 @@ def ascending_order(values: np.ndarray) -> np.ndarray:
 
 
 def ascending(values: np.ndarray) -> np.ndarray:
-    """Read-only ascending copy of a (n,) float array; skips the sort when already in order."""
+    """(n,) float64 ascending, contiguous and read-only; no sort when already in order."""
     values = np.asarray(values, dtype=np.float64)
     if len(values) > 1 and not bool(np.all(values[1:] >= values[:-1])):
         values = np.sort(values)
@@ -123,8 +123,10 @@ def ascending(values: np.ndarray) -> np.ndarray:
 
 
 def _frozen(array: np.ndarray) -> np.ndarray:
-    """The array if already read-only (the table's), else a read-only copy."""
-    if array.flags.writeable:
-        array = array.copy()
-        array.flags.writeable = False
+    """The values as a contiguous read-only array; no copy when the array already is one."""
+    if not array.flags.writeable and array.flags.c_contiguous:
+        return array
+    if array.base is not None or not array.flags.c_contiguous:
+        array = np.array(array, order="C")
+    array.flags.writeable = False
     return array
