@@ -209,6 +209,12 @@ def test_betti_on_lattice_points_equals_homology(dim: int, cells: list[int]) -> 
     theirs = np.array([(list(tree.persistent_betti_numbers(a, a)) + [0] * dim)[:dim]
                        for a in alphas])
     np.testing.assert_array_equal(ours, theirs)
+    for k in (0, dim - 1):
+        want = tree.persistence_intervals_in_dimension(k).reshape(-1, 2)
+        want = want[want[:, 1] > want[:, 0]]
+        got = np.asarray(ac.persistence().diagram(k))
+        want, got = (p[np.lexsort((p[:, 1], p[:, 0]))] for p in (want, got))
+        np.testing.assert_array_equal(got, want)
 
 
 def test_betti_outside_spectrum() -> None:
