@@ -46,11 +46,14 @@ def optimal_alpha(signatures: Signatures, cover: float, n_components: int = 1) -
     return float(alphas[hits[0]]) if len(hits) else float(alphas[-1])
 
 
-def stable_ranges(signatures: Signatures, k: int | None = None) -> list[AlphaRange]:
+def stable_ranges(signatures: Signatures, k: int | None = None,
+                  distinct: bool = True) -> list[AlphaRange]:
     """The k (default all) longest maximal ranges of constant Betti numbers on a log scale.
 
     Left out, as no shape worth suggesting: the range starting at alpha 0 (bare points), the
-    unbounded last one (the hull), and dust (more components than half the points).
+    unbounded last one (the hull), and dust (more components than half the points). With
+    `distinct`, only the longest range of each Betti tuple is kept: noise that briefly opens
+    and closes a small void would otherwise split one shape into several suggestions.
     """
     alphas, betti = signatures.alphas, signatures.betti
     if len(alphas) < 2:
@@ -62,7 +65,8 @@ def stable_ranges(signatures: Signatures, k: int | None = None) -> list[AlphaRan
     starts, ends = starts[bounded], ends[bounded]
     low, high = alphas[starts], alphas[ends]
     span = np.log(high / low)
-    order = np.lexsort((low, -span))[:k]
+    chosen = longest_per_tuple(betti[starts], span) if distinct else np.arange(len(span))
+    order = chosen[np.lexsort((low[chosen], -span[chosen]))][:k]
     return [
         AlphaRange(
             alpha=float(np.sqrt(low[i] * high[i])),
@@ -75,8 +79,18 @@ def stable_ranges(signatures: Signatures, k: int | None = None) -> list[AlphaRan
     ]
 
 
+def longest_per_tuple(betti: np.ndarray, span: np.ndarray) -> np.ndarray:
+    """(g,) int64 row of the longest span among the rows of each distinct (m, d) Betti tuple."""
+    if len(span) == 0:
+        return np.zeros(0, dtype=np.int64)
+    order = np.lexsort((-span, *betti.T[::-1]))
+    grouped = betti[order]
+    first = np.concatenate([[True], (grouped[1:] != grouped[:-1]).any(axis=1)])
+    return order[first]
+
+
 def suggest_alphas(signatures: Signatures, k: int = 5) -> tuple[AlphaRange, ...]:
-    """The k longest ranges of constant Betti numbers (log scale), best first."""
+    """The k longest ranges of distinct Betti numbers (log scale), best first."""
     return tuple(stable_ranges(signatures, whole_number(k, "k", 0)))
 
 

@@ -9,6 +9,7 @@ import pytest
 from scipy.spatial import ConvexHull, Delaunay
 
 from core import AlphaComplex, InputError
+from core.suggest import stable_ranges
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 
@@ -142,6 +143,11 @@ def test_suggestions_are_ranked_constant_ranges(ac: AlphaComplex) -> None:
         assert ac.betti(r.alpha) == r.betti
         assert 2 * r.betti[0] <= len(ac.points)
         assert tuple(sig.betti[sig.index(r.high)]) != r.betti
+    assert len({r.betti for r in ranges}) == len(ranges)
+    everything = stable_ranges(sig, distinct=False)
+    assert len(everything) >= len(ranges)
+    for r in ranges:
+        assert r.log_span == max(x.log_span for x in everything if x.betti == r.betti)
     assert ac.suggest_alphas(k=0) == ()
     with pytest.raises(InputError):
         ac.suggest_alphas(k=-1)
