@@ -7,11 +7,13 @@ import pytest
 from reference import (
     SQ_RTOL,
     assert_valid_table,
+    canonical,
     facet_measures,
     gudhi_boundary_measure,
     gudhi_measure,
     gudhi_table,
     ours_by_input_ids,
+    simplex_measures,
 )
 from scipy.spatial import ConvexHull
 
@@ -152,6 +154,23 @@ def test_huge_coordinates_match_gudhi(dim: int) -> None:
         np.testing.assert_array_equal(rows[order], ref[k][0])
         enter = np.asarray(ac.intervals(k))[order, 0]
         np.testing.assert_allclose(enter**2, ref[k][1], rtol=1e-6, err_msg=f"k={k}")
+
+
+def test_needle_matches_gudhi_exact() -> None:
+    """40 points, 1000 long and 1e-3 thick: thin but genuine cells keep their volume and radius."""
+    pts = VALID_CASES["needle"]
+    ac = AlphaComplex.from_points(pts)
+    ref = gudhi_table(pts, precision="exact")
+    cells, _ = ours_by_input_ids(ac, 3)
+    np.testing.assert_array_equal(cells, ref[3][0])
+    inv = np.argsort(np.asarray(ac.input_index))
+    order = canonical(inv[np.asarray(ac.simplices(3))])[1]
+    np.testing.assert_allclose(np.asarray(ac.cell_measures())[order],
+                               simplex_measures(pts, ref[3][0]), rtol=1e-6)
+    for k in range(4):
+        _, iv = ours_by_input_ids(ac, k)
+        fin = ref[k][1] > 0
+        np.testing.assert_allclose(iv[fin, 0] ** 2, ref[k][1][fin], rtol=1e-6, err_msg=f"k={k}")
 
 
 @pytest.mark.parametrize("dim", [2, 3])
