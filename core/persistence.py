@@ -12,9 +12,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 
 from .forest import younger_roots
-from .topology import Topology
+from .topology import Topology, ascending_order
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,15 +57,36 @@ def compute_persistence(ac, topology: Topology) -> Persistence:
 
 def cavity_pairs(topology: Topology, cell_enter: np.ndarray) -> np.ndarray:
     """(n, 2) float64 (birth, death) of every hole/void: closing facet, filling cell."""
-    n_cells = len(cell_enter)
-    order = np.argsort(cell_enter, kind="stable")
-    key = np.empty(n_cells + 1, dtype=np.int64)
-    key[order] = np.arange(n_cells)
-    key[n_cells] = n_cells
-    edges = topology.dual_edges
-    young = younger_roots(key, edges[:, 0], edges[:, 1])
-    births = topology.dual_forest[::-1]
-    return np.stack([births, cell_enter[order[young]]], axis=1)
+    node_enter = np.append(cell_enter, np.inf)
+    order = ascending_order(node_enter)
+    key = np.empty(len(node_enter), dtype=np.int64)
+    key[order] = np.arange(len(node_enter))
+    edges, births = topology.dual_edges, topology.dual_forest[::-1]
+    merged = zero_length_merges(edges, births, node_enter)
+    graph = coo_matrix((np.ones(int(merged.sum()), dtype=np.int8), tuple(edges[merged].T)),
+                       shape=(len(key), len(key)))
+    n_groups, group = connected_components(graph, directed=False)
+    group_key = np.full(n_groups, -1, dtype=np.int64)
+    np.maximum.at(group_key, group, key)
+    rest = edges[~merged]
+    young = younger_roots(group_key, group[rest[:, 0]], group[rest[:, 1]])
+    return np.stack([births[~merged], node_enter[order[young]]], axis=1)
+
+
+def zero_length_merges(edges: np.ndarray, births: np.ndarray, node_enter: np.ndarray):
+    """(m,) bool: forest edges that can be contracted before the elder rule, changing no pair.
+
+    An edge that arrives together with one of its nodes (same alpha) only joins that fresh
+    node to the rest, a pair of zero length. Each node may serve so for one edge only: after
+    the first it is part of an older group. On real data this removes over 99% of the edges.
+    """
+    fresh = [np.flatnonzero(births == node_enter[edges[:, side]]) for side in (0, 1)]
+    nodes = np.concatenate([edges[fresh[0], 0], edges[fresh[1], 1]])
+    claim = np.full(len(node_enter), len(births), dtype=np.int64)
+    np.minimum.at(claim, nodes, np.concatenate(fresh))
+    merged = np.zeros(len(births) + 1, dtype=bool)
+    merged[claim] = True
+    return merged[:-1]
 
 
 def _by_lifetime(pairs: np.ndarray) -> np.ndarray:
