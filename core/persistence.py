@@ -15,6 +15,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
+from .errors import InputError
 from .forest import younger_roots
 from .topology import Topology, ascending_order
 
@@ -36,7 +37,7 @@ class Persistence:
             return self.components
         if k == self.dim - 1:
             return self.cavities
-        raise ValueError(f"only dimensions 0 and {self.dim - 1} are computed, not {k}")
+        raise InputError(f"persistence is computed for dimensions 0 and {self.dim - 1}, not {k}")
 
 
 def compute_persistence(ac, topology: Topology) -> Persistence:

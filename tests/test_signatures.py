@@ -89,6 +89,9 @@ def test_index_and_immutability(ac: AlphaComplex) -> None:
     pairs = ac.persistence().diagram(0)
     with pytest.raises(ValueError):
         pairs[0, 0] = 1.0
+    assert ac.persistence() is ac.persistence()
+    with pytest.raises(InputError):
+        ac.persistence().diagram(ac.dim)
 
 
 def brute_optimal(ac: AlphaComplex, n_components: int) -> float:
