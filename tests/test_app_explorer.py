@@ -257,3 +257,35 @@ def test_file_menu_writes_and_reports(opened, tmp_path, monkeypatch, action, nam
     assert str(target) in opened.status.text()
     leftovers = [p.name for p in tmp_path.iterdir() if p.name.startswith("tmp") or ".tmp" in p.name]
     assert leftovers == []
+
+
+def test_dropping_a_file_opens_it_and_remembers_it(window, qtbot, points_file) -> None:
+    """A file dropped on the window opens; it then heads File → Open Recent."""
+    from PySide6.QtCore import QMimeData, QPointF, QUrl
+    from PySide6.QtGui import QDropEvent
+
+    path = points_file(blobs_3d(600, seed=9), "dropped.npy")
+    mime = QMimeData()
+    mime.setUrls([QUrl.fromLocalFile(str(path))])
+    event = QDropEvent(QPointF(10, 10), Qt.DropAction.CopyAction, mime,
+                       Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier)
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.dropEvent(event)
+    assert window.model.dataset.path == path
+    assert window.prefs.recent_files()[0] == str(path.resolve())
+
+
+def test_layer_styles_persist_between_windows(opened, qtbot, points_file) -> None:
+    """A colour/visibility change is saved and a new window starts with it."""
+    from app.main_window import MainWindow
+
+    opened.layers_panel._edit("boundary", colour="#123456", visible=False)
+    assert opened.scene.layers["boundary"].actor.prop.color.hex_rgb == "#123456"
+    again = MainWindow(opened.prefs.store)
+    qtbot.addWidget(again)
+    try:
+        open_and_wait(qtbot, again, points_file(blobs_3d(), "again.npy"))
+        assert again.layers_panel.styles["boundary"].colour == "#123456"
+        assert not again.scene.layers["boundary"].actor.GetVisibility()
+    finally:
+        again.close()
