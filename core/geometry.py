@@ -1,0 +1,111 @@
+"""Vectorized smallest circumspheres and in-sphere tests for simplices, relative to a vertex.
+
+Centres are computed as offsets from each simplex's first vertex, which keeps the arithmetic
+small for scans far from the origin; degenerate simplices fall back to least squares.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .tolerances import DEGENERATE_RTOL, ON_SPHERE_RTOL
+
+CHUNK = 1 << 19
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.stack(
+        (
+            a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
+            a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
+            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0],
+        ),
+        axis=1,
+    )
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.einsum("ij,ij->i", a, b)
+
+
+def _edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
+    """(n, k, d) vectors from each simplex's first vertex to its others."""
+    return points[simplices[:, 1:]] - points[simplices[:, :1]]
+
+
+def _least_squares(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets and squared radii of the smallest spheres through degenerate simplices."""
+    gram = np.einsum("nid,njd->nij", vec, vec)
+    rhs = 0.5 * np.einsum("nid,nid->ni", vec, vec)
+    lam = np.einsum("nij,nj->ni", np.linalg.pinv(gram), rhs)
+    c0 = np.einsum("ni,nid->nd", lam, vec)
+    dist2 = np.einsum("nid,nid->ni", vec - c0[:, None, :], vec - c0[:, None, :])
+    return c0, np.maximum(np.einsum("nd,nd->n", c0, c0), dist2.max(axis=1))
+
+
+def _solve(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Centre offsets (n, d), denominators (n,) and degeneracy flags for one chunk."""
+    k, d = vec.shape[1], vec.shape[2]
+    sq = np.einsum("nid,nid->ni", vec, vec)
+    if k == 1:
+        return 0.5 * vec[:, 0], np.ones(len(vec)), sq[:, 0] == 0.0
+    a, b = vec[:, 0], vec[:, 1]
+    if k == 2 and d == 2:
+        det = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+        num = np.stack((b[:, 1] * sq[:, 0] - a[:, 1] * sq[:, 1],
+                        a[:, 0] * sq[:, 1] - b[:, 0] * sq[:, 0]), axis=1)
+        scale = np.sqrt(sq[:, 0] * sq[:, 1])
+    elif k == 2:
+        n = _cross(a, b)
+        det = _dot(n, n)
+        num = sq[:, :1] * _cross(b, n) + sq[:, 1:2] * _cross(n, a)
+        scale = sq[:, 0] * sq[:, 1]
+    else:
+        c = vec[:, 2]
+        bc = _cross(b, c)
+        det = _dot(a, bc)
+        num = sq[:, :1] * bc + sq[:, 1:2] * _cross(c, a) + sq[:, 2:3] * _cross(a, b)
+        scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
+    degenerate = np.abs(det) <= DEGENERATE_RTOL * scale
+    safe = np.where(degenerate, 1.0, det)
+    return num / (2.0 * safe)[:, None], det, degenerate
+
+
+def circumspheres(
+    points: np.ndarray, simplices: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Smallest circumspheres: centre offsets from the first vertex (n, d), radii² (n,), the
+    determinant of the edge vectors (n,) (d! times the signed measure for d-simplices), and
+    (n,) bool flags for degenerate simplices (no unique circumsphere: least squares used).
+
+    Works for k-simplices in d dimensions with k < d too (the sphere centred in their hull).
+    """
+    n, d = len(simplices), points.shape[1]
+    offsets = np.empty((n, d))
+    r2 = np.empty(n)
+    dets = np.empty(n)
+    flat = np.empty(n, dtype=bool)
+    for lo in range(0, n, CHUNK):
+        sl = slice(lo, lo + CHUNK)
+        vec = _edge_vectors(points, simplices[sl])
+        c0, det, bad = _solve(vec)
+        r2_chunk = np.einsum("nd,nd->n", c0, c0)
+        if bad.any():
+            c0[bad], r2_chunk[bad] = _least_squares(vec[bad])
+        offsets[sl], r2[sl], dets[sl], flat[sl] = c0, r2_chunk, det, bad
+    return offsets, r2, dets, flat
+
+
+def strictly_inside(
+    points: np.ndarray, first: np.ndarray, offsets: np.ndarray, r2: np.ndarray, query: np.ndarray
+) -> np.ndarray:
+    """(n,) bool: query point strictly inside the sphere (points[first] + offset, radius² r2)."""
+    out = np.empty(len(query), dtype=bool)
+    for lo in range(0, len(query), CHUNK):
+        sl = slice(lo, lo + CHUNK)
+        rel = points[query[sl]] - points[first[sl]]
+        diff = rel - offsets[sl]
+        power = np.einsum("nd,nd->n", diff, diff) - r2[sl]
+        slack = ON_SPHERE_RTOL * (np.einsum("nd,nd->n", rel, rel) + r2[sl])
+        out[sl] = power < -slack
+    return out

@@ -1,0 +1,93 @@
+"""Input validation, exact-duplicate merging and flatness detection for point sets."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InputError
+from .tolerances import FLAT_RTOL
+
+
+def as_points(points: object) -> np.ndarray:
+    """(n, d) float64 copy of `points`, d in {2, 3}; InputError for anything else."""
+    try:
+        arr = np.array(points, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"points must be numbers: {exc}") from None
+    if arr.ndim != 2 or arr.shape[1] not in (2, 3):
+        raise InputError(f"points must be an (n, 2) or (n, 3) array, got shape {arr.shape}")
+    if arr.shape[0] == 0:
+        raise InputError("no points: the input is empty")
+    bad = ~np.isfinite(arr).all(axis=1)
+    if bad.any():
+        first = int(np.flatnonzero(bad)[0])
+        raise InputError(
+            f"{int(bad.sum())} point(s) have NaN or infinite coordinates (first: row {first}); "
+            "drop or fix them first"
+        )
+    return arr
+
+
+def merge_duplicates(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unique rows in order of first appearance, and (n,) int64 row of each input point.
+
+    Hashes rows first so that duplicate-free input costs one sort of n integers.
+    """
+    n = points.shape[0]
+    bits = np.ascontiguousarray(points + 0.0).view(np.uint64)  # + 0.0 folds -0.0 into 0.0
+    mix = np.array([0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9], np.uint64)
+    h = (bits * mix[: points.shape[1]]).sum(axis=1, dtype=np.uint64)
+    hs = np.sort(h)
+    if not (hs[1:] == hs[:-1]).any():
+        return points, np.arange(n, dtype=np.int64)
+    clash = np.isin(h, hs[1:][hs[1:] == hs[:-1]])
+    cand = np.flatnonzero(clash)
+    order = cand[np.lexsort(points[cand].T[::-1])]
+    same = (points[order[1:]] == points[order[:-1]]).all(axis=1)
+    group = np.concatenate(([0], np.cumsum(~same)))
+    first = np.minimum.reduceat(order, np.flatnonzero(np.concatenate(([True], ~same))))
+    rep = first[group]
+    target = np.arange(n, dtype=np.int64)
+    target[order] = rep
+    keep = target == np.arange(n)
+    new_id = np.cumsum(keep) - 1
+    return points[keep], new_id[target]
+
+
+@dataclass(frozen=True)
+class Frame:
+    """Affine frame of planar 3D input: ambient = origin + local @ basis."""
+
+    origin: np.ndarray  # (3,) float64
+    basis: np.ndarray  # (2, 3) float64, orthonormal rows
+
+
+def flatness(points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Centroid, singular values (descending) and right singular vectors of the points."""
+    centroid = points.mean(axis=0)
+    centred = points - centroid
+    scale = np.abs(centred).max()
+    if scale == 0.0:
+        return centroid, np.zeros(points.shape[1]), np.eye(points.shape[1])
+    _, s, vt = np.linalg.svd(centred / scale, full_matrices=False)
+    return centroid, s * scale, vt
+
+
+def check_spread(points: np.ndarray) -> Frame | None:
+    """Frame to build a planar 3D set in 2D, or None; InputError if too few or collinear."""
+    n, d = points.shape
+    if n < d + 1 and not (d == 3 and n == 3):
+        raise InputError(
+            f"only {n} distinct point(s): a {d}D alpha shape needs at least {d + 1} points "
+            "that are not all on one line" + (" or plane" if d == 3 else "")
+        )
+    centroid, s, vt = flatness(points)
+    if s[0] == 0.0:
+        raise InputError("all points are the same point")
+    if s[1] <= FLAT_RTOL * s[0]:
+        raise InputError("the points all lie on one line: an alpha shape needs 2D or 3D spread")
+    if d == 3 and s[2] <= FLAT_RTOL * s[0]:
+        return Frame(origin=centroid, basis=vt[:2].copy())
+    return None

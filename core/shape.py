@@ -1,0 +1,98 @@
+"""The alpha shape at one alpha: an immutable view of the table's answer, computed lazily."""
+
+from __future__ import annotations
+
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from .complex import AlphaComplex
+
+
+def readonly(arr: np.ndarray) -> np.ndarray:
+    """`arr` with its writeable flag cleared (a widget must not corrupt the table)."""
+    arr.flags.writeable = False
+    return arr
+
+
+class AlphaShape:
+    """Simplices of the alpha complex at `alpha`, by class; arrays are read-only.
+
+    Each array is computed on first access and costs about the size of its answer, never a
+    pass over the whole triangulation beyond the prefix of simplices that entered.
+    """
+
+    def __init__(self, complex_: AlphaComplex, alpha: float) -> None:
+        self._ac = complex_
+        self.alpha = float(alpha)
+        self.dim = complex_.dim
+        self.points = complex_.points
+
+    def _entered(self, k: int) -> int:
+        """Number of k-simplices in the complex (they are a prefix: sorted by enter)."""
+        return int(np.searchsorted(self._ac._level(k).enter, self.alpha, side="right"))
+
+    @cached_property
+    def cell_ids(self) -> np.ndarray:
+        """(c,) int64 rows of `simplices(dim)` in the complex."""
+        return readonly(np.arange(self._entered(self.dim)))
+
+    @cached_property
+    def cells(self) -> np.ndarray:
+        """(c, dim+1) int32 cells of the complex."""
+        return readonly(self._ac._level(self.dim).simplices[: self._entered(self.dim)])
+
+    @cached_property
+    def _boundary_ids(self) -> np.ndarray:
+        """Rows of `simplices(dim-1)` that are SINGULAR or REGULAR at alpha."""
+        level = self._ac._level(self.dim - 1)
+        count = self._entered(self.dim - 1)
+        return np.flatnonzero(level.interior[:count] > self.alpha)
+
+    @cached_property
+    def boundary_facets(self) -> np.ndarray:
+        """(b, dim) int32 facets on the boundary of the shape (REGULAR or SINGULAR)."""
+        ids = self._boundary_ids
+        return readonly(self._ac._level(self.dim - 1).simplices[ids])
+
+    @cached_property
+    def regular_facet_ids(self) -> np.ndarray:
+        """(r,) int64 rows of `simplices(dim-1)` that are REGULAR at alpha."""
+        ids = self._boundary_ids
+        return readonly(ids[self._ac._level(self.dim - 1).regular[ids] <= self.alpha])
+
+    @cached_property
+    def regular_facets(self) -> np.ndarray:
+        """(r, dim) int32 REGULAR facets oriented away from their cell (3D: normal
+        (b-a)x(c-a) points out; 2D: the shape lies left of a->b, so outer rings run CCW)."""
+        ids = self.regular_facet_ids
+        ac = self._ac
+        facets = ac._level(self.dim - 1).simplices[ids].copy()
+        inside_is_first = ac._table.facet_cells[ids, 0] < self._entered(self.dim)
+        flip = ac._table.facet_flip[ids] ^ ~inside_is_first
+        facets[flip, -2:] = facets[flip, -1:-3:-1]
+        return readonly(facets)
+
+    def singular(self, k: int) -> np.ndarray:
+        """(s, k+1) int32 SINGULAR k-simplices (k < dim): in the complex, face of nothing."""
+        if not 0 <= k < self.dim:
+            raise ValueError(f"singular simplices exist for 0 <= k < {self.dim}, not k={k}")
+        cache = self.__dict__.setdefault("_singular", {})
+        if k not in cache:
+            level = self._ac._level(k)
+            count = self._entered(k)
+            ids = np.flatnonzero(level.regular[:count] > self.alpha)
+            cache[k] = readonly(level.simplices[ids])
+        return cache[k]
+
+    @cached_property
+    def measure(self) -> float:
+        """Volume (3D) or area (2D) of the complex: the sum of its cells' measures."""
+        count = self._entered(self.dim)
+        return float(self._ac._cumulative_measure[count - 1]) if count else 0.0
+
+    def __repr__(self) -> str:
+        return (f"AlphaShape(alpha={self.alpha:.6g}, dim={self.dim}, "
+                f"cells={self._entered(self.dim)}, measure={self.measure:.6g})")

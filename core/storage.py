@@ -1,0 +1,112 @@
+"""Saving and loading interval tables as .npz (no pickles), with atomic writes.
+
+Layout (format "alphascoop-table", version 1): `points` (m, dim) float64, `input_index` (n,)
+int64, `dim`, `ambient_dim`, optional `frame_origin` (3,) / `frame_basis` (2, 3); for each
+k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter, `enter_k`/`regular_k`/`interior_k`
+(n_k,) float64 radii (inf = never), `face_ids_k` (n_k, k+1) int32 for k >= 1; `facet_cells`
+(f, 2) int32 (-1 = outside), `facet_flip` (f,) bool, `cell_measure` (c,) float64.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import zipfile
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .errors import FileFormatError
+from .points import Frame
+from .table import Level, Table
+
+if TYPE_CHECKING:
+    from .complex import AlphaComplex
+
+FORMAT, VERSION = "alphascoop-table", 1
+
+
+def atomic_write(path: str | os.PathLike, write) -> None:
+    """Call write(file_object) on a temporary file beside `path`, then rename it into place."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            write(handle)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
+    table = ac._table
+    out = {"format": np.array(FORMAT), "version": np.array(VERSION), "dim": np.array(ac.dim),
+           "ambient_dim": np.array(ac.ambient_dim), "points": ac.points,
+           "input_index": ac.input_index, "facet_cells": table.facet_cells,
+           "facet_flip": table.facet_flip, "cell_measure": table.cell_measure}
+    if ac.frame is not None:
+        out["frame_origin"], out["frame_basis"] = ac.frame.origin, ac.frame.basis
+    for k, level in enumerate(table.levels):
+        out[f"simplices_{k}"] = level.simplices
+        out[f"enter_{k}"], out[f"regular_{k}"] = level.enter, level.regular
+        out[f"interior_{k}"] = level.interior
+        if level.face_ids is not None:
+            out[f"face_ids_{k}"] = level.face_ids
+    return out
+
+
+def save(ac: AlphaComplex, path: str | os.PathLike) -> None:
+    """Write `ac` to `path` (.npz) atomically."""
+    atomic_write(path, lambda handle: np.savez(handle, **_arrays(ac)))
+
+
+def _check(condition: bool, path: Path, what: str) -> None:
+    if not condition:
+        raise FileFormatError(f"{path}: not a valid Alpha Scoop table ({what})")
+
+
+def _read(path: Path) -> dict[str, np.ndarray]:
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            arrays = {name: data[name] for name in data.files}
+    except FileNotFoundError:
+        raise FileFormatError(f"{path}: no such file") from None
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError) as exc:
+        raise FileFormatError(f"{path}: not a readable .npz table ({exc})") from None
+    _check(str(arrays.get("format", "")) == FORMAT, path, "missing format tag")
+    _check(int(arrays.get("version", -1)) == VERSION, path, "unknown version")
+    return arrays
+
+
+def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
+    """Read a table written by `save`, checking shapes so a damaged file fails clearly."""
+    path = Path(path)
+    a = _read(path)
+    try:
+        dim = int(a["dim"])
+        _check(dim in (2, 3), path, "dimension")
+        levels = []
+        for k in range(dim + 1):
+            simplices = a[f"simplices_{k}"]
+            n = len(simplices)
+            _check(simplices.ndim == 2 and simplices.shape[1] == k + 1, path, f"simplices_{k}")
+            level = Level(simplices, a[f"enter_{k}"], a[f"regular_{k}"], a[f"interior_{k}"],
+                          a.get(f"face_ids_{k}"))
+            for arr in (level.enter, level.regular, level.interior):
+                _check(arr.shape == (n,) and arr.dtype == np.float64, path, f"intervals_{k}")
+            _check(k == 0 or (level.face_ids is not None and level.face_ids.shape == (n, k + 1)),
+                   path, f"face_ids_{k}")
+            levels.append(level)
+        points = a["points"]
+        _check(points.ndim == 2 and points.shape[1] == dim, path, "points")
+        _check(a["facet_cells"].shape == (len(levels[dim - 1].enter), 2), path, "facet_cells")
+        _check(a["cell_measure"].shape == (len(levels[dim].enter),), path, "cell_measure")
+        frame = (Frame(a["frame_origin"], a["frame_basis"]) if "frame_origin" in a else None)
+        table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"])
+        return cls(points, a["input_index"], table, frame, int(a["ambient_dim"]))
+    except KeyError as exc:
+        raise FileFormatError(f"{path}: not a valid Alpha Scoop table (missing {exc})") from None

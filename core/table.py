@@ -1,0 +1,255 @@
+"""Builds the interval table: for every Delaunay simplex, the alphas where it enters the
+complex (enter), becomes a face of a higher simplex (regular) and turns interior (interior).
+
+Rules (DESIGN.md §1, CGAL's GENERAL mode): a cell enters at its circumradius; a face enters
+at its smallest circumradius unless attached (a cofacet's vertex strictly inside that sphere),
+then with its first cofacet; regular = smallest enter among cofacets; interior = largest enter
+among the cells around it, inf on the convex hull. Each level is returned sorted by enter.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from .geometry import CHUNK, circumspheres, strictly_inside
+from .tolerances import ON_SPHERE_RTOL
+
+Progress = Callable[[float, str], None]
+
+
+@dataclass
+class Level:
+    """The simplices of one dimension k, sorted by enter, and their three alphas."""
+
+    simplices: np.ndarray  # (n, k+1) int32, rows ascending
+    enter: np.ndarray  # (n,) float64, ascending
+    regular: np.ndarray  # (n,) float64
+    interior: np.ndarray  # (n,) float64, inf = on the convex hull
+    face_ids: np.ndarray | None = None  # (n, k+1) int32: row in level k-1 opposite each vertex
+
+
+@dataclass
+class Table:
+    """All levels plus the cell/facet adjacency the queries need."""
+
+    levels: list[Level]
+    facet_cells: np.ndarray  # (f, 2) int32 cells on both sides of each facet, -1 = outside
+    facet_flip: np.ndarray  # (f,) bool: reverse the last two vertices to face out of cell 0
+    cell_measure: np.ndarray  # (c,) float64 unsigned volume/area of every cell
+
+
+def _permute(level: Level, order: np.ndarray) -> np.ndarray:
+    """Reorder `level` by `order` in place; return the inverse permutation."""
+    level.simplices = level.simplices[order]
+    level.enter, level.regular, level.interior = (
+        level.enter[order], level.regular[order], level.interior[order])
+    if level.face_ids is not None:
+        level.face_ids = level.face_ids[order]
+    inverse = np.empty(len(order), dtype=np.int32)
+    inverse[order] = np.arange(len(order), dtype=np.int32)
+    return inverse
+
+
+def _remap(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
+    """Apply an inverse permutation to an id array that uses -1 for none."""
+    return np.where(ids >= 0, inverse[np.maximum(ids, 0)], -1).astype(np.int32)
+
+
+def _sort_by_enter(level: Level) -> np.ndarray:
+    return _permute(level, np.argsort(level.enter, kind="stable"))
+
+
+def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> None:
+    """Let flat cells (zero volume, from cospherical points) enter with their last neighbour.
+
+    Qhull fills a cospherical group with some flat cells; exact triangulations have none. A
+    flat cell entering before its neighbours would show a zero-thickness solid with arbitrary
+    orientation; entering with them it only closes the group, as the exact complex does.
+    """
+    ids = np.flatnonzero(flat)
+    while len(ids):
+        around = neighbors[ids]
+        later = np.where(around >= 0, enter[np.maximum(around, 0)], 0.0).max(axis=1)
+        grow = later > enter[ids]
+        if not grow.any():
+            return
+        enter[ids[grow]] = later[grow]
+        ids = ids[grow]
+
+
+def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray):
+    """Level d, its neighbours (renumbered) and signed d!-measures, sorted by enter."""
+    _, r2, det, flat = circumspheres(points, cells)
+    enter = np.sqrt(r2)
+    if flat.any():
+        det[flat] = 0.0
+        _delay_flat(enter, flat, neighbors)
+    level = Level(cells, enter, enter, enter)
+    order = np.argsort(enter, kind="stable")
+    inverse = _permute(level, order)
+    return level, _remap(neighbors[order], inverse), det[order]
+
+
+def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
+    """(h,) bool: hull facets whose natural orientation faces the centroid (so must flip).
+
+    The hull is convex, so the centroid is inside: robust even when the cell behind is flat.
+    """
+    first = points[facets[:, 0]]
+    to_centre = points.mean(axis=0) - first
+    if points.shape[1] == 2:
+        edge = points[facets[:, 1]] - first
+        return edge[:, 0] * to_centre[:, 1] - edge[:, 1] * to_centre[:, 0] < 0
+    normal = np.cross(points[facets[:, 1]] - first, points[facets[:, 2]] - first)
+    return np.einsum("nd,nd->n", normal, to_centre) > 0
+
+
+def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray):
+    """Level d-1 from the cells' neighbour table: each shared facet taken once."""
+    n_cells, width = cells.simplices.shape
+    keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
+    t0, i0 = np.nonzero(keep)
+    del keep
+    t1 = neighbors[t0, i0]
+    others = np.array([[j for j in range(width) if j != i] for i in range(width)])
+    simplices = np.take_along_axis(cells.simplices[t0], others[i0], axis=1)
+    apex0 = cells.simplices[t0, i0]
+    has1 = np.flatnonzero(t1 >= 0)
+    j1 = np.argmax(neighbors[t1[has1]] == t0[has1, None], axis=1)
+    apex1 = cells.simplices[t1[has1], j1]
+
+    offsets, r2, _, _ = circumspheres(points, simplices)
+    first = simplices[:, 0]
+    attached = strictly_inside(points, first, offsets, r2, apex0)
+    attached[has1] |= strictly_inside(points, first[has1], offsets[has1], r2[has1], apex1)
+    del offsets
+    e0 = cells.enter[t0]
+    e1 = np.full(len(t0), np.inf)
+    e1[has1] = cells.enter[t1[has1]]
+    regular = np.minimum(e0, e1)
+    interior = np.maximum(e0, e1)
+    enter = np.where(attached, regular, np.minimum(np.sqrt(r2), regular))
+
+    flip = (i0 % 2 == 1) ^ (det[t0] < 0)
+    better = np.abs(det[t1[has1]]) > np.abs(det[t0[has1]])
+    flip_other = ~((j1 % 2 == 1) ^ (det[t1[has1]] < 0))
+    flip[has1[better]] = flip_other[better]
+    hull = np.flatnonzero(t1 < 0)
+    flip[hull] = _faces_centre(points, simplices[hull])
+
+    fid = np.arange(len(t0), dtype=np.int32)
+    cell_faces = np.full((n_cells, width), -1, dtype=np.int32)
+    cell_faces[t0, i0] = fid
+    cell_faces[t1[has1], j1] = fid[has1]
+    level = Level(simplices.astype(np.int32), enter, regular, interior)
+    facet_cells = np.stack((t0, t1), axis=1).astype(np.int32)
+    order = np.argsort(enter, kind="stable")
+    inverse = _permute(level, order)
+    cells.face_ids = inverse[cell_faces]
+    return level, facet_cells[order], flip[order]
+
+
+def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray]:
+    """Edge keys a*m+b (ascending) and triangle ids of all triangle-edge incidences.
+
+    Packs key and triangle id into one uint64 when they fit, because np.sort is several
+    times faster than np.argsort on this machine class.
+    """
+    m = np.uint64(n_points)
+    nt = len(triangles)
+    key_bits = (n_points * n_points - 1).bit_length()
+    tri_bits = max(1, (nt - 1).bit_length())
+    pairs = ((0, 1), (0, 2), (1, 2))
+    if key_bits + tri_bits <= 64:
+        shift = np.uint64(tri_bits)
+        tid = np.arange(nt, dtype=np.uint64)
+        cols = [triangles[:, c].astype(np.uint64) for c in range(3)]
+        packed = np.concatenate([((cols[i] * m + cols[j]) << shift) | tid for i, j in pairs])
+        del cols
+        packed.sort()
+        tri_ids = (packed & np.uint64((1 << tri_bits) - 1)).astype(np.int64)
+        packed >>= shift
+        return packed.view(np.int64), tri_ids
+    keys = np.concatenate([triangles[:, i].astype(np.int64) * n_points + triangles[:, j]
+                           for i, j in pairs])
+    order = np.argsort(keys)
+    return keys[order], order % nt
+
+
+def _edges(points: np.ndarray, triangles: Level) -> Level:
+    """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values."""
+    m = len(points)
+    keys, tri_ids = _edge_incidences(triangles.simplices, m)
+    is_start = np.empty(len(keys), dtype=bool)
+    is_start[0] = True
+    np.not_equal(keys[1:], keys[:-1], out=is_start[1:])
+    starts = np.flatnonzero(is_start)
+    edge_keys = keys[starts]
+    edge_of = np.cumsum(is_start, dtype=np.int64) - 1
+    del is_start
+
+    inside = np.empty(len(keys), dtype=bool)
+    face_ids = np.empty_like(triangles.simplices)
+    for lo in range(0, len(keys), 8 * CHUNK):
+        sl = slice(lo, lo + 8 * CHUNK)
+        a, b = np.divmod(keys[sl], m)
+        rows = triangles.simplices[tri_ids[sl]]
+        apex = rows.sum(axis=1, dtype=np.int64) - a - b
+        pa, pb = points[a] - points[apex], points[b] - points[apex]
+        power = np.einsum("nd,nd->n", pa, pb)
+        slack = ON_SPHERE_RTOL * (np.einsum("nd,nd->n", pa, pa) + np.einsum("nd,nd->n", pb, pb))
+        inside[sl] = power < -slack
+        local = np.argmax(rows == apex[:, None], axis=1)
+        face_ids[tri_ids[sl], local] = edge_of[sl]
+    del edge_of
+    regular = np.minimum.reduceat(triangles.enter[tri_ids], starts)
+    interior = np.maximum.reduceat(triangles.interior[tri_ids], starts)
+    attached = np.logical_or.reduceat(inside, starts)
+    del keys, tri_ids, inside
+    a, b = np.divmod(edge_keys, m)
+    half = 0.5 * np.sqrt(((points[b] - points[a]) ** 2).sum(axis=1))
+    enter = np.where(attached, regular, np.minimum(half, regular))
+    level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
+    inverse = _sort_by_enter(level)
+    triangles.face_ids = inverse[face_ids]
+    return level
+
+
+def _vertices(n_points: int, edges: Level) -> Level:
+    """Level 0: vertices enter at 0; regular/interior aggregated over their edges."""
+    regular = np.full(n_points, np.inf)
+    interior = np.full(n_points, -np.inf)
+    for col in (0, 1):
+        np.minimum.at(regular, edges.simplices[:, col], edges.enter)
+        np.maximum.at(interior, edges.simplices[:, col], edges.interior)
+    edges.face_ids = edges.simplices[:, ::-1].copy()
+    simplices = np.arange(n_points, dtype=np.int32)[:, None]
+    return Level(simplices, np.zeros(n_points), regular, interior)
+
+
+def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
+                progress: Progress | None = None) -> Table:
+    """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled)."""
+    def step(fraction: float, stage: str) -> None:
+        if progress is not None:
+            progress(fraction, stage)
+
+    d = points.shape[1]
+    step(0.0, "circumspheres of cells")
+    top, neighbors, det = _cells(points, cells, neighbors)
+    step(0.2, "facets")
+    facets, facet_cells, flip = _facets(points, top, neighbors, det)
+    del neighbors
+    levels = [facets, top]
+    if d == 3:
+        step(0.55, "edges")
+        levels.insert(0, _edges(points, facets))
+    step(0.9, "vertices")
+    levels.insert(0, _vertices(len(points), levels[0]))
+    measure = np.abs(det) / (2.0 if d == 2 else 6.0)
+    step(1.0, "done")
+    return Table(levels, facet_cells, flip, measure)
+

@@ -1,0 +1,15 @@
+"""Every numerical tolerance of the core, in one place; all are relative to the data's scale."""
+
+from __future__ import annotations
+
+#: Smallest/largest singular value of the centred points below this: the set is flat
+#: (3D -> planar, built as a 2D complex; 2D -> collinear, an error).
+FLAT_RTOL = 1e-9
+
+#: A simplex whose volume-like determinant, relative to the product of its edge lengths, is
+#: below this has no unique circumsphere; its sphere is then found by least squares.
+DEGENERATE_RTOL = 1e-12
+
+#: A point is strictly inside a sphere only if its power is below -ON_SPHERE_RTOL times the
+#: squared distances involved: cospherical points of lattices and scans count as on the sphere.
+ON_SPHERE_RTOL = 1e-10
