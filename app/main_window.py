@@ -126,6 +126,7 @@ class MainWindow(QMainWindow):
         self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
+        self.alpha_panel.slider.setFocus()
 
     def _show_shape(self) -> None:
         """New alpha: swap layer connectivity, one render, status line."""

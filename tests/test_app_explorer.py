@@ -38,13 +38,49 @@ def points_file(tmp_path):
     return write
 
 
+def wait_for(signal, timeout_ms: int = BUILD_TIMEOUT_MS) -> None:
+    """Spin the event loop until signal fires (module fixtures cannot use qtbot)."""
+    from PySide6.QtCore import QEventLoop, QTimer
+
+    loop = QEventLoop()
+    signal.connect(loop.quit)
+    QTimer.singleShot(timeout_ms, loop.quit)
+    loop.exec()
+
+
+@pytest.fixture(scope="module")
+def shared_window(qapp, tmp_path_factory):
+    """One window with the 3D test blobs open, shared by this module's read-mostly tests."""
+    from PySide6.QtCore import QSettings
+    from PySide6.QtTest import QTest
+
+    from app.main_window import MainWindow
+
+    folder = tmp_path_factory.mktemp("shared")
+    win = MainWindow(QSettings(str(folder / "settings.ini"), QSettings.Format.IniFormat))
+    win.resize(900, 650)
+    win.show()
+    QTest.qWaitForWindowExposed(win)
+    path = folder / "blobs.npy"
+    np.save(path, blobs_3d())
+    win.open_path(path)
+    wait_for(win.model.datasetChanged)
+    assert win.model.dataset is not None, "the shared test dataset did not build"
+    yield win
+    win.close()
+
+
 @pytest.fixture
-def opened(window, qtbot, points_file):
-    """The window after opening the 3D test blobs, with every layer shown."""
-    open_and_wait(qtbot, window, points_file(blobs_3d()))
-    for row in window.layers_panel.rows.values():
-        row.visible.setChecked(True)
-    return window
+def opened(shared_window, qtbot):
+    """The shared window reset to its optimal alpha, every layer shown in default colours."""
+    from app.palette import default_styles
+
+    win = shared_window
+    win.model.set_index(win.model.optimal_index())
+    for name, style in default_styles(3).items():
+        win.layers_panel._edit(name, visible=True, colour=style.colour, opacity=style.opacity)
+    qtbot.wait(1)
+    return win
 
 
 def layer_cells(layer) -> np.ndarray:
