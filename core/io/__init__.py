@@ -89,6 +89,11 @@ def read_points(
         raise FileFormatError(f"{path}: too large to read into memory") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise FileFormatError(f"{path}: cannot read ({exc})") from None
+    except FileFormatError:
+        raise
+    except Exception as exc:  # a third-party parser choking on a corrupt file
+        raise FileFormatError(f"{path}: unreadable {_format_name(ext)} file "
+                              f"({type(exc).__name__}: {exc})") from exc
     if points.ndim != 2 or points.shape[1] not in (2, 3):
         raise FileFormatError(f"{path}: points must have 2 or 3 coordinates, "
                               f"got shape {points.shape}")
