@@ -112,3 +112,34 @@ def test_las_bogus_point_count_and_truncation(tmp_path, ext):
         read_points(tmp_path / f"huge.{ext}")
     with pytest.raises(FileFormatError, match=f"cut.{ext}"):
         read_points(tmp_path / f"cut.{ext}")
+
+
+@pytest.fixture
+def laz_bytes(tmp_path) -> bytearray:
+    """A small valid LAZ file's bytes."""
+    import laspy
+
+    las = laspy.LasData(laspy.LasHeader(point_format=3, version="1.2"))
+    las.x, las.y, las.z = np.random.default_rng(1).uniform(size=(3, 30))
+    las.write(tmp_path / "ok.laz")
+    return bytearray((tmp_path / "ok.laz").read_bytes())
+
+
+def test_corrupt_vlr_count_does_not_hang(tmp_path, laz_bytes):
+    import struct
+
+    laz_bytes[100:104] = struct.pack("<I", 3_000_000_000)  # number of VLRs
+    (tmp_path / "vlr.laz").write_bytes(laz_bytes)
+    with pytest.raises(FileFormatError, match="corrupt LAS header"):
+        read_points(tmp_path / "vlr.laz")
+
+
+def test_corrupt_chunk_table_does_not_abort(tmp_path, laz_bytes):
+    import struct
+
+    offset = struct.unpack_from("<I", laz_bytes, 96)[0]
+    table = struct.unpack_from("<q", laz_bytes, offset)[0]
+    laz_bytes[table + 4: table + 8] = struct.pack("<I", 833_707_467)  # number of chunks
+    (tmp_path / "chunks.laz").write_bytes(laz_bytes)
+    with pytest.raises(FileFormatError, match="chunk table"):
+        read_points(tmp_path / "chunks.laz")

@@ -91,7 +91,9 @@ def read_points(
         raise FileFormatError(f"{path}: cannot read ({exc})") from None
     except FileFormatError:
         raise
-    except Exception as exc:  # a third-party parser choking on a corrupt file
+    except BaseException as exc:  # a third-party parser choking on a corrupt file
+        if not isinstance(exc, Exception) and type(exc).__name__ != "PanicException":
+            raise  # KeyboardInterrupt, SystemExit...; Rust panics (lazrs) are BaseExceptions
         raise FileFormatError(f"{path}: unreadable {_format_name(ext)} file "
                               f"({type(exc).__name__}: {exc})") from exc
     if points.ndim != 2 or points.shape[1] not in (2, 3):
