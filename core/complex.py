@@ -62,13 +62,15 @@ class AlphaComplex:
         frame = check_spread(unique)
         coords = unique if frame is None else (unique - frame.origin) @ frame.basis.T
         offset = 0.5 * (coords.min(axis=0) + coords.max(axis=0))
-        scale = _power_of_two_scale(coords - offset)
-        local = (coords - offset) / scale
         step(0.02, "Delaunay triangulation")
-        tri = triangulate(local)
-        if len(tri.kept) < len(local):
-            coords, local = coords[tri.kept], local[tri.kept]
+        tri = triangulate((coords - offset) / _power_of_two_scale(coords - offset))
+        if len(tri.kept) < len(coords):
+            coords = coords[tri.kept]
             input_index = tri.vertex_of_point[input_index]
+        # The table works on the points themselves, scaled exactly by a power of two: its
+        # arithmetic is relative to a vertex, so it needs no (rounding) shift to the origin.
+        scale = _power_of_two_scale(coords)
+        local = coords / scale
         step(0.6, "interval table")
         table = build_table(local, tri.cells, tri.neighbors,
                             None if progress is None else lambda f, s: step(0.6 + 0.4 * f, s))

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .tolerances import DEGENERATE_RTOL, ON_SPHERE_RTOL
+from .tolerances import DEGENERATE_RTOL, ILL_CONDITIONED_RTOL, ON_SPHERE_RTOL
 
 CHUNK = 1 << 19
 
@@ -33,6 +33,13 @@ def _edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     return points[simplices[:, 1:]] - points[simplices[:, :1]]
 
 
+def _extended(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
+    """Centre offsets of ill-conditioned simplices, computed in extended precision."""
+    wide = points.astype(np.longdouble)
+    vec = wide[simplices[:, 1:]] - wide[simplices[:, :1]]
+    return _solve(vec)[0].astype(np.float64)
+
+
 def _least_squares(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Offsets and squared radii of the smallest spheres through degenerate simplices."""
     gram = np.einsum("nid,njd->nij", vec, vec)
@@ -43,12 +50,13 @@ def _least_squares(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return c0, np.maximum(np.einsum("nd,nd->n", c0, c0), dist2.max(axis=1))
 
 
-def _solve(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Centre offsets (n, d), denominators (n,) and degeneracy flags for one chunk."""
+def _solve(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Centre offsets (n, d), determinants (n,), and flags: degenerate, ill-conditioned."""
     k, d = vec.shape[1], vec.shape[2]
     sq = np.einsum("nid,nid->ni", vec, vec)
     if k == 1:
-        return 0.5 * vec[:, 0], np.ones(len(vec)), sq[:, 0] == 0.0
+        zero = sq[:, 0] == 0.0
+        return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero
     a, b = vec[:, 0], vec[:, 1]
     if k == 2 and d == 2:
         det = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
@@ -59,16 +67,17 @@ def _solve(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         n = _cross(a, b)
         det = _dot(n, n)
         num = sq[:, :1] * _cross(b, n) + sq[:, 1:2] * _cross(n, a)
-        scale = sq[:, 0] * sq[:, 1]
+        scale = np.sqrt(det * sq[:, 0] * sq[:, 1])  # det is |a x b|²: compare |a x b|
     else:
         c = vec[:, 2]
         bc = _cross(b, c)
         det = _dot(a, bc)
         num = sq[:, :1] * bc + sq[:, 1:2] * _cross(c, a) + sq[:, 2:3] * _cross(a, b)
         scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
-    degenerate = np.abs(det) <= DEGENERATE_RTOL * scale
+    shape = np.abs(det) / np.where(scale > 0, scale, 1.0)  # 0 flat .. 1 well-shaped
+    degenerate = shape <= DEGENERATE_RTOL
     safe = np.where(degenerate, 1.0, det)
-    return num / (2.0 * safe)[:, None], det, degenerate
+    return num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL
 
 
 def circumspheres(
@@ -88,7 +97,10 @@ def circumspheres(
     for lo in range(0, n, CHUNK):
         sl = slice(lo, lo + CHUNK)
         vec = _edge_vectors(points, simplices[sl])
-        c0, det, bad = _solve(vec)
+        c0, det, bad, poor = _solve(vec)
+        poor &= ~bad
+        if poor.any():
+            c0[poor] = _extended(points, simplices[sl][poor])
         r2_chunk = np.einsum("nd,nd->n", c0, c0)
         if bad.any():
             c0[bad], r2_chunk[bad] = _least_squares(vec[bad])
@@ -109,3 +121,16 @@ def strictly_inside(
         slack = ON_SPHERE_RTOL * (np.einsum("nd,nd->n", rel, rel) + r2[sl])
         out[sl] = power < -slack
     return out
+
+
+def any_point_inside(points: np.ndarray, centres: np.ndarray, r2: np.ndarray) -> np.ndarray:
+    """(n,) bool: some point of the whole set lies strictly inside each sphere.
+
+    The exact (global) attachment test, for the few simplices next to flat cells, where
+    testing the cofacets' vertices is not enough.
+    """
+    from scipy.spatial import cKDTree
+
+    centroid = points.mean(axis=0)
+    dist, _ = cKDTree(points - centroid).query(centres - centroid, k=1)
+    return dist * dist < r2 * (1.0 - 2.0 * ON_SPHERE_RTOL)

@@ -98,11 +98,16 @@ def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
                           a.get(f"face_ids_{k}"))
             for arr in (level.enter, level.regular, level.interior):
                 _check(arr.shape == (n,) and arr.dtype == np.float64, path, f"intervals_{k}")
+                _check(not np.isnan(arr).any(), path, f"NaN in intervals_{k}")
             _check(k == 0 or (level.face_ids is not None and level.face_ids.shape == (n, k + 1)),
                    path, f"face_ids_{k}")
             levels.append(level)
         points = a["points"]
         _check(points.ndim == 2 and points.shape[1] == dim, path, "points")
+        for k, level in enumerate(levels):
+            s = level.simplices
+            _check(s.size == 0 or (s.min() >= 0 and s.max() < len(points)), path,
+                   f"vertex ids of simplices_{k} out of range")
         _check(a["facet_cells"].shape == (len(levels[dim - 1].enter), 2), path, "facet_cells")
         _check(a["cell_measure"].shape == (len(levels[dim].enter),), path, "cell_measure")
         frame = (Frame(a["frame_origin"], a["frame_basis"]) if "frame_origin" in a else None)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import CHUNK, circumspheres, strictly_inside
+from .geometry import CHUNK, any_point_inside, circumspheres, strictly_inside
 from .tolerances import ON_SPHERE_RTOL
 
 Progress = Callable[[float, str], None]
@@ -125,6 +125,11 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     first = simplices[:, 0]
     attached = strictly_inside(points, first, offsets, r2, apex0)
     attached[has1] |= strictly_inside(points, first[has1], offsets[has1], r2[has1], apex1)
+    near_flat = det[t0] == 0
+    near_flat[has1] |= det[t1[has1]] == 0
+    if near_flat.any():
+        ids = np.flatnonzero(near_flat)
+        attached[ids] |= any_point_inside(points, points[first[ids]] + offsets[ids], r2[ids])
     del offsets
     e0 = cells.enter[t0]
     e1 = np.full(len(t0), np.inf)
@@ -149,7 +154,7 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     order = np.argsort(enter, kind="stable")
     inverse = _permute(level, order)
     cells.face_ids = inverse[cell_faces]
-    return level, facet_cells[order], flip[order]
+    return level, facet_cells[order], flip[order], near_flat[order]
 
 
 def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray]:
@@ -179,8 +184,11 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
     return keys[order], order % nt
 
 
-def _edges(points: np.ndarray, triangles: Level) -> Level:
-    """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values."""
+def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray) -> Level:
+    """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values.
+
+    Edges of triangles next to flat cells (`near_flat`) get the global attachment test.
+    """
     m = len(points)
     keys, tri_ids = _edge_incidences(triangles.simplices, m)
     is_start = np.empty(len(keys), dtype=bool)
@@ -208,9 +216,13 @@ def _edges(points: np.ndarray, triangles: Level) -> Level:
     regular = np.minimum.reduceat(triangles.enter[tri_ids], starts)
     interior = np.maximum.reduceat(triangles.interior[tri_ids], starts)
     attached = np.logical_or.reduceat(inside, starts)
+    check = np.flatnonzero(np.logical_or.reduceat(near_flat[tri_ids], starts))
     del keys, tri_ids, inside
     a, b = np.divmod(edge_keys, m)
     half = 0.5 * np.sqrt(((points[b] - points[a]) ** 2).sum(axis=1))
+    if len(check):
+        centres = 0.5 * (points[a[check]] + points[b[check]])
+        attached[check] |= any_point_inside(points, centres, half[check] ** 2)
     enter = np.where(attached, regular, np.minimum(half, regular))
     level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
     inverse = _sort_by_enter(level)
@@ -241,12 +253,12 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     step(0.0, "circumspheres of cells")
     top, neighbors, det = _cells(points, cells, neighbors)
     step(0.2, "facets")
-    facets, facet_cells, flip = _facets(points, top, neighbors, det)
+    facets, facet_cells, flip, near_flat = _facets(points, top, neighbors, det)
     del neighbors
     levels = [facets, top]
     if d == 3:
         step(0.55, "edges")
-        levels.insert(0, _edges(points, facets))
+        levels.insert(0, _edges(points, facets, near_flat))
     step(0.9, "vertices")
     levels.insert(0, _vertices(len(points), levels[0]))
     measure = np.abs(det) / (2.0 if d == 2 else 6.0)

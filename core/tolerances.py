@@ -8,8 +8,12 @@ FLAT_RTOL = 1e-9
 
 #: A simplex whose volume-like determinant, relative to the product of its edge lengths, is
 #: below this has no unique circumsphere; its sphere is then found by least squares.
-DEGENERATE_RTOL = 1e-12
+DEGENERATE_RTOL = 1e-14
+
+#: Simplices less well-shaped than this (same measure) get their sphere recomputed in
+#: extended precision: thin slivers of near-cospherical scans would lose digits otherwise.
+ILL_CONDITIONED_RTOL = 1e-5
 
 #: A point is strictly inside a sphere only if its power is below -ON_SPHERE_RTOL times the
 #: squared distances involved: cospherical points of lattices and scans count as on the sphere.
-ON_SPHERE_RTOL = 1e-10
+ON_SPHERE_RTOL = 1e-13
