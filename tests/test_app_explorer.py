@@ -325,3 +325,39 @@ def test_layer_styles_persist_between_windows(opened, qtbot, points_file) -> Non
         assert not again.scene.layers["boundary"].actor.GetVisibility()
     finally:
         again.close()
+
+
+def drag_slider(qtbot, slider, dx: int) -> None:
+    """Press the slider's handle with the mouse, drag it dx pixels, release."""
+    from PySide6.QtCore import QEvent, QPointF
+    from PySide6.QtGui import QMouseEvent
+    from PySide6.QtWidgets import QApplication, QStyle, QStyleOptionSlider
+
+    option = QStyleOptionSlider()
+    slider.initStyleOption(option)
+    handle = slider.style().subControlRect(QStyle.ComplexControl.CC_Slider, option,
+                                           QStyle.SubControl.SC_SliderHandle, slider)
+    start = QPointF(handle.center())
+    left, none = Qt.MouseButton.LeftButton, Qt.MouseButton.NoButton
+    steps = [(QEvent.Type.MouseButtonPress, start, left, left)]
+    steps += [(QEvent.Type.MouseMove, start + QPointF(dx * i / 5, 0), none, left)
+              for i in range(1, 6)]
+    steps.append((QEvent.Type.MouseButtonRelease, start + QPointF(dx, 0), left, none))
+    for kind, pos, button, buttons in steps:
+        event = QMouseEvent(kind, pos, slider.mapToGlobal(pos), button, buttons,
+                            Qt.KeyboardModifier.NoModifier)
+        QApplication.sendEvent(slider, event)
+    qtbot.wait(10)
+
+
+def test_mouse_drag_moves_alpha_and_layers_follow(opened, qtbot) -> None:
+    """Dragging the slider handle left lowers alpha; the drag's events coalesce to one shape."""
+    model = opened.model
+    start = model.index
+    shown: list[int] = []
+    model.alphaChanged.connect(lambda: shown.append(model.index))
+    drag_slider(qtbot, opened.alpha_panel.slider, -60)
+    qtbot.waitUntil(lambda: model.index < start, timeout=5000)
+    assert model.index == opened.alpha_panel.slider.value()
+    assert len(shown) == 1
+    assert_layers_match(opened)
