@@ -165,11 +165,13 @@ class MainWindow(QMainWindow):
             self.restoreState(store.value("window/state"))
 
     def closeEvent(self, event) -> None:
-        """Stop the worker, save the layout, release VTK before Qt."""
-        self.loader.cancel()
-        self.loader.wait()
+        """Save the layout, stop the worker (hidden meanwhile), release VTK before Qt."""
         self.prefs.store.setValue("window/geometry", self.saveGeometry())
         self.prefs.store.setValue("window/state", self.saveState())
+        self.loader.cancel()
+        if self.loader.is_busy():
+            self.hide()
+        self.loader.wait()
         self.plotter.close()
         super().closeEvent(event)
 
