@@ -113,6 +113,11 @@ class AlphaComplex:
         return self._table.cell_measure
 
     @cached_property
+    def _facet_cell0(self) -> np.ndarray:
+        """Contiguous first column of facet_cells (the shape's orientation lookup)."""
+        return np.ascontiguousarray(self._table.facet_cells[:, 0])
+
+    @cached_property
     def _cumulative_measure(self) -> np.ndarray:
         return np.cumsum(self._table.cell_measure)
 

@@ -54,14 +54,13 @@ class AlphaShape:
     @cached_property
     def boundary_facets(self) -> np.ndarray:
         """(b, dim) int32 facets on the boundary of the shape (REGULAR or SINGULAR)."""
-        ids = self._boundary_ids
-        return readonly(self._ac._level(self.dim - 1).simplices[ids])
+        return readonly(np.take(self._ac._level(self.dim - 1).simplices, self._boundary_ids, 0))
 
     @cached_property
     def regular_facet_ids(self) -> np.ndarray:
         """(r,) int64 rows of `simplices(dim-1)` that are REGULAR at alpha."""
         ids = self._boundary_ids
-        return readonly(ids[self._ac._level(self.dim - 1).regular[ids] <= self.alpha])
+        return readonly(ids[np.take(self._ac._level(self.dim - 1).regular, ids) <= self.alpha])
 
     @cached_property
     def regular_facets(self) -> np.ndarray:
@@ -69,10 +68,12 @@ class AlphaShape:
         (b-a)x(c-a) points out; 2D: the shape lies left of a->b, so outer rings run CCW)."""
         ids = self.regular_facet_ids
         ac = self._ac
-        facets = ac._level(self.dim - 1).simplices[ids].copy()
-        inside_is_first = ac._table.facet_cells[ids, 0] < self._entered(self.dim)
-        flip = ac._table.facet_flip[ids] ^ ~inside_is_first
-        facets[flip, -2:] = facets[flip, -1:-3:-1]
+        facets = np.take(ac._level(self.dim - 1).simplices, ids, 0)
+        inside_is_second = np.take(ac._facet_cell0, ids) >= self._entered(self.dim)
+        flip = np.take(ac._table.facet_flip, ids) ^ inside_is_second
+        last, before = facets[:, -1].copy(), facets[:, -2].copy()
+        facets[:, -2] = np.where(flip, last, before)
+        facets[:, -1] = np.where(flip, before, last)
         return readonly(facets)
 
     def singular(self, k: int) -> np.ndarray:
@@ -84,7 +85,7 @@ class AlphaShape:
             level = self._ac._level(k)
             count = self._entered(k)
             ids = np.flatnonzero(level.regular[:count] > self.alpha)
-            cache[k] = readonly(level.simplices[ids])
+            cache[k] = readonly(np.take(level.simplices, ids, 0))
         return cache[k]
 
     @cached_property

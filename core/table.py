@@ -157,8 +157,9 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     return level, facet_cells[order], flip[order], near_flat[order]
 
 
-def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray]:
-    """Edge keys a*m+b (ascending) and triangle ids of all triangle-edge incidences.
+def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bool]:
+    """Edge keys a*m+b (ascending) and triangle ids of all triangle-edge incidences, and
+    whether the ids ascend within each key.
 
     Packs key and triangle id into one uint64 when they fit, because np.sort is several
     times faster than np.argsort on this machine class.
@@ -173,15 +174,32 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
         tid = np.arange(nt, dtype=np.uint64)
         cols = [triangles[:, c].astype(np.uint64) for c in range(3)]
         packed = np.concatenate([((cols[i] * m + cols[j]) << shift) | tid for i, j in pairs])
-        del cols
+        del cols, tid
         packed.sort()
-        tri_ids = (packed & np.uint64((1 << tri_bits) - 1)).astype(np.int64)
+        tri_ids = (packed & np.uint64((1 << tri_bits) - 1)).astype(np.int32)
         packed >>= shift
-        return packed.view(np.int64), tri_ids
+        return packed.view(np.int64), tri_ids, True
     keys = np.concatenate([triangles[:, i].astype(np.int64) * n_points + triangles[:, j]
                            for i, j in pairs])
     order = np.argsort(keys)
-    return keys[order], order % nt
+    return keys[order], (order % nt).astype(np.int32), False
+
+
+def _obtuse_bits(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """(t,) uint8: bit j set when vertex j lies strictly inside the diametral sphere of the
+    opposite edge (its angle is obtuse), i.e. it attaches that edge."""
+    bits = np.empty(len(triangles), dtype=np.uint8)
+    for lo in range(0, len(triangles), CHUNK):
+        tri = triangles[lo : lo + CHUNK]
+        p0, p1, p2 = points[tri[:, 0]], points[tri[:, 1]], points[tri[:, 2]]
+        e01, e02, e12 = p1 - p0, p2 - p0, p2 - p1
+        s01, s02, s12 = (np.einsum("nd,nd->n", e, e) for e in (e01, e02, e12))
+        tol = -ON_SPHERE_RTOL
+        out = (np.einsum("nd,nd->n", e01, e02) < tol * (s01 + s02)).astype(np.uint8)
+        out |= (np.einsum("nd,nd->n", e01, e12) > -tol * (s01 + s12)).astype(np.uint8) << 1
+        out |= (np.einsum("nd,nd->n", e02, e12) < tol * (s02 + s12)).astype(np.uint8) << 2
+        bits[lo : lo + CHUNK] = out
+    return bits
 
 
 def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray) -> Level:
@@ -190,33 +208,36 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray) -> Level
     Edges of triangles next to flat cells (`near_flat`) get the global attachment test.
     """
     m = len(points)
-    keys, tri_ids = _edge_incidences(triangles.simplices, m)
+    tris = triangles.simplices
+    bits = _obtuse_bits(points, tris)
+    keys, tri_ids, ids_ascend = _edge_incidences(tris, m)
     is_start = np.empty(len(keys), dtype=bool)
     is_start[0] = True
     np.not_equal(keys[1:], keys[:-1], out=is_start[1:])
     starts = np.flatnonzero(is_start)
-    edge_keys = keys[starts]
-    edge_of = np.cumsum(is_start, dtype=np.int64) - 1
-    del is_start
 
     inside = np.empty(len(keys), dtype=bool)
-    face_ids = np.empty_like(triangles.simplices)
-    for lo in range(0, len(keys), 8 * CHUNK):
-        sl = slice(lo, lo + 8 * CHUNK)
+    face_ids = np.empty(tris.size, dtype=np.int32)
+    first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
+    edge_base = 0
+    for lo in range(0, len(keys), 4 * CHUNK):
+        sl = slice(lo, lo + 4 * CHUNK)
+        t = tri_ids[sl]
         a, b = np.divmod(keys[sl], m)
-        rows = triangles.simplices[tri_ids[sl]]
-        apex = rows.sum(axis=1, dtype=np.int64) - a - b
-        pa, pb = points[a] - points[apex], points[b] - points[apex]
-        power = np.einsum("nd,nd->n", pa, pb)
-        slack = ON_SPHERE_RTOL * (np.einsum("nd,nd->n", pa, pa) + np.einsum("nd,nd->n", pb, pb))
-        inside[sl] = power < -slack
-        local = np.argmax(rows == apex[:, None], axis=1)
-        face_ids[tri_ids[sl], local] = edge_of[sl]
-    del edge_of
-    regular = np.minimum.reduceat(triangles.enter[tri_ids], starts)
+        local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
+        inside[sl] = (bits[t] >> local) & 1
+        edge_of = np.cumsum(is_start[sl], dtype=np.int64) + (edge_base - 1)
+        edge_base = int(edge_of[-1]) + 1
+        face_ids[3 * t.astype(np.int64) + local] = edge_of
+    del is_start, bits
+    if ids_ascend:
+        regular = triangles.enter[tri_ids[starts]]
+    else:
+        regular = np.minimum.reduceat(triangles.enter[tri_ids], starts)
     interior = np.maximum.reduceat(triangles.interior[tri_ids], starts)
     attached = np.logical_or.reduceat(inside, starts)
     check = np.flatnonzero(np.logical_or.reduceat(near_flat[tri_ids], starts))
+    edge_keys = keys[starts]
     del keys, tri_ids, inside
     a, b = np.divmod(edge_keys, m)
     half = 0.5 * np.sqrt(((points[b] - points[a]) ** 2).sum(axis=1))
@@ -226,7 +247,7 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray) -> Level
     enter = np.where(attached, regular, np.minimum(half, regular))
     level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
     inverse = _sort_by_enter(level)
-    triangles.face_ids = inverse[face_ids]
+    triangles.face_ids = inverse[face_ids.reshape(-1, 3)]
     return level
 
 
