@@ -27,8 +27,9 @@ def sort_rows(cells: np.ndarray, neighbors: np.ndarray) -> None:
     for i, j in _NETWORKS[cells.shape[1]]:
         swap = cells[:, i] > cells[:, j]
         for arr in (cells, neighbors):
-            lo, hi = arr[swap, i], arr[swap, j]
-            arr[swap, i], arr[swap, j] = hi, lo
+            first, second = arr[:, i].copy(), arr[:, j].copy()
+            np.copyto(arr[:, i], second, where=swap)
+            np.copyto(arr[:, j], first, where=swap)
 
 
 def triangulate(points: np.ndarray) -> Triangulation:
