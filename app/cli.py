@@ -214,6 +214,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("alphascoop: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # e.g. `alphascoop info F | head`: stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
     except SystemExit as exc:  # --help
         return int(exc.code or 0)
 

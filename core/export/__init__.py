@@ -61,7 +61,8 @@ class ExportReport:
         parts = [f"wrote {self.path} ({self.format}, alpha {self.alpha:.6g}"]
         if self.n_faces:
             parts.append(f", {self.n_vertices:,} vertices, {self.n_faces:,} faces")
-        parts.append(f", measure {self.measure:.6g})")
+        label = next((k for k in ("volume", "area") if k in self.metadata), "measure")
+        parts.append(f", {label} {self.measure:.6g})")
         if self.manifold:
             parts.append(f"; {self.manifold}")
         return "".join(parts)

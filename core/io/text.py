@@ -174,7 +174,7 @@ def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarra
         block = table[:, pos : pos + len(cols)]
         pos += len(cols)
         attributes[name] = _attribute(name, block)
-    names = layout.names or [f"column {i + 1}" for i in range(layout.n_cols)]
+    names = layout.names or [str(i + 1) for i in range(layout.n_cols)]
     note = f"coordinates from columns {', '.join(names[c] for c in coords)}"
     return points, attributes, (note,)
 
