@@ -30,7 +30,10 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def _edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     """(n, k, d) vectors from each simplex's first vertex to its others."""
-    return points[simplices[:, 1:]] - points[simplices[:, :1]]
+    n, width = simplices.shape
+    corners = np.take(points, simplices.ravel(), axis=0).reshape(n, width, points.shape[1])
+    corners[:, 1:] -= corners[:, :1]
+    return corners[:, 1:]
 
 
 def _extended(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
@@ -108,21 +111,6 @@ def circumspheres(
     return offsets, r2, dets, flat
 
 
-def strictly_inside(
-    points: np.ndarray, first: np.ndarray, offsets: np.ndarray, r2: np.ndarray, query: np.ndarray
-) -> np.ndarray:
-    """(n,) bool: query point strictly inside the sphere (points[first] + offset, radius² r2)."""
-    out = np.empty(len(query), dtype=bool)
-    for lo in range(0, len(query), CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        rel = points[query[sl]] - points[first[sl]]
-        diff = rel - offsets[sl]
-        power = np.einsum("nd,nd->n", diff, diff) - r2[sl]
-        slack = ON_SPHERE_RTOL * (np.einsum("nd,nd->n", rel, rel) + r2[sl])
-        out[sl] = power < -slack
-    return out
-
-
 def any_point_inside(points: np.ndarray, centres: np.ndarray, r2: np.ndarray) -> np.ndarray:
     """(n,) bool: some point of the whole set lies strictly inside each sphere.
 
@@ -134,3 +122,71 @@ def any_point_inside(points: np.ndarray, centres: np.ndarray, r2: np.ndarray) ->
     centroid = points.mean(axis=0)
     dist, _ = cKDTree(points - centroid).query(centres - centroid, k=1)
     return dist * dist < r2 * (1.0 - 2.0 * ON_SPHERE_RTOL)
+
+
+def _barycentric_signs(vec: np.ndarray, c0: np.ndarray, det: np.ndarray) -> np.ndarray:
+    """(n,) uint8, bit i set when the circumcentre's barycentric coordinate i is negative.
+
+    For a cell, coordinate i < 0 means the centre lies beyond facet i, away from vertex i:
+    exactly when vertex i is strictly inside that facet's smallest circumsphere (the two
+    spheres share the facet's circle), so the bit says "vertex i attaches facet i".
+    """
+    if vec.shape[1] == 3:
+        a, b, c = vec[:, 0], vec[:, 1], vec[:, 2]
+        rest = np.stack([_dot(c0, _cross(b, c)), _dot(c0, _cross(c, a)), _dot(c0, _cross(a, b))])
+    else:
+        a, b = vec[:, 0], vec[:, 1]
+        rest = np.stack([c0[:, 0] * b[:, 1] - c0[:, 1] * b[:, 0],
+                         a[:, 0] * c0[:, 1] - a[:, 1] * c0[:, 0]])
+    rest /= np.where(det == 0, 1.0, det)
+    lam = np.concatenate([(1.0 - rest.sum(axis=0))[None], rest])
+    bits = np.zeros(len(det), dtype=np.uint8)
+    for i, row in enumerate(lam):
+        bits |= (row < -ON_SPHERE_RTOL).astype(np.uint8) << i
+    return bits
+
+
+def cell_spheres(
+    points: np.ndarray, cells: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """For d-simplices: radii² (n,), determinants (n,) (d! x signed measure), flat flags (n,)
+    and (n,) uint8 attach bits (bit i: vertex i strictly inside facet i's smallest sphere;
+    always 0 for flat cells, which need the global test)."""
+    n = len(cells)
+    r2, dets = np.empty(n), np.empty(n)
+    flat, bits = np.empty(n, dtype=bool), np.empty(n, dtype=np.uint8)
+    for lo in range(0, n, CHUNK):
+        sl = slice(lo, lo + CHUNK)
+        vec = _edge_vectors(points, cells[sl])
+        c0, det, bad, poor = _solve(vec)
+        poor &= ~bad
+        if poor.any():
+            c0[poor] = _extended(points, cells[sl][poor])
+        r2_chunk = np.einsum("nd,nd->n", c0, c0)
+        chunk_bits = _barycentric_signs(vec, c0, det)
+        if bad.any():
+            r2_chunk[bad] = _least_squares(vec[bad])[1]
+            chunk_bits[bad] = 0
+        r2[sl], dets[sl], flat[sl], bits[sl] = r2_chunk, det, bad, chunk_bits
+    return r2, dets, flat, bits
+
+
+def facet_radii2(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
+    """(n,) squared radii of the smallest circumspheres of edges or triangles, from their
+    side lengths (no centre needed); degenerate triangles fall back to least squares."""
+    if facets.shape[1] == 2:
+        diff = points[facets[:, 1]] - points[facets[:, 0]]
+        return 0.25 * np.einsum("nd,nd->n", diff, diff)
+    out = np.empty(len(facets))
+    for lo in range(0, len(facets), CHUNK):
+        sl = slice(lo, lo + CHUNK)
+        vec = _edge_vectors(points, facets[sl])
+        a, b = vec[:, 0], vec[:, 1]
+        n = _cross(a, b)
+        saa, sbb, nn = _dot(a, a), _dot(b, b), _dot(n, n)
+        ab = a - b
+        bad = nn <= (DEGENERATE_RTOL ** 2) * saa * sbb
+        out[sl] = saa * sbb * _dot(ab, ab) / (4.0 * np.where(bad, 1.0, nn))
+        if bad.any():
+            out[sl][bad] = _least_squares(vec[bad])[1]
+    return out

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import CHUNK, any_point_inside, circumspheres, strictly_inside
+from .geometry import CHUNK, any_point_inside, cell_spheres, circumspheres, facet_radii2
 from .tolerances import ON_SPHERE_RTOL
 
 Progress = Callable[[float, str], None]
@@ -81,8 +81,9 @@ def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> N
 
 
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray):
-    """Level d, its neighbours (renumbered) and signed d!-measures, sorted by enter."""
-    _, r2, det, flat = circumspheres(points, cells)
+    """Level d sorted by enter, its neighbours (renumbered), signed d!-measures and attach
+    bits (bit i: vertex i attaches the facet opposite it)."""
+    r2, det, flat, bits = cell_spheres(points, cells)
     enter = np.sqrt(r2)
     if flat.any():
         det[flat] = 0.0
@@ -90,7 +91,7 @@ def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray):
     level = Level(cells, enter, enter, enter)
     order = np.argsort(enter, kind="stable")
     inverse = _permute(level, order)
-    return level, _remap(neighbors[order], inverse), det[order]
+    return level, _remap(neighbors[order], inverse), det[order], bits[order]
 
 
 def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
@@ -107,7 +108,8 @@ def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
     return np.einsum("nd,nd->n", normal, to_centre) > 0
 
 
-def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray):
+def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray,
+            bits: np.ndarray):
     """Level d-1 from the cells' neighbour table: each shared facet taken once."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
@@ -116,21 +118,19 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     t1 = neighbors[t0, i0]
     others = np.array([[j for j in range(width) if j != i] for i in range(width)])
     simplices = np.take_along_axis(cells.simplices[t0], others[i0], axis=1)
-    apex0 = cells.simplices[t0, i0]
     has1 = np.flatnonzero(t1 >= 0)
     j1 = np.argmax(neighbors[t1[has1]] == t0[has1, None], axis=1)
-    apex1 = cells.simplices[t1[has1], j1]
 
-    offsets, r2, _, _ = circumspheres(points, simplices)
-    first = simplices[:, 0]
-    attached = strictly_inside(points, first, offsets, r2, apex0)
-    attached[has1] |= strictly_inside(points, first[has1], offsets[has1], r2[has1], apex1)
+    r2 = facet_radii2(points, simplices)
+    attached = ((bits[t0] >> i0) & 1).astype(bool)
+    attached[has1] |= ((bits[t1[has1]] >> j1) & 1).astype(bool)
     near_flat = det[t0] == 0
     near_flat[has1] |= det[t1[has1]] == 0
     if near_flat.any():
         ids = np.flatnonzero(near_flat)
-        attached[ids] |= any_point_inside(points, points[first[ids]] + offsets[ids], r2[ids])
-    del offsets
+        offsets, _, _, _ = circumspheres(points, simplices[ids])
+        centres = points[simplices[ids, 0]] + offsets
+        attached[ids] |= any_point_inside(points, centres, r2[ids])
     e0 = cells.enter[t0]
     e1 = np.full(len(t0), np.inf)
     e1[has1] = cells.enter[t1[has1]]
@@ -272,9 +272,9 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
 
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
-    top, neighbors, det = _cells(points, cells, neighbors)
+    top, neighbors, det, bits = _cells(points, cells, neighbors)
     step(0.2, "facets")
-    facets, facet_cells, flip, near_flat = _facets(points, top, neighbors, det)
+    facets, facet_cells, flip, near_flat = _facets(points, top, neighbors, det, bits)
     del neighbors
     levels = [facets, top]
     if d == 3:

@@ -7,6 +7,7 @@ glued around it. Both steps are connected components of sparse graphs (no Python
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,6 +17,8 @@ from scipy.sparse.csgraph import connected_components
 from core.errors import AlphaScoopError
 
 MAX_ROUNDS = 6  # gluing choices per edge are revised at most this often
+MAX_REMATCH_EDGES = 20  # edges still bad after that get other gluings tried, this many at most
+MAX_REMATCH_TRIES = 24  # gluings tried per such edge
 
 
 @dataclass(frozen=True)
@@ -154,6 +157,10 @@ def split_nonmanifold(ac, shape) -> tuple[np.ndarray, np.ndarray, ManifoldReport
         if not bad.any():
             break
         use_empty[edge[bad]] ^= True
+    if bad.any():
+        wedge = _rematch(faces, corner_vertex, wedge, edge, bad)
+        label, new_faces = _fans(faces, corner_vertex, wedge, len(faces))
+        bad = _overfull_half_edges(label.reshape(-1, 3), int(label.max()) + 1)
     copies, first = np.unique(label, return_index=True)
     vertex_ids = corner_vertex[first]
     per_vertex = np.bincount(vertex_ids, minlength=len(ac.points))
@@ -162,6 +169,35 @@ def split_nonmanifold(ac, shape) -> tuple[np.ndarray, np.ndarray, ManifoldReport
                             int(len(copies) - np.count_nonzero(per_vertex)),
                             len(np.unique(edge[bad])))
     return vertex_ids, np.searchsorted(copies, new_faces), report
+
+
+def _rematch(faces, corner_vertex, wedge, edge, bad) -> np.ndarray:
+    """Try the other gluings (outgoing to incoming half-edges) of the few edges still bad.
+
+    An edge with six or more faces can need a gluing that is neither all-solid nor all-empty
+    wedges; each candidate is kept if it lowers the number of over-full half-edges.
+    """
+    wedge = wedge.copy()
+    next_id = int(wedge.max()) + 1
+    n_bad = int(bad.sum())
+    for e in np.unique(edge[bad])[:MAX_REMATCH_EDGES]:
+        hs = np.flatnonzero(edge == e)
+        face, corner = np.divmod(hs, 3)
+        ends = np.sort(np.stack([corner_vertex[3 * face + (corner + s) % 3] for s in (1, 2)],
+                                axis=1), axis=1)
+        pos = [np.argmax(faces[face] == ends[:, j, None], axis=1) for j in (0, 1)]
+        forward = (pos[1] - pos[0]) % 3 == 1  # the face runs low -> high along the edge
+        outs, ins = hs[forward], hs[~forward]
+        for perm in itertools.islice(itertools.permutations(ins), MAX_REMATCH_TRIES):
+            trial = wedge.copy()
+            trial[outs] = trial[list(perm)] = next_id + np.arange(len(outs))
+            label, _ = _fans(faces, corner_vertex, trial, len(faces))
+            count = int(_overfull_half_edges(label.reshape(-1, 3), int(label.max()) + 1).sum())
+            if count < n_bad:
+                wedge, n_bad = trial, count
+                next_id += len(outs)
+                break
+    return wedge
 
 
 def _glued_corners(half: np.ndarray, corner_vertex: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
