@@ -203,3 +203,20 @@ def test_manifold_split_on_lattices(seed, alpha):
         assert np.all(edge_face_counts(f) == 2) and report.unresolved_edges == 0
         assert np.all(vertex_fans(f)[np.unique(f)] == 1)
     assert signed_volume(v, f) == pytest.approx(shape.measure, rel=1e-9, abs=1e-12)
+
+
+def test_edges_needing_mixed_gluing_are_resolved(monkeypatch):
+    import core.export.manifold as manifold
+
+    calls = []
+    rematch = manifold._rematch
+    monkeypatch.setattr(manifold, "_rematch", lambda *a: calls.append(1) or rematch(*a))
+    rng = np.random.default_rng(17)
+    points = np.unique(np.round(rng.uniform(size=(600, 3)), 2), axis=0)
+    ac = AlphaComplex.from_points(points)
+    shape = ac.shape(0.10420736573437503)  # found by search: an edge with 3 solid wedges
+    v, f, report = surface_arrays(ac, shape, manifold=True)
+    assert calls  # neither all-solid nor all-empty gluing worked for some edge
+    assert report.unresolved_edges == 0 and np.all(edge_face_counts(f) == 2)
+    assert np.all(vertex_fans(f)[np.unique(f)] == 1)
+    assert signed_volume(v, f) == pytest.approx(shape.measure, rel=1e-9)
