@@ -3,6 +3,9 @@
 Around a non-manifold edge the solid forms several wedges of cells; the two boundary faces of
 one wedge are glued, the others kept apart. Then every vertex is copied once per fan of faces
 glued around it. Both steps are connected components of sparse graphs (no Python loops).
+Where that still leaves an edge with more than two faces (a fan meets the edge twice), the
+edge is glued across the empty wedges instead, and for the rare edges still left, the other
+pairings of its outgoing and incoming faces are tried one by one.
 """
 
 from __future__ import annotations
