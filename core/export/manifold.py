@@ -20,8 +20,8 @@ from scipy.sparse.csgraph import connected_components
 from core.errors import AlphaScoopError
 
 MAX_ROUNDS = 6  # gluing choices per edge are revised at most this often
-MAX_REMATCH_EDGES = 20  # edges still bad after that get other gluings tried, this many at most
-MAX_REMATCH_TRIES = 24  # gluings tried per such edge
+MAX_REMATCH_TRIES = 24  # gluings tried per edge still bad after that
+MAX_REMATCH_TOTAL = 64  # and in all (each try is one pass over the surface)
 
 
 @dataclass(frozen=True)
@@ -183,7 +183,8 @@ def _rematch(faces, corner_vertex, wedge, edge, bad) -> np.ndarray:
     wedge = wedge.copy()
     next_id = int(wedge.max()) + 1
     n_bad = int(bad.sum())
-    for e in np.unique(edge[bad])[:MAX_REMATCH_EDGES]:
+    budget = MAX_REMATCH_TOTAL
+    for e in np.unique(edge[bad]):
         hs = np.flatnonzero(edge == e)
         face, corner = np.divmod(hs, 3)
         ends = np.sort(np.stack([corner_vertex[3 * face + (corner + s) % 3] for s in (1, 2)],
@@ -191,7 +192,8 @@ def _rematch(faces, corner_vertex, wedge, edge, bad) -> np.ndarray:
         pos = [np.argmax(faces[face] == ends[:, j, None], axis=1) for j in (0, 1)]
         forward = (pos[1] - pos[0]) % 3 == 1  # the face runs low -> high along the edge
         outs, ins = hs[forward], hs[~forward]
-        for perm in itertools.islice(itertools.permutations(ins), MAX_REMATCH_TRIES):
+        for perm in itertools.islice(itertools.permutations(ins), min(MAX_REMATCH_TRIES, budget)):
+            budget -= 1
             trial = wedge.copy()
             trial[outs] = trial[list(perm)] = next_id + np.arange(len(outs))
             label, _ = _fans(faces, corner_vertex, trial, len(faces))
