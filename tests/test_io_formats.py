@@ -208,3 +208,18 @@ def test_text_crlf_trailing_delimiter_and_weights(tmp_path):
     ps = read_points(path)
     np.testing.assert_array_equal(ps.points, [[1, 2, 3], [4, 5, 6], [7, 8, 9.5]])
     np.testing.assert_array_equal(ps.attributes["weights"], [0.5, 0.25, 1])
+
+
+@pytest.mark.parametrize("ext", [".glb", ".gltf"])
+def test_gltf_vertices_read(tmp_path, ext):
+    import trimesh
+
+    pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+    mesh = trimesh.Trimesh(pts, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], process=False)
+    if ext == ".glb":
+        (tmp_path / "m.glb").write_bytes(mesh.export(file_type="glb"))
+    else:
+        files = trimesh.exchange.gltf.export_gltf(mesh.scene(), embed_buffers=True)
+        (tmp_path / "m.gltf").write_bytes(files["model.gltf"])
+    ps = read_points(tmp_path / f"m{ext}")
+    assert {tuple(p) for p in ps.points} == {tuple(p) for p in pts}
