@@ -1,4 +1,4 @@
-"""VTK XML writers (VTU and VTP), base64 binary, with cell data and field data.
+"""VTK XML writers (VTU and VTP), zlib-compressed base64, with cell data and field data.
 
 meshio writes no VTP and drops field data from VTU, so this small writer covers both; the
 files are read back by VTK itself (pyvista) and by meshio in the tests.
@@ -7,6 +7,7 @@ files are read back by VTK itself (pyvista) and by meshio in the tests.
 from __future__ import annotations
 
 import base64
+import zlib
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
@@ -21,8 +22,10 @@ CELL_TYPES = {1: VTK_VERTEX, 2: VTK_LINE, 3: VTK_TRIANGLE, 4: VTK_TETRA}
 
 
 def _encode(raw: bytes) -> str:
-    """Inline binary payload: a UInt64 byte count, then the data, in base64."""
-    return base64.b64encode(np.uint64(len(raw)).tobytes() + raw).decode("ascii")
+    """Inline zlib-compressed payload: the block header (UInt64s) and the data, each base64."""
+    packed = zlib.compress(raw, 6)
+    header = np.array([1, len(raw), len(raw), len(packed)], dtype="<u8").tobytes()
+    return (base64.b64encode(header) + base64.b64encode(packed)).decode("ascii")
 
 
 def data_array(name: str, values: np.ndarray) -> str:
@@ -68,7 +71,8 @@ def _cell_data(cell_data: dict[str, np.ndarray]) -> str:
 def _document(kind: str, body: str, meta: dict) -> bytes:
     """Wrap a dataset body into a VTKFile element."""
     return (f'<?xml version="1.0"?>\n<VTKFile type="{kind}" version="1.0" '
-            f'byte_order="LittleEndian" header_type="UInt64">\n<{kind}>{field_data(meta)}\n'
+            f'byte_order="LittleEndian" header_type="UInt64" '
+            f'compressor="vtkZLibDataCompressor">\n<{kind}>{field_data(meta)}\n'
             f"{body}\n</{kind}>\n</VTKFile>\n").encode()
 
 
