@@ -53,34 +53,38 @@ def _least_squares(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return c0, np.maximum(np.einsum("nd,nd->n", c0, c0), dist2.max(axis=1))
 
 
-def _solve(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Centre offsets (n, d), determinants (n,), and flags: degenerate, ill-conditioned."""
+def _solve(vec: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Centre offsets (n, d), determinants (n,), flags (degenerate, ill-conditioned), and for
+    d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0."""
     k, d = vec.shape[1], vec.shape[2]
     sq = np.einsum("nid,nid->ni", vec, vec)
     if k == 1:
         zero = sq[:, 0] == 0.0
-        return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero
+        return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero, None
     a, b = vec[:, 0], vec[:, 1]
     if k == 2 and d == 2:
         det = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
         num = np.stack((b[:, 1] * sq[:, 0] - a[:, 1] * sq[:, 1],
                         a[:, 0] * sq[:, 1] - b[:, 0] * sq[:, 0]), axis=1)
         scale = np.sqrt(sq[:, 0] * sq[:, 1])
+        duals = np.stack([np.stack((b[:, 1], -b[:, 0]), axis=1),
+                          np.stack((-a[:, 1], a[:, 0]), axis=1)])
     elif k == 2:
         n = _cross(a, b)
         det = _dot(n, n)
         num = sq[:, :1] * _cross(b, n) + sq[:, 1:2] * _cross(n, a)
         scale = np.sqrt(det * sq[:, 0] * sq[:, 1])  # det is |a x b|²: compare |a x b|
+        duals = None
     else:
         c = vec[:, 2]
-        bc = _cross(b, c)
-        det = _dot(a, bc)
-        num = sq[:, :1] * bc + sq[:, 1:2] * _cross(c, a) + sq[:, 2:3] * _cross(a, b)
+        duals = np.stack((_cross(b, c), _cross(c, a), _cross(a, b)))
+        det = _dot(a, duals[0])
+        num = sq[:, :1] * duals[0] + sq[:, 1:2] * duals[1] + sq[:, 2:3] * duals[2]
         scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
     shape = np.abs(det) / np.where(scale > 0, scale, 1.0)  # 0 flat .. 1 well-shaped
     degenerate = shape <= DEGENERATE_RTOL
     safe = np.where(degenerate, 1.0, det)
-    return num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL
+    return num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL, duals
 
 
 def circumspheres(
@@ -100,7 +104,7 @@ def circumspheres(
     for lo in range(0, n, CHUNK):
         sl = slice(lo, lo + CHUNK)
         vec = _edge_vectors(points, simplices[sl])
-        c0, det, bad, poor = _solve(vec)
+        c0, det, bad, poor, _ = _solve(vec)
         poor &= ~bad
         if poor.any():
             c0[poor] = _extended(points, simplices[sl][poor])
@@ -124,24 +128,16 @@ def any_point_inside(points: np.ndarray, centres: np.ndarray, r2: np.ndarray) ->
     return dist * dist < r2 * (1.0 - 2.0 * ON_SPHERE_RTOL)
 
 
-def _barycentric_signs(vec: np.ndarray, c0: np.ndarray, det: np.ndarray) -> np.ndarray:
+def _barycentric_signs(duals: np.ndarray, c0: np.ndarray, det: np.ndarray) -> np.ndarray:
     """(n,) uint8, bit i set when the circumcentre's barycentric coordinate i is negative.
 
     For a cell, coordinate i < 0 means the centre lies beyond facet i, away from vertex i:
     exactly when vertex i is strictly inside that facet's smallest circumsphere (the two
     spheres share the facet's circle), so the bit says "vertex i attaches facet i".
     """
-    if vec.shape[1] == 3:
-        a, b, c = vec[:, 0], vec[:, 1], vec[:, 2]
-        rest = np.stack([_dot(c0, _cross(b, c)), _dot(c0, _cross(c, a)), _dot(c0, _cross(a, b))])
-    else:
-        a, b = vec[:, 0], vec[:, 1]
-        rest = np.stack([c0[:, 0] * b[:, 1] - c0[:, 1] * b[:, 0],
-                         a[:, 0] * c0[:, 1] - a[:, 1] * c0[:, 0]])
-    rest /= np.where(det == 0, 1.0, det)
-    lam = np.concatenate([(1.0 - rest.sum(axis=0))[None], rest])
-    bits = np.zeros(len(det), dtype=np.uint8)
-    for i, row in enumerate(lam):
+    rest = np.einsum("knd,nd->kn", duals, c0) / np.where(det == 0, 1.0, det)
+    bits = ((1.0 - rest.sum(axis=0)) < -ON_SPHERE_RTOL).astype(np.uint8)
+    for i, row in enumerate(rest, start=1):
         bits |= (row < -ON_SPHERE_RTOL).astype(np.uint8) << i
     return bits
 
@@ -158,12 +154,12 @@ def cell_spheres(
     for lo in range(0, n, CHUNK):
         sl = slice(lo, lo + CHUNK)
         vec = _edge_vectors(points, cells[sl])
-        c0, det, bad, poor = _solve(vec)
+        c0, det, bad, poor, duals = _solve(vec)
         poor &= ~bad
         if poor.any():
             c0[poor] = _extended(points, cells[sl][poor])
         r2_chunk = np.einsum("nd,nd->n", c0, c0)
-        chunk_bits = _barycentric_signs(vec, c0, det)
+        chunk_bits = _barycentric_signs(duals, c0, det)
         if bad.any():
             r2_chunk[bad] = _least_squares(vec[bad])[1]
             chunk_bits[bad] = 0
@@ -171,22 +167,29 @@ def cell_spheres(
     return r2, dets, flat, bits
 
 
-def facet_radii2(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
-    """(n,) squared radii of the smallest circumspheres of edges or triangles, from their
-    side lengths (no centre needed); degenerate triangles fall back to least squares."""
+def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+    """(n,) squared radii of the smallest circumspheres of edges or triangles, from side
+    lengths; for triangles also (n,) uint8 obtuse bits (bit j: vertex j lies strictly inside
+    the diametral sphere of the opposite edge, so it attaches that edge)."""
     if facets.shape[1] == 2:
-        diff = points[facets[:, 1]] - points[facets[:, 0]]
-        return 0.25 * np.einsum("nd,nd->n", diff, diff)
+        diff = np.take(points, facets[:, 1], 0) - np.take(points, facets[:, 0], 0)
+        return 0.25 * np.einsum("nd,nd->n", diff, diff), None
     out = np.empty(len(facets))
+    bits = np.empty(len(facets), dtype=np.uint8)
+    tol = ON_SPHERE_RTOL
     for lo in range(0, len(facets), CHUNK):
         sl = slice(lo, lo + CHUNK)
         vec = _edge_vectors(points, facets[sl])
         a, b = vec[:, 0], vec[:, 1]
         n = _cross(a, b)
-        saa, sbb, nn = _dot(a, a), _dot(b, b), _dot(n, n)
-        ab = a - b
+        saa, sbb, nn, ab = _dot(a, a), _dot(b, b), _dot(n, n), _dot(a, b)
+        s12 = saa + sbb - 2.0 * ab
         bad = nn <= (DEGENERATE_RTOL ** 2) * saa * sbb
-        out[sl] = saa * sbb * _dot(ab, ab) / (4.0 * np.where(bad, 1.0, nn))
+        out[sl] = saa * sbb * s12 / (4.0 * np.where(bad, 1.0, nn))
         if bad.any():
             out[sl][bad] = _least_squares(vec[bad])[1]
-    return out
+        chunk = (ab < -tol * (saa + sbb)).astype(np.uint8)
+        chunk |= ((saa - ab) < -tol * (saa + s12)).astype(np.uint8) << 1
+        chunk |= ((sbb - ab) < -tol * (sbb + s12)).astype(np.uint8) << 2
+        bits[sl] = chunk
+    return out, bits

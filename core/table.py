@@ -15,7 +15,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from .geometry import CHUNK, any_point_inside, cell_spheres, circumspheres, facet_radii2
-from .tolerances import ON_SPHERE_RTOL
 
 Progress = Callable[[float, str], None]
 
@@ -121,7 +120,7 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     has1 = np.flatnonzero(t1 >= 0)
     j1 = np.argmax(neighbors[t1[has1]] == t0[has1, None], axis=1)
 
-    r2 = facet_radii2(points, simplices)
+    r2, obtuse = facet_radii2(points, simplices)
     attached = ((bits[t0] >> i0) & 1).astype(bool)
     attached[has1] |= ((bits[t1[has1]] >> j1) & 1).astype(bool)
     near_flat = det[t0] == 0
@@ -154,7 +153,8 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     order = np.argsort(enter, kind="stable")
     inverse = _permute(level, order)
     cells.face_ids = inverse[cell_faces]
-    return level, facet_cells[order], flip[order], near_flat[order]
+    return (level, facet_cells[order], flip[order], near_flat[order],
+            None if obtuse is None else obtuse[order])
 
 
 def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bool]:
@@ -185,31 +185,15 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
     return keys[order], (order % nt).astype(np.int32), False
 
 
-def _obtuse_bits(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
-    """(t,) uint8: bit j set when vertex j lies strictly inside the diametral sphere of the
-    opposite edge (its angle is obtuse), i.e. it attaches that edge."""
-    bits = np.empty(len(triangles), dtype=np.uint8)
-    for lo in range(0, len(triangles), CHUNK):
-        tri = triangles[lo : lo + CHUNK]
-        p0, p1, p2 = points[tri[:, 0]], points[tri[:, 1]], points[tri[:, 2]]
-        e01, e02, e12 = p1 - p0, p2 - p0, p2 - p1
-        s01, s02, s12 = (np.einsum("nd,nd->n", e, e) for e in (e01, e02, e12))
-        tol = -ON_SPHERE_RTOL
-        out = (np.einsum("nd,nd->n", e01, e02) < tol * (s01 + s02)).astype(np.uint8)
-        out |= (np.einsum("nd,nd->n", e01, e12) > -tol * (s01 + s12)).astype(np.uint8) << 1
-        out |= (np.einsum("nd,nd->n", e02, e12) < tol * (s02 + s12)).astype(np.uint8) << 2
-        bits[lo : lo + CHUNK] = out
-    return bits
-
-
-def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray) -> Level:
+def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
+           bits: np.ndarray) -> Level:
     """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values.
 
-    Edges of triangles next to flat cells (`near_flat`) get the global attachment test.
+    `bits` (bit j: vertex j attaches the opposite edge) come from facet_radii2; edges of
+    triangles next to flat cells (`near_flat`) get the global attachment test.
     """
     m = len(points)
     tris = triangles.simplices
-    bits = _obtuse_bits(points, tris)
     keys, tri_ids, ids_ascend = _edge_incidences(tris, m)
     is_start = np.empty(len(keys), dtype=bool)
     is_start[0] = True
@@ -274,12 +258,12 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     step(0.0, "circumspheres of cells")
     top, neighbors, det, bits = _cells(points, cells, neighbors)
     step(0.2, "facets")
-    facets, facet_cells, flip, near_flat = _facets(points, top, neighbors, det, bits)
+    facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits)
     del neighbors
     levels = [facets, top]
     if d == 3:
         step(0.55, "edges")
-        levels.insert(0, _edges(points, facets, near_flat))
+        levels.insert(0, _edges(points, facets, near_flat, obtuse))
     step(0.9, "vertices")
     levels.insert(0, _vertices(len(points), levels[0]))
     measure = np.abs(det) / (2.0 if d == 2 else 6.0)
