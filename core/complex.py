@@ -42,7 +42,8 @@ class AlphaComplex:
             for name in ("simplices", "enter", "regular", "interior", "face_ids"):
                 if getattr(level, name) is not None:
                     readonly(getattr(level, name))
-        for arr in (table.facet_cells, table.facet_flip, table.cell_measure):
+        for arr in (table.facet_cells, table.facet_flip, table.cell_measure,
+                    table.facet_interior_order):
             readonly(arr)
 
     @classmethod
@@ -116,6 +117,27 @@ class AlphaComplex:
     def _facet_cell0(self) -> np.ndarray:
         """Contiguous first column of facet_cells (the shape's orientation lookup)."""
         return np.ascontiguousarray(self._table.facet_cells[:, 0])
+
+    @cached_property
+    def _oriented_facets(self) -> np.ndarray:
+        """(2 n_facets, dim) int32: row 2i is facet i facing out of its cell 0, row 2i+1 out
+        of its cell 1, so the shape orients its boundary with a single gather."""
+        facets = self._table.levels[self.dim - 1].simplices
+        flip = self._table.facet_flip
+        out = np.empty((2 * len(facets), self.dim), dtype=np.int32)
+        for side, reverse in ((0, flip), (1, ~flip)):
+            rows = out[side::2]
+            rows[:] = facets
+            rows[reverse, -2:] = facets[reverse][:, [-1, -2]]
+        return readonly(out)
+
+    @cached_property
+    def _facets_by_interior(self) -> tuple[np.ndarray, np.ndarray]:
+        """Facet interior and enter values in ascending interior order (contiguous, for the
+        shape's scans of the facets not yet interior)."""
+        facets = self._table.levels[self.dim - 1]
+        order = self._table.facet_interior_order
+        return np.take(facets.interior, order), np.take(facets.enter, order)
 
     @cached_property
     def _cumulative_measure(self) -> np.ndarray:

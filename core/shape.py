@@ -45,11 +45,28 @@ class AlphaShape:
         return readonly(self._ac._level(self.dim).simplices[: self._entered(self.dim)])
 
     @cached_property
-    def _boundary_ids(self) -> np.ndarray:
-        """Rows of `simplices(dim-1)` that are SINGULAR or REGULAR at alpha."""
+    def _facet_ids(self) -> tuple[np.ndarray, np.ndarray]:
+        """Rows of `simplices(dim-1)` on the boundary, and those of them that are REGULAR.
+
+        Scans whichever is shorter: the facets that entered (a prefix by enter) or those not
+        yet interior (a suffix by interior), so high alphas cost little too.
+        """
         level = self._ac._level(self.dim - 1)
         count = self._entered(self.dim - 1)
-        return np.flatnonzero(level.interior[:count] > self.alpha)
+        order = self._ac._table.facet_interior_order
+        by_interior, enter_by_interior = self._ac._facets_by_interior
+        first = int(np.searchsorted(by_interior, self.alpha, "right"))
+        if 2 * (len(order) - first) < count:
+            ids = np.sort(order[first:][enter_by_interior[first:] <= self.alpha])
+            return ids, ids[np.take(level.regular, ids) <= self.alpha]
+        boundary = level.interior[:count] > self.alpha
+        regular = boundary & (level.regular[:count] <= self.alpha)
+        return np.flatnonzero(boundary), np.flatnonzero(regular)
+
+    @cached_property
+    def _boundary_ids(self) -> np.ndarray:
+        """Rows of `simplices(dim-1)` that are SINGULAR or REGULAR at alpha."""
+        return self._facet_ids[0]
 
     @cached_property
     def boundary_facets(self) -> np.ndarray:
@@ -59,8 +76,7 @@ class AlphaShape:
     @cached_property
     def regular_facet_ids(self) -> np.ndarray:
         """(r,) int64 rows of `simplices(dim-1)` that are REGULAR at alpha."""
-        ids = self._boundary_ids
-        return readonly(ids[np.take(self._ac._level(self.dim - 1).regular, ids) <= self.alpha])
+        return readonly(self._facet_ids[1])
 
     @cached_property
     def regular_facets(self) -> np.ndarray:
@@ -68,13 +84,9 @@ class AlphaShape:
         (b-a)x(c-a) points out; 2D: the shape lies left of a->b, so outer rings run CCW)."""
         ids = self.regular_facet_ids
         ac = self._ac
-        facets = np.take(ac._level(self.dim - 1).simplices, ids, 0)
         inside_is_second = np.take(ac._facet_cell0, ids) >= self._entered(self.dim)
-        flip = np.take(ac._table.facet_flip, ids) ^ inside_is_second
-        last, before = facets[:, -1].copy(), facets[:, -2].copy()
-        facets[:, -2] = np.where(flip, last, before)
-        facets[:, -1] = np.where(flip, before, last)
-        return readonly(facets)
+        rows = 2 * ids + inside_is_second
+        return readonly(np.take(ac._oriented_facets, rows, 0))
 
     def singular(self, k: int) -> np.ndarray:
         """(s, k+1) int32 SINGULAR k-simplices (k < dim): in the complex, face of nothing."""

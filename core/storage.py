@@ -4,7 +4,8 @@ Layout (format "alphascoop-table", version 1): `points` (m, dim) float64, `input
 int64, `dim`, `ambient_dim`, optional `frame_origin` (3,) / `frame_basis` (2, 3); for each
 k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter, `enter_k`/`regular_k`/`interior_k`
 (n_k,) float64 radii (inf = never), `face_ids_k` (n_k, k+1) int32 for k >= 1; `facet_cells`
-(f, 2) int32 (-1 = outside), `facet_flip` (f,) bool, `cell_measure` (c,) float64.
+(f, 2) int32 (-1 = outside), `facet_flip` (f,) bool, `cell_measure` (c,) float64,
+`facet_interior_order` (f,) int32 (facet rows by ascending interior).
 """
 
 from __future__ import annotations
@@ -47,7 +48,8 @@ def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
     out = {"format": np.array(FORMAT), "version": np.array(VERSION), "dim": np.array(ac.dim),
            "ambient_dim": np.array(ac.ambient_dim), "points": ac.points,
            "input_index": ac.input_index, "facet_cells": table.facet_cells,
-           "facet_flip": table.facet_flip, "cell_measure": table.cell_measure}
+           "facet_flip": table.facet_flip, "cell_measure": table.cell_measure,
+           "facet_interior_order": table.facet_interior_order}
     if ac.frame is not None:
         out["frame_origin"], out["frame_basis"] = ac.frame.origin, ac.frame.basis
     for k, level in enumerate(table.levels):
@@ -111,7 +113,11 @@ def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
         _check(a["facet_cells"].shape == (len(levels[dim - 1].enter), 2), path, "facet_cells")
         _check(a["cell_measure"].shape == (len(levels[dim].enter),), path, "cell_measure")
         frame = (Frame(a["frame_origin"], a["frame_basis"]) if "frame_origin" in a else None)
-        table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"])
+        order = a["facet_interior_order"]
+        n_facets = len(levels[dim - 1].enter)
+        _check(order.shape == (n_facets,) and (n_facets == 0 or (order.min() >= 0
+               and order.max() < n_facets)), path, "facet_interior_order")
+        table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"], order)
         return cls(points, a["input_index"], table, frame, int(a["ambient_dim"]))
     except KeyError as exc:
         raise FileFormatError(f"{path}: not a valid Alpha Scoop table (missing {exc})") from None

@@ -38,6 +38,7 @@ class Table:
     facet_cells: np.ndarray  # (f, 2) int32 cells on both sides of each facet, -1 = outside
     facet_flip: np.ndarray  # (f,) bool: reverse the last two vertices to face out of cell 0
     cell_measure: np.ndarray  # (c,) float64 unsigned volume/area of every cell
+    facet_interior_order: np.ndarray  # (f,) int32 facet rows sorted by interior
 
 
 def _permute(level: Level, order: np.ndarray) -> np.ndarray:
@@ -267,6 +268,7 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     step(0.9, "vertices")
     levels.insert(0, _vertices(len(points), levels[0]))
     measure = np.abs(det) / (2.0 if d == 2 else 6.0)
+    by_interior = np.argsort(facets.interior).astype(np.int32)
     step(1.0, "done")
-    return Table(levels, facet_cells, flip, measure)
+    return Table(levels, facet_cells, flip, measure, by_interior)
 
