@@ -75,20 +75,35 @@ def _store(ac: AlphaComplex, path: Path) -> None:
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         ac.save(path)
-        prune(path.parent)
+        prune(path.parent, keep=path)
     except (OSError, AlphaScoopError):
         return
 
 
-def prune(folder: Path, max_bytes: int = MAX_CACHE_BYTES) -> None:
-    """Delete the least recently used entries until the folder holds at most max_bytes."""
-    entries = sorted(folder.glob("*.npz"), key=lambda p: p.stat().st_mtime, reverse=True)
+def prune(folder: Path, max_bytes: int | None = None, *, keep: Path | None = None) -> None:
+    """Delete the least recently used entries until the folder holds at most max_bytes.
+
+    The newest entry (or `keep`, the one just written) always stays, even when it alone is
+    larger than max_bytes (default MAX_CACHE_BYTES); temporary files of writes are skipped.
+    """
+    limit = MAX_CACHE_BYTES if max_bytes is None else max_bytes
+    entries = [(st.st_mtime, st.st_size, p) for p in folder.glob("*.npz")
+               if not p.name.startswith(".") and (st := _stat(p)) is not None]
+    entries.sort(key=lambda e: (e[2] == keep, e[0]), reverse=True)
     total = 0
-    for entry in entries:
-        total += entry.stat().st_size
-        if total > max_bytes:
+    for i, (_, size, entry) in enumerate(entries):
+        total += size
+        if total > limit and i > 0:
             with contextlib.suppress(OSError):
                 entry.unlink()
+
+
+def _stat(path: Path) -> os.stat_result | None:
+    """The file's stat, or None if it vanished meanwhile (another process pruning)."""
+    try:
+        return path.stat()
+    except OSError:
+        return None
 
 
 def build_cached(pointset, *, use_cache: bool = True,

@@ -10,7 +10,7 @@ import numpy as np
 
 from . import storage
 from .delaunay import triangulate
-from .points import Frame, as_points, check_spread, merge_duplicates
+from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
 from .shape import AlphaShape, readonly
 from .table import Level, Progress, Table, build_table
 
@@ -62,6 +62,11 @@ class AlphaComplex:
         unique, input_index = merge_duplicates(raw)
         frame = check_spread(unique)
         coords = unique if frame is None else (unique - frame.origin) @ frame.basis.T
+        order = spatial_order(coords)
+        coords = coords[order]
+        rank = np.empty(len(order), dtype=np.int64)
+        rank[order] = np.arange(len(order))
+        input_index = rank[input_index]
         offset = 0.5 * (coords.min(axis=0) + coords.max(axis=0))
         step(0.02, "Delaunay triangulation")
         tri = triangulate((coords - offset) / _power_of_two_scale(coords - offset))

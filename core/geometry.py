@@ -8,7 +8,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .tolerances import DEGENERATE_RTOL, ILL_CONDITIONED_RTOL, ON_SPHERE_RTOL
+from .tolerances import (
+    DEGENERATE_RTOL,
+    EXTENDED_DEGENERATE_RTOL,
+    ILL_CONDITIONED_RTOL,
+    ON_SPHERE_RTOL,
+)
 
 CHUNK = 1 << 19
 
@@ -36,11 +41,14 @@ def _edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     return corners[:, 1:]
 
 
-def _extended(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
-    """Centre offsets of ill-conditioned simplices, computed in extended precision."""
+def _extended(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Centre offsets, determinants and degeneracy flags of ill-conditioned simplices,
+    computed in extended precision: only what is flat there is treated as flat."""
     wide = points.astype(np.longdouble)
     vec = wide[simplices[:, 1:]] - wide[simplices[:, :1]]
-    return _solve(vec)[0].astype(np.float64)
+    wider = np.finfo(np.longdouble).eps < 1e-18  # else long double is plain double
+    c0, det, bad = _solve(vec, EXTENDED_DEGENERATE_RTOL if wider else DEGENERATE_RTOL)[:3]
+    return c0.astype(np.float64), det.astype(np.float64), bad
 
 
 def _least_squares(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -53,7 +61,7 @@ def _least_squares(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return c0, np.maximum(np.einsum("nd,nd->n", c0, c0), dist2.max(axis=1))
 
 
-def _solve(vec: np.ndarray) -> tuple[np.ndarray, ...]:
+def _solve(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL) -> tuple[np.ndarray, ...]:
     """Centre offsets (n, d), determinants (n,), flags (degenerate, ill-conditioned), and for
     d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0."""
     k, d = vec.shape[1], vec.shape[2]
@@ -82,7 +90,7 @@ def _solve(vec: np.ndarray) -> tuple[np.ndarray, ...]:
         num = sq[:, :1] * duals[0] + sq[:, 1:2] * duals[1] + sq[:, 2:3] * duals[2]
         scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
     shape = np.abs(det) / np.where(scale > 0, scale, 1.0)  # 0 flat .. 1 well-shaped
-    degenerate = shape <= DEGENERATE_RTOL
+    degenerate = shape <= degenerate_rtol
     safe = np.where(degenerate, 1.0, det)
     return num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL, duals
 
@@ -105,9 +113,8 @@ def circumspheres(
         sl = slice(lo, lo + CHUNK)
         vec = _edge_vectors(points, simplices[sl])
         c0, det, bad, poor, _ = _solve(vec)
-        poor &= ~bad
         if poor.any():
-            c0[poor] = _extended(points, simplices[sl][poor])
+            c0[poor], det[poor], bad[poor] = _extended(points, simplices[sl][poor])
         r2_chunk = np.einsum("nd,nd->n", c0, c0)
         if bad.any():
             c0[bad], r2_chunk[bad] = _least_squares(vec[bad])
@@ -155,9 +162,8 @@ def cell_spheres(
         sl = slice(lo, lo + CHUNK)
         vec = _edge_vectors(points, cells[sl])
         c0, det, bad, poor, duals = _solve(vec)
-        poor &= ~bad
         if poor.any():
-            c0[poor] = _extended(points, cells[sl][poor])
+            c0[poor], det[poor], bad[poor] = _extended(points, cells[sl][poor])
         r2_chunk = np.einsum("nd,nd->n", c0, c0)
         chunk_bits = _barycentric_signs(duals, c0, det)
         if bad.any():

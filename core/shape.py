@@ -88,16 +88,23 @@ class AlphaShape:
         rows = 2 * ids + inside_is_second
         return readonly(np.take(ac._oriented_facets, rows, 0))
 
-    def singular(self, k: int) -> np.ndarray:
-        """(s, k+1) int32 SINGULAR k-simplices (k < dim): in the complex, face of nothing."""
+    def singular_ids(self, k: int) -> np.ndarray:
+        """(s,) int64 rows of `simplices(k)` that are SINGULAR at alpha (k < dim)."""
         if not 0 <= k < self.dim:
             raise ValueError(f"singular simplices exist for 0 <= k < {self.dim}, not k={k}")
-        cache = self.__dict__.setdefault("_singular", {})
+        cache = self.__dict__.setdefault("_singular_ids", {})
         if k not in cache:
             level = self._ac._level(k)
             count = self._entered(k)
-            ids = np.flatnonzero(level.regular[:count] > self.alpha)
-            cache[k] = readonly(np.take(level.simplices, ids, 0))
+            cache[k] = readonly(np.flatnonzero(level.regular[:count] > self.alpha))
+        return cache[k]
+
+    def singular(self, k: int) -> np.ndarray:
+        """(s, k+1) int32 SINGULAR k-simplices (k < dim): in the complex, face of nothing."""
+        cache = self.__dict__.setdefault("_singular", {})
+        if k not in cache:
+            ids = self.singular_ids(k)
+            cache[k] = readonly(np.take(self._ac._level(k).simplices, ids, 0))
         return cache[k]
 
     @cached_property

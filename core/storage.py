@@ -11,13 +11,13 @@ k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter, `enter_k`/`regular_
 from __future__ import annotations
 
 import os
-import tempfile
 import zipfile
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .atomic import atomic_write
 from .errors import FileFormatError
 from .points import Frame
 from .table import Level, Table
@@ -26,21 +26,6 @@ if TYPE_CHECKING:
     from .complex import AlphaComplex
 
 FORMAT, VERSION = "alphascoop-table", 1
-
-
-def atomic_write(path: str | os.PathLike, write) -> None:
-    """Call write(file_object) on a temporary file beside `path`, then rename it into place."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            write(handle)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
@@ -72,9 +57,13 @@ def _check(condition: bool, path: Path, what: str) -> None:
 
 
 def _read(path: Path) -> dict[str, np.ndarray]:
-    try:
-        with np.load(path, allow_pickle=False) as data:
-            arrays = {name: data[name] for name in data.files}
+    try:  # our own handle: np.load leaks the one it opens when the zip is broken
+        with open(path, "rb") as fh:
+            data = np.load(fh, allow_pickle=False)
+            if not isinstance(data, np.lib.npyio.NpzFile):
+                raise ValueError("a single array, not an archive")
+            with data:
+                arrays = {name: data[name] for name in data.files}
     except FileNotFoundError:
         raise FileFormatError(f"{path}: no such file") from None
     except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError) as exc:

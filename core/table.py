@@ -9,6 +9,7 @@ among the cells around it, inf on the convex hull. Each level is returned sorted
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -81,17 +82,18 @@ def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> N
 
 
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray):
-    """Level d sorted by enter, its neighbours (renumbered), signed d!-measures and attach
-    bits (bit i: vertex i attaches the facet opposite it)."""
+    """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
+    cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas."""
     r2, det, flat, bits = cell_spheres(points, cells)
     enter = np.sqrt(r2)
+    measure = np.abs(det) / math.factorial(points.shape[1])
     if flat.any():
-        det[flat] = 0.0
+        det[flat] = 0.0  # orientation unknown: the facets use the other side or the hull
         _delay_flat(enter, flat, neighbors)
     level = Level(cells, enter, enter, enter)
     order = np.argsort(enter, kind="stable")
     inverse = _permute(level, order)
-    return level, _remap(neighbors[order], inverse), det[order], bits[order]
+    return level, _remap(neighbors[order], inverse), det[order], bits[order], measure[order]
 
 
 def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
@@ -257,7 +259,7 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
 
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
-    top, neighbors, det, bits = _cells(points, cells, neighbors)
+    top, neighbors, det, bits, measure = _cells(points, cells, neighbors)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits)
     del neighbors
@@ -267,7 +269,6 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
         levels.insert(0, _edges(points, facets, near_flat, obtuse))
     step(0.9, "vertices")
     levels.insert(0, _vertices(len(points), levels[0]))
-    measure = np.abs(det) / (2.0 if d == 2 else 6.0)
     by_interior = np.argsort(facets.interior).astype(np.int32)
     step(1.0, "done")
     return Table(levels, facet_cells, flip, measure, by_interior)

@@ -10,6 +10,10 @@ FLAT_RTOL = 1e-9
 #: below this has no unique circumsphere; its sphere is then found by least squares.
 DEGENERATE_RTOL = 1e-14
 
+#: The same test for ill-conditioned simplices recomputed in extended precision (64-bit
+#: mantissa): thin but genuine slivers (needles, scans) keep their own sphere.
+EXTENDED_DEGENERATE_RTOL = 1e-17
+
 #: Simplices less well-shaped than this (same measure) get their sphere recomputed in
 #: extended precision: thin slivers of near-cospherical scans would lose digits otherwise.
 ILL_CONDITIONED_RTOL = 1e-5

@@ -5,13 +5,15 @@ Every write is atomic: a temporary file beside the target, renamed over it only 
 
 from __future__ import annotations
 
+import contextlib
 import os
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from core.errors import FileFormatError
+from core.errors import AlphaScoopError, FileFormatError
 from core.export.atomic import atomic_path, atomic_write_text
 from core.export.complex_vtu import write_vtu
 from core.export.metadata import shape_metadata, sidecar_text
@@ -88,6 +90,24 @@ def _extension(path: Path, formats: dict[str, str]) -> str:
     return ext
 
 
+@contextlib.contextmanager
+def _reported(path: Path) -> Iterator[None]:
+    """Turn any failure while writing `path` into a FileFormatError naming the file.
+
+    Our own errors (Cancelled, FileFormatError) pass through unchanged; so do KeyboardInterrupt
+    and other BaseExceptions. The atomic write has already left any old file intact.
+    """
+    try:
+        yield
+    except AlphaScoopError:
+        raise
+    except OSError as exc:
+        raise FileFormatError(f"{path}: cannot write ({exc.strerror or exc})") from None
+    except Exception as exc:  # trimesh, shapely, plyfile... raise ValueError and others
+        problem = next(iter(str(exc).strip().splitlines()), "") or type(exc).__name__
+        raise FileFormatError(f"{path}: cannot write ({problem})") from exc
+
+
 def _write_surface(tmp: Path, ext: str, ac, shape, manifold: bool, meta: dict) -> dict:
     """Write a triangle surface; returns the report fields."""
     vertices, faces, split = surface_arrays(ac, shape, manifold=manifold)
@@ -114,20 +134,18 @@ def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = F
     shape = ac.shape(alpha)
     meta = shape_metadata(ac, shape, source)
     fields: dict = {}
-    try:
-        with atomic_path(path) as tmp:
-            if ext in POLYGON_WRITERS:
-                POLYGON_WRITERS[ext](tmp, ac, shape, meta)
-            elif ext == ".vtu":
-                write_vtu(tmp, ac, shape, meta)
-            else:
-                fields = _write_surface(tmp, ext, ac, shape, manifold, meta)
-        side = None
-        if sidecar:
-            side = str(path) + ".json"
+    with _reported(path), atomic_path(path) as tmp:
+        if ext in POLYGON_WRITERS:
+            POLYGON_WRITERS[ext](tmp, ac, shape, meta)
+        elif ext == ".vtu":
+            write_vtu(tmp, ac, shape, meta)
+        else:
+            fields = _write_surface(tmp, ext, ac, shape, manifold, meta)
+    side = None
+    if sidecar:
+        side = str(path) + ".json"
+        with _reported(Path(side)):
             atomic_write_text(side, sidecar_text(meta))
-    except OSError as exc:
-        raise FileFormatError(f"{path}: cannot write ({exc.strerror or exc})") from None
     return ExportReport(path=str(path), format=ext.lstrip(".").upper(), alpha=float(alpha),
                         measure=float(shape.measure), sidecar=side, metadata=meta, **fields)
 
@@ -139,11 +157,8 @@ def write_table(ac, path: str | os.PathLike) -> ExportReport:
     """
     path = Path(path)
     ext = _extension(path, TABLE_FORMATS)
-    try:
-        with atomic_path(path) as tmp:
-            TABLE_WRITERS[ext](tmp, ac)
-    except OSError as exc:
-        raise FileFormatError(f"{path}: cannot write ({exc.strerror or exc})") from None
+    with _reported(path), atomic_path(path) as tmp:
+        TABLE_WRITERS[ext](tmp, ac)
     n = sum(len(ac.simplices(k)) for k in range(ac.dim + 1))
     return ExportReport(path=str(path), format=ext.lstrip(".").upper(), alpha=None,
                         n_vertices=len(ac.points), n_faces=n)

@@ -16,27 +16,13 @@ from core.export.vtkxml import vtu_bytes
 INTERIOR, REGULAR, SINGULAR = 3, 2, 1
 
 
-def _rows(simplices: np.ndarray, chosen: np.ndarray, n: int) -> np.ndarray:
-    """Row index in `simplices` ((m, k) sorted rows) of each (c, k) simplex in `chosen`."""
-    def key(a):
-        a = np.sort(np.asarray(a, dtype=np.int64), axis=1)
-        out = np.zeros(len(a), dtype=np.int64)
-        for col in a.T:  # at most 4 columns
-            out = out * n + col
-        return out
-
-    table = key(simplices)
-    order = np.argsort(table, kind="stable")
-    return order[np.searchsorted(table[order], key(chosen))]
-
-
 def complex_blocks(ac, shape) -> tuple[list[np.ndarray], dict[str, np.ndarray]]:
     """Cell blocks (highest dimension first) and their concatenated cell data."""
-    n, dim = len(ac.points), ac.dim
+    dim = ac.dim
     parts = [(dim, np.asarray(shape.cell_ids), INTERIOR)]
-    parts.append((dim - 1, _rows(ac.simplices(dim - 1), shape.regular_facets, n), REGULAR))
+    parts.append((dim - 1, np.asarray(shape.regular_facet_ids), REGULAR))
     for k in range(dim - 1, -1, -1):
-        parts.append((k, _rows(ac.simplices(k), shape.singular(k), n), SINGULAR))
+        parts.append((k, np.asarray(shape.singular_ids(k)), SINGULAR))
     blocks, data = [], {"class": [], "dimension": [], "enter": [], "regular": [], "interior": []}
     for k, rows, cls in parts:
         if len(rows) == 0:

@@ -60,17 +60,6 @@ def _dense(keys: np.ndarray) -> np.ndarray:
     return ids
 
 
-def facet_rows(sorted_facets: np.ndarray, facets: np.ndarray, n_vertices: int) -> np.ndarray:
-    """(r,) row in `sorted_facets` ((f, 3) rows ascending) of each (r, 3) facet, any order."""
-    def key(rows):
-        rows = np.sort(rows.astype(np.int64), axis=1)
-        return (rows[:, 0] * n_vertices + rows[:, 1]) * n_vertices + rows[:, 2]
-
-    table = key(sorted_facets)
-    order = np.argsort(table, kind="stable")
-    return order[np.searchsorted(table[order], key(facets))]
-
-
 def _wedge_labels(ac, filled, side, rows) -> tuple[np.ndarray, np.ndarray]:
     """Edge row and wedge label of each boundary half-edge (3f+i: edge opposite corner i).
 
@@ -138,9 +127,7 @@ def split_nonmanifold(ac, shape) -> tuple[np.ndarray, np.ndarray, ManifoldReport
     faces = np.asarray(shape.regular_facets, dtype=np.int64)
     if len(faces) == 0:
         return np.empty(0, np.int64), faces.reshape(0, 3), ManifoldReport(0, 0, 0)
-    tris = ac.simplices(2)
-    rows = getattr(shape, "regular_facet_ids", None)  # the core knows them; else look up
-    rows = facet_rows(tris, faces, len(ac.points)) if rows is None else np.asarray(rows)
+    rows = np.asarray(shape.regular_facet_ids)
     n_cells = len(ac.simplices(3))
     filled = np.zeros(n_cells + 1, dtype=bool)
     filled[np.asarray(shape.cell_ids)] = True
@@ -151,7 +138,7 @@ def split_nonmanifold(ac, shape) -> tuple[np.ndarray, np.ndarray, ManifoldReport
     empty_side = np.where(first_in, sides[:, 1], sides[:, 0])
     edge, solid = _wedge_labels(ac, filled, solid_side, rows)
     _, empty = _wedge_labels(ac, ~filled, empty_side, rows)
-    corner_vertex = tris[rows].astype(np.int64).ravel()  # corner 3f+i -> its vertex
+    corner_vertex = ac.simplices(2)[rows].astype(np.int64).ravel()  # corner 3f+i -> its vertex
     use_empty = np.zeros(len(ac.simplices(1)), dtype=bool)
     for _ in range(MAX_ROUNDS):
         wedge = np.where(use_empty[edge], empty + solid.max() + 1, solid)

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import shapely
 
+from core.export.csvrows import format_rows, write_rows
 from core.export.metadata import sidecar_text
 from core.export.rings import ring_order, successors
 
@@ -60,7 +61,10 @@ def _hole_owners(shells: list, holes: list) -> np.ndarray:
 
 def _singular_lines(ac, shape) -> shapely.MultiLineString:
     """SINGULAR edges (dangling, in no triangle) as line segments."""
-    return shapely.MultiLineString([ac.points[e] for e in np.asarray(shape.singular(1))])
+    edges = np.asarray(shape.singular(1), dtype=np.int64).reshape(-1, 2)
+    if len(edges) == 0:
+        return shapely.MultiLineString()
+    return shapely.multilinestrings(shapely.linestrings(np.asarray(ac.points)[edges]))
 
 
 def write_geojson(path: Path, ac, shape, meta: dict) -> None:
@@ -81,12 +85,16 @@ def write_wkt(path: Path, ac, shape, meta: dict) -> None:
 
 def write_rings_csv(path: Path, ac, shape, meta: dict) -> None:
     """One row per ring vertex: polygon, ring (0 = shell), role, vertex, x, y."""
-    rows = ["polygon,ring,role,vertex,x,y"]
-    for p, poly in enumerate(shape_polygons(ac, shape).geoms):
-        for r, ring in enumerate([poly.exterior, *poly.interiors]):
-            role = "shell" if r == 0 else "hole"
-            rows += [f"{p},{r},{role},{i},{x!r},{y!r}" for i, (x, y) in enumerate(ring.coords)]
-    path.write_text("\n".join(rows) + "\n")
+    polygons = shapely.get_parts(shape_polygons(ac, shape))
+    rings, polygon = shapely.get_rings(polygons, return_index=True)  # shell first, then holes
+    coords, ring = shapely.get_coordinates(rings, return_index=True)
+    ring_no = np.arange(len(rings)) - np.searchsorted(polygon, polygon)
+    vertex = np.arange(len(coords)) - np.searchsorted(ring, ring)
+    role = np.where(ring_no[ring] == 0, "shell", "hole")
+    with open(path, "w", encoding="utf-8", newline="\n") as fh:
+        fh.write("polygon,ring,role,vertex,x,y\n")
+        write_rows(fh, "%d,%d,%s,%d,%r,%r\n",
+                   [polygon[ring], ring_no[ring], role, vertex, coords[:, 0], coords[:, 1]])
 
 
 def write_svg(path: Path, ac, shape, meta: dict) -> None:
@@ -97,7 +105,8 @@ def write_svg(path: Path, ac, shape, meta: dict) -> None:
     pad, width = 0.02 * size, 0.002 * size
 
     def pts(coords) -> str:
-        return " ".join(f"{x!r},{-y!r}" for x, y in coords)
+        xy = np.asarray(coords, dtype=np.float64).reshape(-1, 2)
+        return format_rows("%r,%r ", [xy[:, 0], -xy[:, 1]]).rstrip()
 
     paths = [" ".join(f"M {pts(r.coords)} Z" for r in [p.exterior, *p.interiors])
              for p in geom.geoms]

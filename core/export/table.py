@@ -9,12 +9,15 @@ CSV: one row per simplex: k, v0, v1, v2, v3 (-1 = unused), enter, regular, inter
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 
 import numpy as np
 
+from core.export.csvrows import write_rows
+
 FORMAT, VERSION = "alphascoop-intervals", 1
+CSV_HEADER = "k,v0,v1,v2,v3,enter,regular,interior\n"
+CSV_ROW = "%d,%d,%d,%d,%d,%.17g,%.17g,%.17g\n"  # %.17g reads back to the same float64
 
 
 def table_arrays(ac) -> dict[str, np.ndarray]:
@@ -35,20 +38,15 @@ def write_npz(path: Path, ac) -> None:
 
 
 def write_csv(path: Path, ac) -> None:
-    """One line per simplex, all dimensions, vertices padded with -1."""
+    """One line per simplex, all dimensions, vertices padded with -1 (written in chunks)."""
     with open(path, "w", encoding="utf-8", newline="\n") as fh:
-        fh.write("k,v0,v1,v2,v3,enter,regular,interior\n")
+        fh.write(CSV_HEADER)
         for k in range(ac.dim + 1):
-            simp = np.full((len(ac.simplices(k)), 4), -1, dtype=np.int64)
-            simp[:, : k + 1] = ac.simplices(k)
-            block = np.column_stack([np.full(len(simp), k), simp])
-            buf = io.StringIO()
-            np.savetxt(buf, block, fmt="%d", delimiter=",")
-            ints = buf.getvalue().splitlines()
-            buf = io.StringIO()
-            np.savetxt(buf, np.asarray(ac.intervals(k)), fmt="%.17g", delimiter=",")
-            floats = buf.getvalue().splitlines()
-            fh.writelines(f"{a},{b}\n" for a, b in zip(ints, floats, strict=True))
+            simp = np.asarray(ac.simplices(k), dtype=np.int64)
+            iv = np.asarray(ac.intervals(k), dtype=np.float64)
+            pad = np.full(len(simp), -1, dtype=np.int64)
+            columns = [np.full(len(simp), k, dtype=np.int64), *simp.T, *[pad] * (3 - k), *iv.T]
+            write_rows(fh, CSV_ROW, columns)
 
 
 TABLE_WRITERS = {".npz": write_npz, ".csv": write_csv}
