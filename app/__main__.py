@@ -10,6 +10,8 @@ import os
 import sys
 from collections.abc import Sequence
 
+from app.args import radius
+
 SUBCOMMANDS = ("info", "export")
 NO_DISPLAY_MESSAGE = (
     "alphascoop: no display found (DISPLAY and WAYLAND_DISPLAY are not set).\n"
@@ -31,17 +33,6 @@ def parse_size(text: str) -> tuple[int, int]:
     return width, height
 
 
-def positive_float(text: str) -> float:
-    """Parse a finite alpha radius >= 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"alpha must be a number, not {text!r}") from None
-    if not value >= 0.0:
-        raise argparse.ArgumentTypeError(f"alpha must be a radius >= 0, not {text!r}")
-    return value
-
-
 def build_parser() -> argparse.ArgumentParser:
     """The window's command line: [FILE] [--alpha R | --optimal] [--screenshot OUT] [--size WxH]."""
     parser = argparse.ArgumentParser(
@@ -51,7 +42,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("file", nargs="?", help="point file to open (default: bundled sample)")
     choice = parser.add_mutually_exclusive_group()
-    choice.add_argument("--alpha", type=positive_float, metavar="R", help="alpha radius to show")
+    choice.add_argument("--alpha", type=radius, metavar="R", help="alpha radius to show")
     choice.add_argument("--optimal", action="store_true", help="show the optimal alpha (default)")
     parser.add_argument("--screenshot", metavar="OUT.png", help="render, save an image, exit")
     parser.add_argument("--size", type=parse_size, metavar="WxH", help="window/image size")

@@ -7,7 +7,7 @@ events are coalesced with a zero-interval timer, so a fast drag queues no stale 
 
 from __future__ import annotations
 
-from PySide6.QtCore import QSignalBlocker, Qt, QTimer
+from PySide6.QtCore import QLocale, QSignalBlocker, Qt, QTimer
 from PySide6.QtGui import QDoubleValidator
 from PySide6.QtWidgets import (
     QFormLayout,
@@ -30,6 +30,14 @@ def format_alpha(value: float) -> str:
     return f"{value:.6g}"
 
 
+def radius_validator() -> QDoubleValidator:
+    """Accepts radii >= 0 typed with '.' whatever the system locale, in plain or e-notation."""
+    validator = QDoubleValidator(0.0, 1e300, 12)
+    validator.setLocale(QLocale.c())
+    validator.setNotation(QDoubleValidator.Notation.ScientificNotation)
+    return validator
+
+
 class AlphaPanel(QWidget):
     """Slider + radius field + r² + buttons, bound to an ExplorerModel."""
 
@@ -41,7 +49,7 @@ class AlphaPanel(QWidget):
         self.slider.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
         self.slider.setTracking(True)
         self.radius = QLineEdit()
-        self.radius.setValidator(QDoubleValidator(0.0, float("inf"), 12))
+        self.radius.setValidator(radius_validator())
         self.radius.setToolTip("alpha as a radius; Enter snaps to the shape at that value")
         self.squared = QLabel()
         self.squared.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
@@ -77,6 +85,7 @@ class AlphaPanel(QWidget):
         self.radius.editingFinished.connect(self._apply_radius)
         self.optimal.clicked.connect(lambda: self.model.set_index(self.model.optimal_index()))
         self.hull.clicked.connect(lambda: self.model.set_index(self.model.hull_index()))
+        self.model.datasetChanged.connect(self._timer.stop)
         self.model.datasetChanged.connect(self.sync)
         self.model.alphaChanged.connect(self.sync)
 

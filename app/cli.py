@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from app.args import radius
 from core.errors import AlphaScoopError
 
 CLASS_NAMES = ("exterior", "singular", "regular", "interior")
@@ -31,17 +32,6 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str):
         raise UsageError(message)
-
-
-def radius(text: str) -> float:
-    """A finite alpha radius >= 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"alpha must be a number, not {text!r}") from None
-    if not 0.0 <= value < float("inf"):
-        raise argparse.ArgumentTypeError(f"alpha must be a finite radius >= 0, not {text!r}")
-    return value
 
 
 def count(text: str) -> int:
@@ -115,16 +105,9 @@ def load(args) -> tuple:
     return ps, ac, time.perf_counter() - start, cached
 
 
-def _optimal(ac, k: int = 1) -> float:
-    """ac.optimal_alpha(k), with a clear error where the core has none."""
-    if not hasattr(ac, "optimal_alpha"):
-        raise AlphaScoopError("this build of the core has no optimal alpha; pass --alpha R")
-    return float(ac.optimal_alpha(k))
-
-
 def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
     """Everything `info` reports, as a JSON-ready dict."""
-    optimal = _optimal(ac)
+    optimal = float(ac.optimal_alpha())
     alpha = optimal if alpha is None else alpha
     spectrum = np.asarray(ac.spectrum())
     shape = ac.shape(alpha)
@@ -139,7 +122,7 @@ def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
                      "max": float(spectrum[-1])},
         "optimal_alpha": optimal,
         "alpha": alpha,
-        "betti": [int(b) for b in ac.betti(alpha)] if hasattr(ac, "betti") else None,
+        "betti": [int(b) for b in ac.betti(alpha)],
         "volume" if ac.dim == 3 else "area": shape.measure,
         "classes": classes,
     }
@@ -157,8 +140,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"optimal     alpha {info['optimal_alpha']:.6g}",
         f"at alpha    {info['alpha']:.6g}",
     ]
-    if info["betti"] is not None:
-        lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))
+    lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))
     lines.append(f"{measure:<12}{info[measure]:.6g}")
     lines.append(f"{'classes':<12}" + "".join(f"{c:>10}" for c in CLASS_NAMES))
     for name, counts in info["classes"].items():
@@ -187,7 +169,7 @@ def cmd_export(args) -> int:
     if args.table:
         print(write_table(ac, args.output).line())
         return 0
-    alpha = args.alpha if args.alpha is not None else _optimal(ac, args.optimal or 1)
+    alpha = args.alpha if args.alpha is not None else float(ac.optimal_alpha(args.optimal or 1))
     report = write_shape(ac, alpha, args.output, manifold=args.manifold, sidecar=args.sidecar,
                          source=args.file)
     print(report.line())

@@ -2,19 +2,25 @@
 
 from __future__ import annotations
 
+import html
+
+import numpy as np
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
 from app.model import ExplorerModel
+from core.signatures import CLASSES
 
 BETTI_NAMES = {2: ("components", "holes"), 3: ("components", "tunnels", "voids")}
+SINGULAR, REGULAR, INTERIOR = (CLASSES.index(c) for c in ("singular", "regular", "interior"))
 
 
 def data_lines(model: ExplorerModel) -> list[str]:
     """Lines describing the dataset: file, point counts, dimension, timings."""
     ds = model.dataset
     ac = ds.ac
-    lines = [f"<b>{ds.path.name}</b>", f"{ds.n_input:,} points read, {len(ac.points):,} used"]
+    lines = [f"<b>{html.escape(ds.path.name)}</b>",
+             f"{ds.n_input:,} points read, {len(ac.points):,} used"]
     report = ds.report
     if report is not None and getattr(report, "n_duplicates", 0):
         lines.append(f"{report.n_duplicates:,} duplicates merged")
@@ -26,22 +32,29 @@ def data_lines(model: ExplorerModel) -> list[str]:
     return lines
 
 
+def class_counts(model: ExplorerModel) -> tuple[int, int, list[int]]:
+    """(cells, regular facets, singular k-simplices for k < dim) at the current alpha.
+
+    Read from the precomputed signatures (binary searches), never from the shape's arrays.
+    """
+    sig, dim = model.dataset.signatures, model.dataset.ac.dim
+    counts = np.asarray(sig.counts_at(model.alpha))
+    singular = [int(n) for n in counts[:dim, SINGULAR]]
+    return int(counts[dim, INTERIOR]), int(counts[dim - 1, REGULAR]), singular
+
+
 def shape_lines(model: ExplorerModel) -> list[str]:
     """Lines describing the shape at the current alpha: classes, topology, measures."""
-    shape, ds = model.shape, model.dataset
-    dim = ds.ac.dim
-    lines = [f"<b>alpha {model.alpha:.6g}</b>", f"{len(shape.cells):,} cells, "
-             f"{len(shape.regular_facets):,} boundary facets"]
-    singular = ", ".join(f"{len(shape.singular(k)):,}" for k in range(dim))
-    lines.append(f"singular (points, edges{', triangles' if dim == 3 else ''}): {singular}")
-    sig = ds.signatures
-    if sig is not None:
-        betti = sig.betti[model.index]
-        names = BETTI_NAMES[dim]
-        lines.append(", ".join(f"{int(b):,} {n}" for b, n in zip(betti, names, strict=True)))
-        boundary = "perimeter" if dim == 2 else "area"
-        lines.append(f"{boundary} {float(sig.boundary_measure[model.index]):.6g}")
-    lines.append(f"{'area' if dim == 2 else 'volume'} {shape.measure:.6g}")
+    sig, dim = model.dataset.signatures, model.dataset.ac.dim
+    cells, facets, singular = class_counts(model)
+    lines = [f"<b>alpha {model.alpha:.6g}</b>", f"{cells:,} cells, {facets:,} boundary facets",
+             f"singular (points, edges{', triangles' if dim == 3 else ''}): "
+             + ", ".join(f"{n:,}" for n in singular)]
+    betti = sig.betti[model.index]
+    lines.append(", ".join(f"{int(b):,} {n}" for b, n in zip(betti, BETTI_NAMES[dim], strict=True)))
+    lines.append(f"{'perimeter' if dim == 2 else 'area'} "
+                 f"{float(sig.boundary_measure[model.index]):.6g}")
+    lines.append(f"{'area' if dim == 2 else 'volume'} {float(sig.measure[model.index]):.6g}")
     return lines
 
 

@@ -29,6 +29,8 @@ from app.settings import Preferences
 from app.signatures_dock import SignaturesPanel
 from app.worker import Loader
 
+CLOSE_WAIT_MS = 2000  # how long closing waits for a running build before leaving it behind
+
 
 class MainWindow(QMainWindow):
     """Main window: 3D view in the centre, alpha/layers/info docks, status bar with progress."""
@@ -165,13 +167,18 @@ class MainWindow(QMainWindow):
             self.restoreState(store.value("window/state"))
 
     def closeEvent(self, event) -> None:
-        """Save the layout, stop the worker (hidden meanwhile), release VTK before Qt."""
+        """Save the layout, stop the worker (hidden meanwhile), release VTK before Qt.
+
+        A Delaunay build cannot be interrupted, so the wait is bounded: after CLOSE_WAIT_MS
+        the window closes anyway and the build's late result is dropped (stale request id).
+        """
         self.prefs.store.setValue("window/geometry", self.saveGeometry())
         self.prefs.store.setValue("window/state", self.saveState())
         self.loader.cancel()
         if self.loader.is_busy():
             self.hide()
-        self.loader.wait()
+        if not self.loader.wait(CLOSE_WAIT_MS):
+            self.loader.blockSignals(True)  # the late result must not reach a closed window
         self.plotter.close()
         super().closeEvent(event)
 

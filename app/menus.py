@@ -9,7 +9,7 @@ from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QMessageBox
 
 from app import file_actions
-from core.errors import AlphaScoopError
+from core.export import SHAPE_FORMATS, TABLE_FORMATS
 
 ABOUT = (
     "<b>Alpha Scoop</b><br>Explore alpha shapes of 2D and 3D point sets: one Delaunay build, "
@@ -36,22 +36,26 @@ def fill_recent(window, menu: QMenu) -> None:
 
 
 def run_writer(window, title: str, write) -> None:
-    """Run a writer; report its result in the status bar, or its error in a dialog."""
+    """Run a writer; report its result in the status bar, or its error in a dialog.
+
+    Any failure of the writer (core errors, OS errors, a VTK or PIL error) becomes a message
+    naming what failed; the slot never lets an exception escape into Qt.
+    """
     try:
-        window.report(write())
-    except (AlphaScoopError, OSError) as error:
-        QMessageBox.warning(window, title, str(error))
+        message = write()
+    except Exception as error:  # every writer failure is shown; none escapes the slot
+        QMessageBox.warning(window, title, f"{title} failed: {error or type(error).__name__}")
+    else:
+        window.report(message)
 
 
 def export_shape(window) -> None:
     """File → Export shape: formats from core.export, the oriented surface by default."""
-    formats = file_actions.shape_formats()
-    if window.model.dataset is None or not formats:
-        QMessageBox.information(window, "Export shape", "Open a point set first, or the "
-                                "shape exporter is not available in this version.")
+    if window.model.dataset is None:
+        QMessageBox.information(window, "Export shape", "Open a point set first.")
         return
     stem = window.model.dataset.path.stem
-    path = file_actions.ask_save_path(window, window.prefs, "Export shape", formats,
+    path = file_actions.ask_save_path(window, window.prefs, "Export shape", SHAPE_FORMATS,
                                       f"{stem}_alpha")
     if path:
         ac, alpha = window.model.dataset.ac, window.model.alpha
@@ -64,7 +68,7 @@ def export_table(window) -> None:
         return
     stem = window.model.dataset.path.stem
     path = file_actions.ask_save_path(window, window.prefs, "Export table",
-                                      file_actions.table_formats(), f"{stem}_table")
+                                      TABLE_FORMATS, f"{stem}_table")
     if path:
         ac = window.model.dataset.ac
         run_writer(window, "Export table", lambda: file_actions.export_table(ac, path))

@@ -44,9 +44,13 @@ DEFAULT_STYLES = {
     "delaunay": LayerStyle(False, "#9aa5b1", 0.15),
 }
 
-DEFAULT_STYLES_2D = {**DEFAULT_STYLES, "interior": LayerStyle(True, CLASS_COLOURS["interior"], 0.6)}
+#: In 2D the triangles are the cells and never singular: no singular-triangle layer.
+DEFAULT_STYLES_2D = {
+    **{name: style for name, style in DEFAULT_STYLES.items() if name != "singular_faces"},
+    "interior": LayerStyle(True, CLASS_COLOURS["interior"], 0.6),
+}
 
 
 def default_styles(dim: int) -> dict[str, LayerStyle]:
-    """Layer styles a new dataset of dimension dim (2 or 3) starts with."""
+    """Layer styles a new dataset of dimension dim (2 or 3) starts with: one per drawn layer."""
     return dict(DEFAULT_STYLES_2D if dim == 2 else DEFAULT_STYLES)

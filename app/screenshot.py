@@ -7,9 +7,7 @@ off-screen VTK plotter, so it also works with no display at all.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
-import tempfile
 from pathlib import Path
 
 import pyvista as pv
@@ -19,6 +17,7 @@ from app.palette import default_styles
 from app.resources import SAMPLE_PATH
 from app.scene import Scene, as_xyz
 from core.errors import AlphaScoopError
+from core.export.atomic import atomic_path
 
 DEFAULT_SIZE = (1280, 800)
 
@@ -31,19 +30,22 @@ def render_png(dataset: Dataset, alpha: float, out: Path, size: tuple[int, int])
     """Render dataset's shape at alpha into out (PNG, written atomically) at size pixels."""
     ac = dataset.ac
     plotter = pv.Plotter(off_screen=True, window_size=list(size))
-    fd, tmp = tempfile.mkstemp(dir=out.parent, suffix=".png")
-    os.close(fd)
     try:
         scene = Scene(plotter)
         scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1),
                           default_styles(ac.dim))
         scene.set_shape(ac.shape(alpha))
-        plotter.screenshot(tmp)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, out)
+        with atomic_path(out) as tmp:
+            save_png(plotter, tmp)
     finally:
-        Path(tmp).unlink(missing_ok=True)
         plotter.close()
+
+
+def save_png(plotter: pv.Plotter, path: Path) -> None:
+    """Write the plotter's image to path as PNG, whatever path's extension."""
+    from PIL import Image
+
+    Image.fromarray(plotter.screenshot(return_img=True)).save(path, format="PNG")
 
 
 def run_screenshot(args: argparse.Namespace) -> int:

@@ -36,11 +36,33 @@ def test_help_exits_zero(capsys) -> None:
 
 
 @pytest.mark.parametrize("argv", [["--size", "big"], ["--alpha", "-1"], ["--alpha", "x"],
+                                  ["--alpha", "nan"], ["--alpha", "inf"],
                                   ["--alpha", "1", "--optimal"], ["a", "b"]])
 def test_bad_arguments_return_2_with_a_message(argv, capsys) -> None:
     """Malformed options give status 2 and a usage message, never a traceback."""
     assert main(argv) == 2
     assert "usage: alphascoop" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("text", ["-1", "nan", "inf", "1e999", "x"])
+def test_window_and_subcommands_refuse_the_same_alphas(text, capsys) -> None:
+    """One radius check for both entry points: `--alpha` means the same everywhere."""
+    assert main(["--alpha", text]) == 2
+    assert "alpha must be" in capsys.readouterr().err
+    for command in (["info", "x.ply"], ["export", "x.ply", "-o", "y.ply"]):
+        assert main([*command, "--alpha", text]) == 2
+        assert "alpha must be" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("text", "value"), [("0", 0.0), ("0.25", 0.25), ("1e-3", 1e-3)])
+def test_window_and_subcommands_accept_the_same_alphas(text, value) -> None:
+    """Finite radii >= 0 parse to the same value in both parsers."""
+    from app import cli
+    from app.__main__ import build_parser
+
+    assert build_parser().parse_args(["--alpha", text]).alpha == value
+    parsed = cli.build_parser().parse_args(["info", "x.ply", "--alpha", text])
+    assert parsed.alpha == value
 
 
 @pytest.mark.parametrize(("text", "size"), [("640x480", (640, 480)), ("16X16", (16, 16))])

@@ -77,10 +77,15 @@ def opened(shared_window, qtbot):
 
     win = shared_window
     win.model.set_index(win.model.optimal_index())
-    for name, style in default_styles(3).items():
-        win.layers_panel._edit(name, visible=True, colour=style.colour, opacity=style.opacity)
+    show_all_layers(win, default_styles(3))
     qtbot.wait(1)
     return win
+
+
+def show_all_layers(win, styles) -> None:
+    """Make every layer visible, in the given styles' colours and opacities."""
+    for name, style in styles.items():
+        win.layers_panel._edit(name, visible=True, colour=style.colour, opacity=style.opacity)
 
 
 def layer_cells(layer) -> np.ndarray:
@@ -130,13 +135,16 @@ def press(qtbot, win, key, times: int = 1) -> None:
     qtbot.waitUntil(lambda: win.model.index != before, timeout=5000)
 
 
-def test_opens_at_optimal_alpha_with_matching_layers(opened) -> None:
-    """A new file starts at the optimal alpha (not empty, not the hull); layers match."""
-    model = opened.model
-    assert model.index == model.optimal_index()
+def test_opens_at_optimal_alpha_with_matching_layers(window, qtbot, points_file) -> None:
+    """A freshly opened file starts at the optimal alpha (not empty, not the hull)."""
+    open_and_wait(qtbot, window, points_file(blobs_3d(seed=3), "fresh.npy"))
+    model = window.model
+    assert model.alpha == model.dataset.ac.optimal_alpha()
     assert 0 < model.index < model.hull_index()
+    assert window.alpha_panel.slider.value() == model.index
     assert len(model.shape.cells) > 0
-    assert_layers_match(opened)
+    show_all_layers(window, window.layers_panel.styles)
+    assert_layers_match(window)
 
 
 @pytest.mark.parametrize(("key", "direction"), [(Qt.Key.Key_Left, -1), (Qt.Key.Key_Right, 1)])
@@ -223,6 +231,8 @@ def test_2d_data_gets_a_parallel_top_down_view(window, qtbot, points_file) -> No
     assert window.plotter.camera.parallel_projection
     assert np.allclose(np.abs(window.plotter.camera.direction), [0, 0, 1])
     assert window.scene.layers["boundary"].kind == "lines"
+    assert set(window.layers_panel.rows) == set(window.scene.layers)
+    assert "singular_faces" not in window.layers_panel.rows
     assert_layers_match(window)
 
 
@@ -293,6 +303,66 @@ def test_file_menu_writes_and_reports(opened, tmp_path, monkeypatch, action, nam
     assert str(target) in opened.status.text()
     leftovers = [p.name for p in tmp_path.iterdir() if p.name.startswith("tmp") or ".tmp" in p.name]
     assert leftovers == []
+
+
+@pytest.mark.parametrize("action", ["export_shape", "export_table", "screenshot"])
+def test_file_menu_shows_any_writer_error_in_a_dialog(opened, tmp_path, monkeypatch,
+                                                      action) -> None:
+    """A writer failing with any exception gives one dialog naming it; nothing escapes."""
+    monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
+                        lambda *args, **kwargs: (str(tmp_path / "out"), ""))
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("renderer fell over")
+
+    name = {"export_shape": "export_shape", "export_table": "export_table",
+            "screenshot": "save_screenshot"}[action]
+    monkeypatch.setattr(f"app.file_actions.{name}", broken)
+    warnings: list[tuple[str, str]] = []
+    monkeypatch.setattr("app.menus.QMessageBox.warning",
+                        lambda parent, title, text: warnings.append((title, text)))
+    opened.menus[action].trigger()
+    assert len(warnings) == 1
+    title, text = warnings[0]
+    assert text.startswith(f"{title} failed") and "renderer fell over" in text
+    assert "Traceback" not in text
+
+
+def test_closing_does_not_wait_for_a_build_that_cannot_stop(qtbot, tmp_path, monkeypatch):
+    """Close during an uninterruptible build: the window closes within the bounded wait."""
+    import threading
+    import time
+
+    from PySide6.QtCore import QSettings
+
+    from app import main_window
+    from app.main_window import MainWindow
+
+    release, started = threading.Event(), threading.Event()
+
+    def stuck_build(path, progress):
+        started.set()
+        release.wait(30)  # like a Delaunay build: never looks at the cancel flag
+
+    monkeypatch.setattr("app.worker.load_dataset", stuck_build)
+    monkeypatch.setattr(main_window, "CLOSE_WAIT_MS", 200)
+    win = MainWindow(QSettings(str(tmp_path / "s.ini"), QSettings.Format.IniFormat))
+    late: list[int] = []
+    for signal in (win.loader.finished, win.loader.failed, win.loader.cancelled):
+        signal.connect(lambda request, *rest: late.append(request))
+    win.show()
+    win.open_path(tmp_path / "slow.npy")
+    assert started.wait(10)
+    began = time.perf_counter()
+    try:
+        assert win.close()
+        assert time.perf_counter() - began < 5.0
+        assert not win.isVisible()
+    finally:
+        release.set()
+        assert win.loader.wait(10_000)
+    qtbot.wait(20)
+    assert late == []  # the late result never reached the closed window
 
 
 def test_dropping_a_file_opens_it_and_remembers_it(window, qtbot, points_file) -> None:

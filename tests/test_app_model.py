@@ -1,4 +1,5 @@
-"""ExplorerModel: alpha snapping, clamping, and signals only on real change (no window)."""
+"""ExplorerModel and the info text: alpha snapping, clamping, signals only on real change, and
+shape facts read from the signatures (no window)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from app.dataset import Dataset, optimal_alpha
+from app.dataset import Dataset
+from app.info_panel import class_counts, data_lines, shape_lines
 from app.model import ExplorerModel, snap_index
 from core import AlphaComplex
 
@@ -30,7 +32,8 @@ def dataset(tmp_path_factory) -> Dataset:
     points = np.random.default_rng(4).normal(size=(300, 3))
     ac = AlphaComplex.from_points(points)
     return Dataset(path=tmp_path_factory.mktemp("d") / "p.npy", ac=ac, spectrum=ac.spectrum(),
-                   optimal_alpha=optimal_alpha(ac), signatures=None, n_input=300, report=None,
+                   optimal_alpha=ac.optimal_alpha(), signatures=ac.signatures(), n_input=300,
+                   report=None,
                    load_seconds=0.0, build_seconds=0.0)
 
 
@@ -46,7 +49,7 @@ def model(dataset):
 
 def test_starts_at_the_optimal_alpha(model, dataset) -> None:
     """A new dataset opens at its optimal alpha: inside the spectrum, not empty, not the hull."""
-    assert model.alpha == dataset.spectrum[snap_index(dataset.spectrum, dataset.optimal_alpha)]
+    assert model.alpha == dataset.optimal_alpha
     assert 0 < model.index < model.hull_index()
 
 
@@ -70,12 +73,22 @@ def test_set_alpha_snaps_and_shape_follows(model, dataset) -> None:
     assert np.array_equal(model.shape.cells, expected.cells)
 
 
-def test_fallback_optimal_alpha_covers_every_point(dataset) -> None:
-    """The fallback rule gives the smallest alpha at which every point is in some cell."""
-    ac = dataset.ac
-    alpha = optimal_alpha(type("NoOptimal", (), {n: getattr(ac, n) for n in
-                                                  ("dim", "points", "simplices", "intervals")})())
-    covered = np.unique(ac.shape(alpha).cells)
-    assert len(covered) == len(ac.points)
-    below = ac.spectrum()[snap_index(ac.spectrum(), alpha) - 1]
-    assert len(np.unique(ac.shape(below).cells)) < len(ac.points)
+@pytest.mark.parametrize("step", [0, 40, 1500, 3000, -1])
+def test_info_counts_match_the_shape(model, dataset, step) -> None:
+    """The info panel's counts (from the signatures) equal the shape's own arrays."""
+    model.set_index(min(step, len(dataset.spectrum) - 1) if step >= 0 else model.hull_index())
+    shape = model.shape
+    cells, facets, singular = class_counts(model)
+    assert cells == len(shape.cells)
+    assert facets == len(shape.regular_facets)
+    assert singular == [len(shape.singular(k)) for k in range(dataset.ac.dim)]
+    assert shape_lines(model)[-1] == f"volume {shape.measure:.6g}"
+
+
+def test_file_name_is_escaped_in_the_info_text(dataset) -> None:
+    """A file name with markup characters is shown as text, not parsed as rich text."""
+    from dataclasses import replace
+
+    model = ExplorerModel()
+    model.set_dataset(replace(dataset, path=dataset.path.with_name("a<b>&c.npy")))
+    assert data_lines(model)[0] == "<b>a&lt;b&gt;&amp;c.npy</b>"
