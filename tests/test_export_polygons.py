@@ -69,6 +69,35 @@ def test_rings_csv_round_trip(tmp_path, annulus):
     assert area == pytest.approx(annulus.shape(0.12).measure, rel=1e-9)
 
 
+def test_rings_csv_rows_are_the_polygon_rings(tmp_path, annulus):
+    write_shape(annulus, 0.12, tmp_path / "s.csv")
+    lines = (tmp_path / "s.csv").read_text().splitlines()
+    assert lines[0] == "polygon,ring,role,vertex,x,y"
+    want = [f"{p},{r},{'shell' if r == 0 else 'hole'},{i},{x!r},{y!r}"
+            for p, poly in enumerate(shape_polygons(annulus, annulus.shape(0.12)).geoms)
+            for r, ring in enumerate([poly.exterior, *poly.interiors])
+            for i, (x, y) in enumerate(ring.coords)]
+    assert lines[1:] == want
+    assert any(",hole," in line for line in want)
+
+
+def test_singular_edges_exported_as_lines(tmp_path, annulus):
+    far = np.array([[3.0, 3.0], [3.1, 3.0], [3.2, 3.01], [-3.0, 2.0], [-3.0, 2.2]])
+    ac = AlphaComplex.from_points(np.vstack([annulus.points, far]))
+    shape = ac.shape(0.12)
+    edges = np.asarray(shape.singular(1))
+    assert len(edges) >= 3
+    write_shape(ac, 0.12, tmp_path / "s.geojson")
+    features = json.loads((tmp_path / "s.geojson").read_text())["features"]
+    lines = shapely.geometry.shape(features[1]["geometry"])
+    assert features[1]["properties"]["role"] == "singular_edges"
+    got = {tuple(map(tuple, line.coords)) for line in lines.geoms}
+    assert got == {tuple(map(tuple, ac.points[e])) for e in edges}
+    write_shape(ac, 0.12, tmp_path / "s.svg")
+    svg = ET.parse(tmp_path / "s.svg").getroot().findall("{http://www.w3.org/2000/svg}path")
+    assert sum(p.get("fill") == "none" for p in svg) == len(edges)
+
+
 def test_svg_is_xml_with_one_path_per_polygon(tmp_path, annulus):
     write_shape(annulus, 0.12, tmp_path / "s.svg")
     root = ET.parse(tmp_path / "s.svg").getroot()

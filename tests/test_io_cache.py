@@ -80,3 +80,78 @@ def test_prune_keeps_newest(tmp_path):
         os.utime(tmp_path / f"{i}.npz", (i, i))
     prune(tmp_path, max_bytes=250)
     assert sorted(p.name for p in tmp_path.glob("*.npz")) == ["3.npz", "4.npz"]
+
+
+def test_prune_never_deletes_the_newest_entry(tmp_path):
+    import os
+
+    for i in range(3):
+        (tmp_path / f"{i}.npz").write_bytes(b"x" * 100)
+        os.utime(tmp_path / f"{i}.npz", (i, i))
+    prune(tmp_path, max_bytes=50)
+    assert [p.name for p in tmp_path.glob("*.npz")] == ["2.npz"]
+
+
+def test_prune_keeps_the_entry_just_written_even_if_older(tmp_path):
+    import os
+
+    for i in range(3):
+        (tmp_path / f"{i}.npz").write_bytes(b"x" * 100)
+        os.utime(tmp_path / f"{i}.npz", (i, i))
+    prune(tmp_path, max_bytes=150, keep=tmp_path / "0.npz")
+    assert [p.name for p in tmp_path.glob("*.npz")] == ["0.npz"]
+
+
+def test_entry_larger_than_the_limit_is_still_cached(cache, points, monkeypatch):
+    import core.cache
+
+    monkeypatch.setattr(core.cache, "MAX_CACHE_BYTES", 10)
+    other = np.random.default_rng(5).normal(size=(50, 3))
+    build_cached(other)
+    build_cached(points)
+    assert is_cached(points) and not is_cached(other)
+
+
+def test_save_to_missing_folder_is_a_clear_error(tmp_path, points):
+    from core.errors import FileFormatError
+
+    ac = AlphaComplex.from_points(points[:30])
+    with pytest.raises(FileFormatError, match="does not exist"):
+        ac.save(tmp_path / "missing" / "t.npz")
+
+
+def test_saved_table_gets_normal_permissions(tmp_path, points):
+    import os
+    import stat
+
+    umask = os.umask(0o022)
+    try:
+        AlphaComplex.from_points(points[:30]).save(tmp_path / "t.npz")
+    finally:
+        os.umask(umask)
+    assert stat.S_IMODE((tmp_path / "t.npz").stat().st_mode) == 0o644
+    assert os.listdir(tmp_path) == ["t.npz"]
+
+
+@pytest.mark.parametrize("junk", [b"PK\x03\x04 broken zip", b"\x93NUMPY garbage"])
+def test_damaged_table_closes_its_file(tmp_path, junk):
+    import gc
+    import warnings
+
+    from core.errors import FileFormatError
+
+    (tmp_path / "t.npz").write_bytes(junk)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(FileFormatError, match=r"t\.npz"):
+            AlphaComplex.load(tmp_path / "t.npz")
+        gc.collect()
+    assert not [w for w in caught if issubclass(w.category, ResourceWarning)]
+
+
+def test_single_array_is_not_a_table(tmp_path):
+    from core.errors import FileFormatError
+
+    np.save(tmp_path / "t.npy", np.zeros(3))
+    with pytest.raises(FileFormatError, match=r"not a readable \.npz table"):
+        AlphaComplex.load(tmp_path / "t.npy")

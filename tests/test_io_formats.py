@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
+from core.errors import FileFormatError
 from core.io import READ_FORMATS, read_points
 from core.io.report import first_unique
 from core.io.subsample import subsample_indices
@@ -125,6 +126,32 @@ def test_npy_and_npz_round_trip(tmp_path, cloud, normals):
     np.testing.assert_array_equal(read_points(tmp_path / "p.npz").attributes["normals"], normals)
 
 
+@pytest.mark.parametrize("columns", ["2,0,1", [2, 0, 1], "-1,0,1", "c,a,b"])
+def test_npy_explicit_columns(tmp_path, cloud, columns):
+    np.save(tmp_path / "p.npy", cloud)
+    np.save(tmp_path / "s.npy", np.rec.fromarrays(cloud.T, names="a,b,c"))
+    want = cloud[:, [2, 0, 1]]
+    if columns != "c,a,b":
+        np.testing.assert_array_equal(read_points(tmp_path / "p.npy", columns=columns).points,
+                                      want)
+    if columns != "-1,0,1":
+        np.testing.assert_array_equal(read_points(tmp_path / "s.npy", columns=columns).points,
+                                      want)
+
+
+@pytest.mark.parametrize(("columns", "message"), [
+    ("0", r"p\.npy.*needs 2 or 3 columns, got 1"),
+    ([0, 1, 2, 0], r"needs 2 or 3 columns, got 4"),
+    ("0,5", r"p\.npy: column 5 out of range \(file has 3\)"),
+    ("x,y", r"p\.npy: no column named 'x' \(no header\)"),
+])
+def test_npy_bad_columns_say_why(tmp_path, cloud, columns, message):
+    np.save(tmp_path / "p.npy", cloud)
+    with pytest.raises(FileFormatError, match=message) as info:
+        read_points(tmp_path / "p.npy", columns=columns)
+    assert "not a readable NumPy file" not in str(info.value)
+
+
 @pytest.mark.parametrize("encoding", ["ascii", "binary", "binary_compressed"])
 def test_pcd_round_trip(tmp_path, cloud, encoding):
     from pypcd4 import Encoding, PointCloud
@@ -178,6 +205,18 @@ def test_first_unique_keeps_one_of_each(points):
     first_seen = [i for i, p in enumerate(map(tuple, points))
                   if p not in {tuple(q) for q in points[:i]}]
     assert np.flatnonzero(keep).tolist() == first_seen
+
+
+@pytest.mark.parametrize("size", [0.3, 0.05, 1e-12])  # 1e-12: too many voxels for one key
+def test_voxel_firsts_is_first_point_of_each_voxel(size):
+    from core.io.subsample import _voxel_firsts
+
+    pts = np.random.default_rng(3).uniform(0, 1, (400, 3)).round(1)  # shared voxels at any size
+    cells = np.floor((pts - pts.min(axis=0)) / size)
+    seen: dict = {}
+    for i, c in enumerate(map(tuple, cells.tolist())):
+        seen.setdefault(c, i)
+    assert _voxel_firsts(pts, size).tolist() == sorted(seen.values())
 
 
 @settings(max_examples=40, deadline=None)

@@ -24,7 +24,8 @@ def format_rows(fmt: str, columns: Sequence[np.ndarray]) -> str:
 
 
 def write_rows(fh: TextIO, fmt: str, columns: Sequence[np.ndarray],
-               chunk: int = CHUNK_ROWS) -> None:
-    """Write format_rows(fmt, columns) to `fh`, CHUNK_ROWS rows at a time."""
+               chunk: int | None = None) -> None:
+    """Write format_rows(fmt, columns) to `fh`, `chunk` (default CHUNK_ROWS) rows at a time."""
+    chunk = chunk or CHUNK_ROWS
     for start in range(0, len(columns[0]), chunk):
         fh.write(format_rows(fmt, [col[start:start + chunk] for col in columns]))

@@ -78,8 +78,12 @@ def explicit_columns(
     columns: str | Sequence[str | int], names: list[str] | None, n_cols: int, path: str
 ) -> list[int]:
     """Resolve explicit column names/indices against the header, with a clear error."""
+    try:
+        items = parse_columns(columns)
+    except FileFormatError as exc:
+        raise FileFormatError(f"{path}: {exc}") from None
     out = []
-    for item in parse_columns(columns):
+    for item in items:
         if isinstance(item, int):
             if not -n_cols <= item < n_cols:
                 raise FileFormatError(f"{path}: column {item} out of range (file has {n_cols})")

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
+from core.io.columns import clean_name, explicit_columns
 
 POINT_KEYS = ("points", "xyz", "coords", "coordinates", "positions", "vertices")
 ATTRIBUTE_KEYS = {"normals": "normals", "colors": "colors", "colours": "colors",
@@ -15,22 +16,31 @@ ATTRIBUTE_KEYS = {"normals": "normals", "colors": "colors", "colours": "colors",
 
 
 def _from_array(arr: np.ndarray, path: Path, columns=None) -> np.ndarray:
-    """(n, d) float64 coordinates from a plain or structured array."""
+    """(n, d) float64 coordinates from a plain or structured array (`columns` picks 2 or 3)."""
     if arr.dtype.names:
-        axes = [a for a in ("x", "y", "z") if a in arr.dtype.names]
-        if axes[:2] != ["x", "y"]:
-            raise FileFormatError(f"{path}: structured array without x/y fields")
-        return np.column_stack([arr[a] for a in axes]).astype(np.float64)
+        return _from_fields(arr, path, columns)
     if arr.ndim != 2 or arr.shape[1] < 2:
         raise FileFormatError(f"{path}: expected an (n, 2) or (n, 3) array, got shape {arr.shape}")
     if not np.issubdtype(arr.dtype, np.number) or np.iscomplexobj(arr):
         raise FileFormatError(f"{path}: array of {arr.dtype} is not real numbers")
-    cols = [int(c) for c in str(columns).split(",")] if columns is not None else None
-    if cols is not None:
-        if any(not -arr.shape[1] <= c < arr.shape[1] for c in cols):
-            raise FileFormatError(f"{path}: columns {cols} out of range for shape {arr.shape}")
-        return arr[:, cols].astype(np.float64)
+    if columns is not None:
+        return arr[:, explicit_columns(columns, None, arr.shape[1], str(path))].astype(np.float64)
     return arr[:, : min(arr.shape[1], 3)].astype(np.float64)
+
+
+def _from_fields(arr: np.ndarray, path: Path, columns) -> np.ndarray:
+    """Coordinates from the x/y(/z) fields of a structured array, or the `columns` named."""
+    arr, fields = arr.reshape(-1), list(arr.dtype.names)
+    if columns is not None:
+        names = [clean_name(f) for f in fields]
+        axes = [fields[i] for i in explicit_columns(columns, names, len(fields), str(path))]
+    else:
+        axes = [a for a in ("x", "y", "z") if a in fields]
+        if axes[:2] != ["x", "y"]:
+            raise FileFormatError(f"{path}: structured array without x/y fields")
+    if any(not np.issubdtype(arr.dtype[a], np.number) for a in axes):
+        raise FileFormatError(f"{path}: fields {', '.join(axes)} are not all numbers")
+    return np.column_stack([arr[a] for a in axes]).astype(np.float64)
 
 
 def read_npy(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
@@ -41,6 +51,8 @@ def read_npy(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
             if isinstance(data, np.ndarray):
                 return _from_array(data, path, columns), {}, ()
             return _from_archive(data, path, columns)
+        except FileFormatError:  # already says what is wrong (it is also a ValueError)
+            raise
         except (ValueError, OSError, EOFError, KeyError, zipfile.BadZipFile) as exc:
             raise FileFormatError(f"{path}: not a readable NumPy file ({exc})") from None
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
-from core.io.subsample import subsample_indices
+from core.io.subsample import first_unique, subsample_indices
 from core.tolerances import FLAT_RTOL
 
 SPACING_SAMPLE = 100_000  # query points used to estimate the median nearest-neighbour distance
@@ -75,21 +75,6 @@ def _readonly(a: np.ndarray) -> np.ndarray:
     a = np.ascontiguousarray(a)
     a.flags.writeable = False
     return a
-
-
-def first_unique(points: np.ndarray) -> np.ndarray:
-    """(n,) bool mask keeping the first occurrence of every exact duplicate row."""
-    n = len(points)
-    if n < 2:
-        return np.ones(n, dtype=bool)
-    order = np.lexsort(points.T[::-1])
-    srt = points[order]
-    starts = np.ones(n, dtype=bool)
-    starts[1:] = np.any(srt[1:] != srt[:-1], axis=1)
-    firsts = np.minimum.reduceat(order, np.flatnonzero(starts))
-    keep = np.zeros(n, dtype=bool)
-    keep[firsts] = True
-    return keep
 
 
 def is_planar(points: np.ndarray) -> bool:

@@ -5,19 +5,27 @@ from __future__ import annotations
 import numpy as np
 
 from core.errors import InputError
+from core.points import merge_duplicates
 
 SUBSAMPLE_METHODS = ("voxel", "random")
 _BISECTION_STEPS = 40
 
 
+def first_unique(rows: np.ndarray) -> np.ndarray:
+    """(n,) bool mask keeping the first occurrence of every exact duplicate of (n, d<=3) rows."""
+    _, ids = merge_duplicates(np.asarray(rows, dtype=np.float64))
+    # ids number distinct rows in order of first appearance: a row is first when its id is new
+    return np.diff(np.maximum.accumulate(ids), prepend=-1) > 0
+
+
 def _voxel_firsts(points: np.ndarray, size: float) -> np.ndarray:
     """Sorted indices of the first point in every occupied voxel of edge `size`."""
-    cells = np.floor((points - points.min(axis=0)) / size).astype(np.int64)
-    order = np.lexsort(cells.T[::-1])
-    srt = cells[order]
-    starts = np.ones(len(points), dtype=bool)
-    starts[1:] = np.any(srt[1:] != srt[:-1], axis=1)
-    return np.sort(np.minimum.reduceat(order, np.flatnonzero(starts)))
+    cells = np.floor((points - points.min(axis=0)) / size)
+    dims = cells.max(axis=0) + 1
+    if float(np.prod(dims)) >= 2.0**53:  # too many voxels for one exact float key each
+        return np.flatnonzero(first_unique(cells))
+    key = cells @ np.cumprod(np.r_[1.0, dims[:-1]])
+    return np.sort(np.unique(key, return_index=True)[1])  # first index of every voxel
 
 
 def voxel_indices(points: np.ndarray, target: int) -> np.ndarray:
