@@ -109,6 +109,8 @@ BAD_CALLS = {
     "unknown out ext": (["export", "F", "-o", "x.abc", "--alpha", "0.01"], 1, "cannot export"),
     "3d to geojson": (["export", "F", "-o", "x.geojson", "--alpha", "0.01"], 1, "2D polygons"),
     "bad file": (["info", "BAD"], 1, "truncated PLY"),
+    "missing out folder": (["export", "F", "-o", "no/x.ply", "--alpha", "0.01"], 1,
+                           "does not exist"),
 }
 
 
@@ -124,6 +126,28 @@ def test_bad_calls_give_one_line(capsys, tmp_path, monkeypatch, case):
     code, out, err = run(capsys, *argv)
     assert code == status and out == ""
     assert len(err.strip().splitlines()) == 1 and message in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("table", [False, True])
+def test_writer_failure_is_one_line_and_keeps_old_file(capsys, tmp_path, monkeypatch, table):
+    from core.export import surface
+    from core.export import table as table_module
+
+    def broken(path, *args):
+        path.write_bytes(b"half")
+        raise ValueError("faces must be (n, 3)\nsecond line of detail")
+
+    writers = table_module.TABLE_WRITERS if table else surface.SURFACE_WRITERS
+    monkeypatch.setitem(writers, ".npz" if table else ".ply", broken)
+    np.savetxt(tmp_path / "p.xyz", np.random.default_rng(0).normal(size=(60, 3)))
+    out = tmp_path / ("t.npz" if table else "s.ply")
+    out.write_bytes(b"old")
+    argv = ["export", tmp_path / "p.xyz", "-o", out, *(["--table"] if table else ["--alpha", 1])]
+    code, stdout, err = run(capsys, *argv)
+    assert code == 1 and stdout == "" and "Traceback" not in err
+    assert err == f"alphascoop: error: {out}: cannot write (faces must be (n, 3))\n"
+    assert out.read_bytes() == b"old" and sorted(p.name for p in tmp_path.iterdir()) == [
+        "cache", "p.xyz", out.name]
 
 
 def test_help_exits_zero(capsys):
