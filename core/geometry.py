@@ -95,6 +95,22 @@ def _solve(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL) -> tuple[n
     return num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL, duals
 
 
+def _spheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, ...]:
+    """One chunk: centre offsets, radii², determinants, degenerate flags and attach bits
+    (for d-simplices; else None), with extended precision and least squares where needed."""
+    vec = _edge_vectors(points, simplices)
+    c0, det, bad, poor, duals = _solve(vec)
+    if poor.any():
+        c0[poor], det[poor], bad[poor] = _extended(points, simplices[poor])
+    r2 = np.einsum("nd,nd->n", c0, c0)
+    bits = None if duals is None else _barycentric_signs(duals, c0, det)
+    if bad.any():
+        c0[bad], r2[bad] = _least_squares(vec[bad])
+        if bits is not None:
+            bits[bad] = 0
+    return c0, r2, det, bad, bits
+
+
 def circumspheres(
     points: np.ndarray, simplices: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -104,22 +120,10 @@ def circumspheres(
 
     Works for k-simplices in d dimensions with k < d too (the sphere centred in their hull).
     """
-    n, d = len(simplices), points.shape[1]
-    offsets = np.empty((n, d))
-    r2 = np.empty(n)
-    dets = np.empty(n)
-    flat = np.empty(n, dtype=bool)
-    for lo in range(0, n, CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        vec = _edge_vectors(points, simplices[sl])
-        c0, det, bad, poor, _ = _solve(vec)
-        if poor.any():
-            c0[poor], det[poor], bad[poor] = _extended(points, simplices[sl][poor])
-        r2_chunk = np.einsum("nd,nd->n", c0, c0)
-        if bad.any():
-            c0[bad], r2_chunk[bad] = _least_squares(vec[bad])
-        offsets[sl], r2[sl], dets[sl], flat[sl] = c0, r2_chunk, det, bad
-    return offsets, r2, dets, flat
+    parts = [_spheres(points, simplices[lo : lo + CHUNK]) for lo in range(0, len(simplices), CHUNK)]
+    if not parts:
+        return np.empty((0, points.shape[1])), np.empty(0), np.empty(0), np.empty(0, bool)
+    return tuple(np.concatenate([p[i] for p in parts]) for i in range(4))
 
 
 def any_point_inside(points: np.ndarray, centres: np.ndarray, r2: np.ndarray) -> np.ndarray:
@@ -160,16 +164,7 @@ def cell_spheres(
     flat, bits = np.empty(n, dtype=bool), np.empty(n, dtype=np.uint8)
     for lo in range(0, n, CHUNK):
         sl = slice(lo, lo + CHUNK)
-        vec = _edge_vectors(points, cells[sl])
-        c0, det, bad, poor, duals = _solve(vec)
-        if poor.any():
-            c0[poor], det[poor], bad[poor] = _extended(points, cells[sl][poor])
-        r2_chunk = np.einsum("nd,nd->n", c0, c0)
-        chunk_bits = _barycentric_signs(duals, c0, det)
-        if bad.any():
-            r2_chunk[bad] = _least_squares(vec[bad])[1]
-            chunk_bits[bad] = 0
-        r2[sl], dets[sl], flat[sl], bits[sl] = r2_chunk, det, bad, chunk_bits
+        _, r2[sl], dets[sl], flat[sl], bits[sl] = _spheres(points, cells[sl])
     return r2, dets, flat, bits
 
 
