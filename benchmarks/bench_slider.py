@@ -28,7 +28,6 @@ import numpy as np
 import pyvista as pv
 from datasets import noisy_torus
 
-from app.dataset import optimal_alpha
 from app.palette import default_styles
 from app.scene import Scene, as_xyz
 from core import AlphaComplex
@@ -79,7 +78,7 @@ def run(args: argparse.Namespace) -> dict:
     ac = AlphaComplex.from_points(points)
     build_s = time.perf_counter() - started
     spectrum = ac.spectrum()
-    start = int(np.searchsorted(spectrum, optimal_alpha(ac), side="right")) - 1
+    start = int(np.searchsorted(spectrum, ac.optimal_alpha(), side="right")) - 1
     start = min(max(start, 0), len(spectrum) - 2 * args.steps - 1)
     page = max(1, len(spectrum) // 50)
     width, height = (int(v) for v in args.size.lower().split("x"))
