@@ -45,8 +45,8 @@ class AlphaShape:
         return readonly(self._ac._level(self.dim).simplices[: self._entered(self.dim)])
 
     @cached_property
-    def _facet_ids(self) -> tuple[np.ndarray, np.ndarray]:
-        """Rows of `simplices(dim-1)` on the boundary, and those of them that are REGULAR.
+    def _facet_ids(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Rows of `simplices(dim-1)` on the boundary, and those that are REGULAR / SINGULAR.
 
         Scans whichever is shorter: the facets that entered (a prefix by enter) or those not
         yet interior (a suffix by interior), so high alphas cost little too.
@@ -60,7 +60,8 @@ class AlphaShape:
             ids = np.sort(order[first:][enter_by_interior[first:] <= self.alpha])
         else:
             ids = np.flatnonzero(level.interior[:count] > self.alpha)
-        return ids, ids[np.take(level.regular, ids) <= self.alpha]
+        regular = np.take(level.regular, ids) <= self.alpha
+        return ids, ids[regular], ids[~regular]
 
     @cached_property
     def _boundary_ids(self) -> np.ndarray:
@@ -92,6 +93,8 @@ class AlphaShape:
         if not 0 <= k < self.dim:
             raise ValueError(f"singular simplices exist for 0 <= k < {self.dim}, not k={k}")
         cache = self.__dict__.setdefault("_singular_ids", {})
+        if k == self.dim - 1:
+            return readonly(self._facet_ids[2])
         if k not in cache:
             level = self._ac._level(k)
             count = self._entered(k)
