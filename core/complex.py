@@ -10,6 +10,7 @@ import numpy as np
 
 from . import storage
 from .delaunay import triangulate
+from .errors import InputError
 from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
 from .shape import AlphaShape, readonly
 from .table import Level, Progress, Table, build_table
@@ -21,6 +22,17 @@ def _power_of_two_scale(centred: np.ndarray) -> float:
     """A power of two near the data's extent: dividing by it is exact and avoids overflow."""
     extent = float(np.abs(centred).max())
     return 2.0 ** math.floor(math.log2(extent)) if extent > 0 else 1.0
+
+
+def _radius(alpha: object) -> float:
+    """`alpha` as a float radius >= 0 (inf allowed); an InputError (a ValueError) otherwise."""
+    try:
+        value = float(alpha)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise InputError(f"alpha must be a number (a radius), not {alpha!r}") from None
+    if not value >= 0:
+        raise InputError(f"alpha is a radius and must be >= 0, not {alpha!r}")
+    return value
 
 
 class AlphaComplex:
@@ -164,6 +176,7 @@ class AlphaComplex:
     # --- queries ---------------------------------------------------------------------------
     def classify(self, alpha: float, k: int) -> np.ndarray:
         """(n_k,) int8 class of every k-simplex: 0 exterior, 1 singular, 2 regular, 3 interior."""
+        alpha = _radius(alpha)
         level = self._level(k)
         out = (level.enter <= alpha).view(np.int8).copy()
         out += level.regular <= alpha
@@ -172,9 +185,7 @@ class AlphaComplex:
 
     def shape(self, alpha: float) -> AlphaShape:
         """The alpha shape at `alpha` (a radius); arrays are computed when first used."""
-        if not alpha >= 0:
-            raise ValueError(f"alpha is a radius and must be >= 0, not {alpha}")
-        return AlphaShape(self, alpha)
+        return AlphaShape(self, _radius(alpha))
 
     def to_ambient(self, coords: np.ndarray) -> np.ndarray:
         """Map (k, dim) complex coordinates to the input space ((k, ambient_dim))."""
