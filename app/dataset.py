@@ -11,11 +11,12 @@ import numpy as np
 
 from core import AlphaComplex
 from core.cache import build_cached
+from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-READ_SHARE, BUILD_SHARE = 0.1, 0.85
+READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.6, 0.95  # topology (for the alpha) between
 
 
 @dataclass(frozen=True)
@@ -31,6 +32,7 @@ class Dataset:
     report: LoadReport | None
     load_seconds: float
     build_seconds: float
+    cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
 
 
 def load_dataset(path: str | Path, progress: Progress) -> Dataset:
@@ -48,9 +50,12 @@ def load_dataset(path: str | Path, progress: Progress) -> Dataset:
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     alpha = float(ac.optimal_alpha())
+    progress(INDEX_START, "indexing for the slider")
+    cursor = ac.cursor()
+    cursor.move(alpha)
     progress(1.0, "done")
     return Dataset(
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
-        load_seconds=read_done - started, build_seconds=built - read_done,
+        load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
     )

@@ -29,6 +29,7 @@ class ExplorerModel(QObject):
         self.dataset: Dataset | None = None
         self.index = -1
         self._shape = None
+        self._cursor = None
 
     @property
     def spectrum(self) -> np.ndarray:
@@ -42,14 +43,16 @@ class ExplorerModel(QObject):
 
     @property
     def shape(self):
-        """AlphaShape at the current alpha (queried once per index)."""
+        """AlphaShape at the current alpha (queried once per index, by the dataset's cursor:
+        a step costs what changed since the last shape)."""
         if self._shape is None and self.dataset is not None:
-            self._shape = self.dataset.ac.shape(self.alpha)
+            self._shape = self._cursor.move(self.alpha)
         return self._shape
 
     def set_dataset(self, dataset: Dataset) -> None:
         """Replace the dataset and move to its optimal alpha."""
         self.dataset = dataset
+        self._cursor = dataset.cursor or dataset.ac.cursor()
         self.index = snap_index(dataset.spectrum, dataset.optimal_alpha)
         self._shape = None
         self.datasetChanged.emit()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import os
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -14,6 +15,9 @@ from .errors import InputError
 from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
 from .shape import AlphaShape, readonly
 from .table import Level, Progress, Table, build_table
+
+if TYPE_CHECKING:
+    from .cursor import ShapeCursor
 
 EXTERIOR, SINGULAR, REGULAR, INTERIOR = 0, 1, 2, 3
 
@@ -186,6 +190,13 @@ class AlphaComplex:
     def shape(self, alpha: float) -> AlphaShape:
         """The alpha shape at `alpha` (a radius); arrays are computed when first used."""
         return AlphaShape(self, _radius(alpha))
+
+    def cursor(self) -> ShapeCursor:
+        """A ShapeCursor: shapes at one alpha after another, each step costing what changed
+        (the explorer's slider); building it sorts the table once more."""
+        from .cursor import ShapeCursor
+
+        return ShapeCursor(self)
 
     def to_ambient(self, coords: np.ndarray) -> np.ndarray:
         """Map (k, dim) complex coordinates to the input space ((k, ambient_dim))."""

@@ -93,9 +93,9 @@ class AlphaShape:
         if not 0 <= k < self.dim:
             raise ValueError(f"singular simplices exist for 0 <= k < {self.dim}, not k={k}")
         cache = self.__dict__.setdefault("_singular_ids", {})
-        if k == self.dim - 1:
-            return readonly(self._facet_ids[2])
-        if k not in cache:
+        if k not in cache and k == self.dim - 1:
+            cache[k] = readonly(self._facet_ids[2])
+        elif k not in cache:
             level = self._ac._level(k)
             count = self._entered(k)
             cache[k] = readonly(np.flatnonzero(level.regular[:count] > self.alpha))
@@ -108,6 +108,15 @@ class AlphaShape:
             ids = self.singular_ids(k)
             cache[k] = readonly(np.take(self._ac._level(k).simplices, ids, 0))
         return cache[k]
+
+    def _seed(self, regular: tuple[np.ndarray, np.ndarray],
+              singular: dict[int, tuple[np.ndarray, np.ndarray]]) -> AlphaShape:
+        """Fill the REGULAR facets and SINGULAR simplices with (ids, rows) pairs a
+        ShapeCursor kept (same sets as computed here, in the cursor's order)."""
+        self.__dict__["regular_facet_ids"], self.__dict__["regular_facets"] = regular
+        self.__dict__["_singular_ids"] = {k: ids for k, (ids, _) in singular.items()}
+        self.__dict__["_singular"] = {k: rows for k, (_, rows) in singular.items()}
+        return self
 
     @cached_property
     def measure(self) -> float:

@@ -1,0 +1,113 @@
+"""ShapeCursor (the slider's incremental shape) against classify() and fresh shapes."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from core import REGULAR, SINGULAR, AlphaComplex
+from core.errors import InputError
+
+
+def lattice_3d(size: int) -> np.ndarray:
+    """A cubic grid: massive ties in every class (cospherical cells)."""
+    axis = np.arange(size, dtype=np.float64)
+    return np.stack(np.meshgrid(axis, axis, axis), axis=-1).reshape(-1, 3)
+
+
+def assert_same_as_fresh(ac: AlphaComplex, shape, alpha: float) -> None:
+    """The cursor's shape holds exactly classify()'s REGULAR facets and SINGULAR simplices,
+    each row equal to the fresh shape's row for the same id (orientation included)."""
+    dim = ac.dim
+    fresh = ac.shape(alpha)
+    ids = shape.regular_facet_ids
+    order = np.argsort(ids)
+    np.testing.assert_array_equal(ids[order],
+                                  np.flatnonzero(ac.classify(alpha, dim - 1) == REGULAR))
+    np.testing.assert_array_equal(shape.regular_facets[order], fresh.regular_facets)
+    for k in range(dim):
+        ids = shape.singular_ids(k)
+        order = np.argsort(ids)
+        np.testing.assert_array_equal(ids[order], np.flatnonzero(ac.classify(alpha, k) == SINGULAR))
+        np.testing.assert_array_equal(shape.singular(k)[order], ac.simplices(k)[ids[order]])
+    np.testing.assert_array_equal(shape.cells, fresh.cells)
+    assert shape.measure == fresh.measure
+
+
+def walk(ac: AlphaComplex, indexes) -> None:
+    """Move one cursor along spectrum indexes, checking every stop."""
+    spectrum = ac.spectrum()
+    cursor = ac.cursor()
+    for index in indexes:
+        alpha = float(spectrum[int(index) % len(spectrum)])
+        assert_same_as_fresh(ac, cursor.move(alpha), alpha)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_arrow_page_and_far_steps_both_ways(dim):
+    rng = np.random.default_rng(dim)
+    ac = AlphaComplex.from_points(rng.random((1500, dim)))
+    n = len(ac.spectrum())
+    start = n // 3
+    arrows = start + np.arange(60)
+    pages = start + 60 + (n // 50) * np.arange(8)
+    back = pages[-1] - np.arange(1, 40)
+    far = rng.integers(0, n, 12)
+    walk(ac, np.concatenate([arrows, pages, back, far, [0, n - 1, 0, n // 2]]))
+
+
+def test_ties_on_a_lattice():
+    ac = AlphaComplex.from_points(lattice_3d(5))
+    walk(ac, list(range(len(ac.spectrum()))) + list(range(len(ac.spectrum()) - 1, -1, -1)))
+
+
+def test_alpha_between_critical_values_and_beyond():
+    ac = AlphaComplex.from_points(np.random.default_rng(7).random((300, 3)))
+    spectrum = ac.spectrum()
+    cursor = ac.cursor()
+    for alpha in [0.5 * (spectrum[10] + spectrum[11]), 0.0, float(spectrum[-1]) * 3, np.inf,
+                  float(spectrum[len(spectrum) // 2])]:
+        assert_same_as_fresh(ac, cursor.move(alpha), float(alpha))
+
+
+def test_shapes_handed_out_are_read_only_and_unchanged_by_later_moves():
+    ac = AlphaComplex.from_points(np.random.default_rng(3).random((800, 3)))
+    spectrum = ac.spectrum()
+    cursor = ac.cursor()
+    alpha = float(spectrum[len(spectrum) // 3])
+    first = cursor.move(alpha)
+    facets, singular = first.regular_facets.copy(), first.singular(1).copy()
+    with pytest.raises(ValueError):
+        first.regular_facets[0, 0] = 0
+    for index in range(len(spectrum) // 3, len(spectrum) // 3 + 200):
+        cursor.move(float(spectrum[index]))
+    np.testing.assert_array_equal(first.regular_facets, facets)
+    np.testing.assert_array_equal(first.singular(1), singular)
+    assert_same_as_fresh(ac, first, alpha)
+
+
+def test_bad_alpha_is_an_input_error_and_keeps_the_cursor():
+    ac = AlphaComplex.from_points(np.random.default_rng(4).random((200, 2)))
+    cursor = ac.cursor()
+    alpha = float(ac.spectrum()[50])
+    cursor.move(alpha)
+    for bad in (-1.0, float("nan"), "wide"):
+        with pytest.raises(InputError):
+            cursor.move(bad)
+    assert cursor.alpha == alpha
+    assert_same_as_fresh(ac, cursor.move(float(ac.spectrum()[60])), float(ac.spectrum()[60]))
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1), dim=st.sampled_from([2, 3]),
+       grid=st.booleans(), steps=st.lists(st.integers(-400, 400), min_size=1, max_size=25))
+def test_any_walk_matches_fresh_shapes(seed, dim, grid, steps):
+    rng = np.random.default_rng(seed)
+    points = rng.integers(0, 5, (60, dim)).astype(float) if grid else rng.random((60, dim))
+    try:
+        ac = AlphaComplex.from_points(points)
+    except InputError:
+        return
+    walk(ac, np.cumsum([len(ac.spectrum()) // 2, *steps]))
