@@ -16,7 +16,13 @@ from core.io import LoadReport, read_points
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.6, 0.95  # topology (for the alpha) between
+Build = Callable[[np.ndarray, Progress], AlphaComplex]
+READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
+
+
+def build_here(points: np.ndarray, progress: Progress) -> AlphaComplex:
+    """The complex and its signatures, built in this thread (cached)."""
+    return build_cached(points, progress=progress, signatures=True)
 
 
 @dataclass(frozen=True)
@@ -35,8 +41,12 @@ class Dataset:
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
 
 
-def load_dataset(path: str | Path, progress: Progress) -> Dataset:
-    """Read and build path, reporting progress(fraction, stage); Cancelled stops it."""
+def load_dataset(path: str | Path, progress: Progress, build: Build = build_here) -> Dataset:
+    """Read and build path, reporting progress(fraction, stage); Cancelled stops it.
+
+    `build(points, progress)` makes the complex with its signatures (the window passes
+    app.build_process.build, which can be cancelled mid-triangulation).
+    """
     path = Path(path)
     started = time.perf_counter()
     progress(0.0, "reading")
@@ -46,7 +56,7 @@ def load_dataset(path: str | Path, progress: Progress) -> Dataset:
     def build_progress(fraction: float, stage: str) -> None:
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
-    ac = build_cached(pointset, progress=build_progress)
+    ac = build(pointset.points, build_progress)
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     alpha = float(ac.optimal_alpha())

@@ -169,8 +169,9 @@ class MainWindow(QMainWindow):
     def closeEvent(self, event) -> None:
         """Save the layout, stop the worker (hidden meanwhile), release VTK before Qt.
 
-        A Delaunay build cannot be interrupted, so the wait is bounded: after CLOSE_WAIT_MS
-        the window closes anyway and the build's late result is dropped (stale request id).
+        Big builds run in a child process that cancel kills; what stays in the worker thread
+        (reading, loading a cached table) cannot be interrupted, so the wait is bounded: after
+        CLOSE_WAIT_MS the window closes anyway and a late result is dropped (stale request id).
         """
         self.prefs.store.setValue("window/geometry", self.saveGeometry())
         self.prefs.store.setValue("window/state", self.saveState())

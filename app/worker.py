@@ -1,7 +1,8 @@
 """Load and build datasets off the GUI thread, with progress, cancel and request ids.
 
 Every open gets a new request id and cancels the one before; results of a request that is no
-longer current are dropped, so a slow old build can never replace a newer dataset.
+longer current are dropped, so a slow old build can never replace a newer dataset. Big
+triangulations run in a child process (app.build_process) that Cancel kills at once.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from pathlib import Path
 
 from PySide6.QtCore import QObject, QThreadPool, Signal
 
+from app import build_process
 from app.dataset import load_dataset
 from core.errors import AlphaScoopError, Cancelled
 
@@ -69,7 +71,8 @@ class Loader(QObject):
             self.progress.emit(request, fraction, stage)
 
         try:
-            dataset = load_dataset(path, progress)
+            dataset = load_dataset(
+                path, progress, lambda points, report: build_process.build(points, report, cancel))
         except Cancelled:
             self.cancelled.emit(request)
         except AlphaScoopError as error:

@@ -70,14 +70,28 @@ def _load(path: Path, n_points: int) -> AlphaComplex | None:
         return None
 
 
-def _store(ac: AlphaComplex, path: Path) -> None:
-    """Save into the cache, ignoring a cache folder that cannot be written."""
+def store(ac: AlphaComplex, points: np.ndarray) -> Path | None:
+    """Save ac as the entry of these points (with its signatures, if computed); None when
+    the cache folder cannot be written."""
+    path = entry_path(np.asarray(points, dtype=np.float64))
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         ac.save(path)
         prune(path.parent, keep=path)
     except (OSError, AlphaScoopError):
-        return
+        return None
+    return path
+
+
+def load_cached(points: np.ndarray) -> AlphaComplex | None:
+    """The cached complex of these (n, d) points, or None (a bad entry is removed)."""
+    points = np.asarray(points, dtype=np.float64)
+    path = entry_path(points)
+    ac = _load(path, len(points))
+    if ac is not None:
+        with contextlib.suppress(OSError):
+            os.utime(path)  # mark as recently used
+    return ac
 
 
 def prune(folder: Path, max_bytes: int | None = None, *, keep: Path | None = None) -> None:
@@ -106,20 +120,31 @@ def _stat(path: Path) -> os.stat_result | None:
         return None
 
 
-def build_cached(pointset, *, use_cache: bool = True,
-                 progress: Progress | None = None) -> AlphaComplex:
-    """AlphaComplex of pointset.points (or an (n, d) array), from the cache when possible."""
+def build_cached(pointset, *, use_cache: bool = True, progress: Progress | None = None,
+                 signatures: bool = False) -> AlphaComplex:
+    """AlphaComplex of pointset.points (or an (n, d) array), from the cache when possible.
+
+    With `signatures`, they are computed too and cached with the table, so that re-opening
+    needs no topology pass either.
+    """
     points = np.asarray(getattr(pointset, "points", pointset), dtype=np.float64)
     if not use_cache:
-        return AlphaComplex.from_points(points, progress=progress)
-    path = entry_path(points)
-    ac = _load(path, len(points))
+        ac = AlphaComplex.from_points(points, progress=progress)
+        if signatures:
+            ac.signatures()
+        return ac
+    ac = load_cached(points)
     if ac is not None:
-        with contextlib.suppress(OSError):
-            os.utime(path)  # mark as recently used
         if progress is not None:
             progress(1.0, "loaded from cache")
+        if signatures and "_signatures" not in ac.__dict__:
+            ac.signatures()
+            store(ac, points)
         return ac
     ac = AlphaComplex.from_points(points, progress=progress)
-    _store(ac, path)
+    if signatures:
+        if progress is not None:
+            progress(1.0, "topology")
+        ac.signatures()
+    store(ac, points)
     return ac

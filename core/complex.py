@@ -242,6 +242,11 @@ class AlphaComplex:
         return Locator(self.points, self.simplices(self.dim), self.face_ids(self.dim),
                        self.facet_cells())
 
+    def _adopt(self, topology, signatures) -> None:
+        """Take topology and signatures saved with the table instead of computing them."""
+        self.__dict__.update(_topology=topology, _signatures=signatures,
+                             _spectrum=signatures.alphas)
+
     def betti(self, alpha: float) -> tuple[int, ...]:
         """Betti numbers at alpha: (components, holes) in 2D, (components, tunnels, voids) in 3D."""
         return self._topology.betti(alpha)

@@ -6,6 +6,11 @@ k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter, `enter_k`/`regular_
 (n_k,) float64 radii (inf = never), `face_ids_k` (n_k, k+1) int32 for k >= 1; `facet_cells`
 (f, 2) int32 (-1 = outside), `facet_flip` (f,) bool, `cell_measure` (c,) float64,
 `facet_interior_order` (f,) int32 (facet rows by ascending interior).
+
+Optional, written once computed, so re-opening skips the topology pass: `sig_alphas` (s,)
+float64 (the spectrum), `sig_betti` (s, dim) int32, `sig_solid` (s,) int32, `sig_measure`,
+`sig_boundary` (s,) float64; `topo_vertex_forest`, `topo_dual_forest` (float64),
+`topo_dual_edges` (fd, 2) int64, `topo_solid_forest` (float64).
 """
 
 from __future__ import annotations
@@ -37,6 +42,7 @@ def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
            "facet_interior_order": table.facet_interior_order}
     if ac.frame is not None:
         out["frame_origin"], out["frame_basis"] = ac.frame.origin, ac.frame.basis
+    out.update(_derived_arrays(ac))
     for k, level in enumerate(table.levels):
         out[f"simplices_{k}"] = level.simplices
         out[f"enter_{k}"], out[f"regular_{k}"] = level.enter, level.regular
@@ -44,6 +50,46 @@ def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
         if level.face_ids is not None:
             out[f"face_ids_{k}"] = level.face_ids
     return out
+
+
+def _derived_arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
+    """Signatures and topology forests, if `ac` has computed them (never computed here)."""
+    if "_signatures" not in ac.__dict__:
+        return {}
+    sig, topo = ac.signatures(), ac._topology
+    return {"sig_alphas": sig.alphas, "sig_betti": sig.betti, "sig_solid": sig.solid_components,
+            "sig_measure": sig.measure, "sig_boundary": sig.boundary_measure,
+            "topo_vertex_forest": topo.vertex_forest, "topo_dual_forest": topo.dual_forest,
+            "topo_dual_edges": topo.dual_edges, "topo_solid_forest": topo.solid_forest}
+
+
+def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], path: Path) -> None:
+    """Hand saved signatures and topology to `ac` after checking their shapes."""
+    from .signatures import Signatures
+    from .topology import Topology, ascending
+
+    alphas = a["sig_alphas"]
+    s, dim = len(alphas), ac.dim
+    _check(alphas.ndim == 1 and s > 0 and alphas[0] == 0.0
+           and bool(np.all(alphas[1:] > alphas[:-1])), path, "sig_alphas")
+    for name, shape in (("sig_betti", (s, dim)), ("sig_solid", (s,)), ("sig_measure", (s,)),
+                        ("sig_boundary", (s,))):
+        _check(a[name].shape == shape, path, name)
+    edges = a["topo_dual_edges"]
+    _check(edges.shape == (len(a["topo_dual_forest"]), 2), path, "topo_dual_edges")
+    levels = ac._table.levels
+    topology = Topology(dim=dim, n_cells=len(levels[dim].enter),
+                        enter_sorted=tuple(ascending(level.enter) for level in levels),
+                        vertex_forest=a["topo_vertex_forest"], dual_forest=a["topo_dual_forest"],
+                        dual_edges=edges, solid_forest=a["topo_solid_forest"])
+    signatures = Signatures(dim=dim, alphas=alphas, betti=a["sig_betti"],
+                            solid_components=a["sig_solid"], measure=a["sig_measure"],
+                            boundary_measure=a["sig_boundary"],
+                            intervals=tuple(ac.intervals(k) for k in range(dim + 1)))
+    for arr in (*topology.__dict__.values(), *signatures.__dict__.values()):
+        if isinstance(arr, np.ndarray):
+            arr.flags.writeable = False
+    ac._adopt(topology, signatures)
 
 
 def save(ac: AlphaComplex, path: str | os.PathLike) -> None:
@@ -107,6 +153,9 @@ def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
         _check(order.shape == (n_facets,) and (n_facets == 0 or (order.min() >= 0
                and order.max() < n_facets)), path, "facet_interior_order")
         table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"], order)
-        return cls(points, a["input_index"], table, frame, int(a["ambient_dim"]))
+        ac = cls(points, a["input_index"], table, frame, int(a["ambient_dim"]))
+        if "sig_alphas" in a:
+            _adopt_derived(ac, a, path)
+        return ac
     except KeyError as exc:
         raise FileFormatError(f"{path}: not a valid Alpha Scoop table (missing {exc})") from None

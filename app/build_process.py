@@ -1,0 +1,125 @@
+"""Build big tables in a child process: Qhull cannot be interrupted, a process can be killed.
+
+The child builds the table and its signatures, writes them to the cache (or to a temporary
+file when the cache cannot be written) and says where; the caller loads that file, which takes
+a few percent of the build. Cancel kills the child at once, so a newer open or closing the
+window never waits for a Delaunay triangulation to finish. Small sets build in the caller's
+thread: they take about a second, less than starting a process.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import tempfile
+import threading
+from collections.abc import Callable
+from multiprocessing.connection import Connection
+from pathlib import Path
+
+import numpy as np
+
+from core import errors
+from core.cache import build_cached, load_cached, store
+from core.complex import AlphaComplex
+
+Progress = Callable[[float, str], None]
+IN_THREAD_BELOW = 50_000  # points; such builds take about a second here
+POLL_SECONDS = 0.1
+TABLE_SHARE, SAVE_START = 0.65, 0.95  # of the child's progress; the topology pass between
+
+
+def build(points: np.ndarray, progress: Progress, cancel: threading.Event,
+          use_cache: bool = True) -> AlphaComplex:
+    """The complex of (n, d) points with signatures computed, from the cache when possible.
+
+    Raises core.errors.Cancelled soon after `cancel` is set, and the errors of the build
+    (InputError for point sets that make no complex) as they are.
+    """
+    points = np.asarray(points, dtype=np.float64)
+    if len(points) < IN_THREAD_BELOW:
+        return build_cached(points, use_cache=use_cache, progress=progress, signatures=True)
+    if use_cache and (ac := load_cached(points)) is not None:
+        progress(1.0, "loaded from cache")
+        if "_signatures" not in ac.__dict__:
+            ac.signatures()
+        return ac
+    with tempfile.TemporaryDirectory(prefix="alphascoop-build-") as folder:
+        source, target = Path(folder) / "points.npy", Path(folder) / "table.npz"
+        np.save(source, points)
+        written = _run_child(source, target, use_cache, progress, cancel)
+        progress(1.0, "loading the table")
+        return AlphaComplex.load(written)
+
+
+def _run_child(source: Path, target: Path, use_cache: bool, progress: Progress,
+               cancel: threading.Event) -> Path:
+    """Start the build process and follow it; the path it wrote, or its error raised here."""
+    context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
+    receiver, sender = context.Pipe(duplex=False)
+    child = context.Process(target=child_main, args=(str(source), str(target), use_cache, sender),
+                            name="alphascoop-build", daemon=True)
+    child.start()
+    sender.close()
+    try:
+        return _follow(child, receiver, progress, cancel)
+    finally:
+        if child.is_alive():
+            child.kill()
+        child.join()
+        receiver.close()
+
+
+def _follow(child, receiver: Connection, progress: Progress, cancel: threading.Event) -> Path:
+    """Relay the child's messages until it is done; Cancelled as soon as cancel is set."""
+    while True:
+        if cancel.is_set():
+            raise errors.Cancelled("cancelled by the user")
+        try:
+            message = receiver.recv() if receiver.poll(POLL_SECONDS) else None
+        except EOFError:
+            message = ("died",)
+        if message is None:
+            continue
+        kind, *rest = message
+        if kind == "progress":
+            progress(*rest)
+        elif kind == "done":
+            return Path(rest[0])
+        elif kind == "error":
+            name, text = rest
+            error_class = getattr(errors, name, None)
+            if name == "MemoryError":
+                raise MemoryError(text)
+            if isinstance(error_class, type) and issubclass(error_class, errors.AlphaScoopError):
+                raise error_class(text)
+            raise errors.AlphaScoopError(text)
+        else:
+            child.join(1.0)
+            raise errors.AlphaScoopError(
+                f"the build process stopped without a result (exit code {child.exitcode}; "
+                "out of memory?)")
+
+
+def child_main(source: str, target: str, use_cache: bool, sender: Connection) -> None:
+    """Body of the build process: build, compute signatures, save, report where (or why not)."""
+    try:
+        points = np.load(source, allow_pickle=False)
+        ac = AlphaComplex.from_points(
+            points, lambda f, s: sender.send(("progress", TABLE_SHARE * f, s)))
+        sender.send(("progress", TABLE_SHARE, "topology"))
+        ac.signatures()
+        sender.send(("progress", SAVE_START, "saving the table"))
+        written = store(ac, points) if use_cache else None
+        if written is None:
+            ac.save(target)
+            written = Path(target)
+        sender.send(("done", str(written)))
+    except errors.AlphaScoopError as error:
+        sender.send(("error", type(error).__name__, str(error)))
+    except MemoryError:
+        sender.send(("error", "MemoryError", "not enough memory to build this point set"))
+    except Exception as error:  # reported to the user as one line, never a traceback
+        sender.send(("error", "AlphaScoopError", f"unexpected error in the build "
+                                                 f"({type(error).__name__}: {error})"))
+    finally:
+        sender.close()
