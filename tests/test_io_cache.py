@@ -155,3 +155,13 @@ def test_single_array_is_not_a_table(tmp_path):
     np.save(tmp_path / "t.npy", np.zeros(3))
     with pytest.raises(FileFormatError, match=r"not a readable \.npz table"):
         AlphaComplex.load(tmp_path / "t.npy")
+
+
+def test_signatures_are_cached_with_the_table(cache, points):
+    build_cached(points)  # an entry without signatures (as `alphascoop info` leaves it)
+    assert "_signatures" not in build_cached(points).__dict__
+    upgraded = build_cached(points, signatures=True)  # computes them and rewrites the entry
+    assert "_signatures" in upgraded.__dict__
+    reopened = build_cached(points, signatures=True)
+    assert "_signatures" in reopened.__dict__
+    np.testing.assert_array_equal(reopened.signatures().betti, upgraded.signatures().betti)

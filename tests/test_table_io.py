@@ -160,3 +160,44 @@ def test_save_into_missing_folder_gives_a_clear_error(tmp_path) -> None:
     with pytest.raises((*FILE_ERRORS, OSError)) as info:
         ac.save(tmp_path / "no" / "such" / "folder" / "t.npz")
     assert "t.npz" in str(info.value) or "folder" in str(info.value)
+
+
+def test_signatures_computed_before_saving_come_back_without_a_topology_pass(
+        complex_, tmp_path, monkeypatch) -> None:
+    signatures = complex_.signatures()
+    path = tmp_path / "with_signatures.npz"
+    complex_.save(path)
+    import core.topology
+
+    monkeypatch.setattr(core.topology, "build_topology",
+                        lambda ac: pytest.fail("the saved topology was not used"))
+    loaded = AlphaComplex.load(path)
+    for name in ("alphas", "betti", "solid_components", "measure", "boundary_measure"):
+        np.testing.assert_array_equal(getattr(loaded.signatures(), name),
+                                      getattr(signatures, name))
+    np.testing.assert_array_equal(loaded.spectrum(), complex_.spectrum())
+    assert loaded.optimal_alpha() == complex_.optimal_alpha()
+    for alpha in complex_.spectrum()[:: max(1, len(complex_.spectrum()) // 25)]:
+        assert loaded.betti(alpha) == complex_.betti(alpha)
+    for name in ("components", "cavities"):
+        np.testing.assert_array_equal(getattr(loaded.persistence(), name),
+                                      getattr(complex_.persistence(), name))
+
+
+@pytest.mark.parametrize("edit", ["short-betti", "unsorted-alphas", "edges-mismatch"])
+def test_damaged_signatures_are_rejected(tmp_path, edit: str) -> None:
+    path = tmp_path / "table.npz"
+    ac = AlphaComplex.from_points(np.random.default_rng(3).random((60, 3)))
+    ac.signatures()
+    ac.save(path)
+    with np.load(path, allow_pickle=False) as z:
+        arrays = {name: z[name].copy() for name in z.files}
+    if edit == "short-betti":
+        arrays["sig_betti"] = arrays["sig_betti"][:-1]
+    elif edit == "unsorted-alphas":
+        arrays["sig_alphas"] = arrays["sig_alphas"][::-1].copy()
+    else:
+        arrays["topo_dual_edges"] = arrays["topo_dual_edges"][:-1]
+    np.savez(path, **arrays)
+    with pytest.raises(FileFormatError, match="table.npz"):
+        AlphaComplex.load(path)
