@@ -276,6 +276,33 @@ def test_newer_open_wins_over_older(window, qtbot, points_file) -> None:
     assert len(window.model.dataset.ac.points) == 800
 
 
+def test_newer_open_kills_a_big_build_in_its_triangulation(window, qtbot, points_file,
+                                                            monkeypatch) -> None:
+    """Big builds run in a child process: a newer open stops the older one mid-Delaunay
+    (it never finishes: no cache entry), and the newer dataset, built the same way, shows."""
+    import multiprocessing
+
+    from app import build_process
+    from core.cache import entry_path
+
+    monkeypatch.setattr(build_process, "IN_THREAD_BELOW", 0)
+    big_points = blobs_3d(300_000, seed=10)
+    big, small = points_file(big_points, "big.npy"), points_file(blobs_3d(900, seed=11), "s.npy")
+    with qtbot.waitSignal(window.loader.progress, timeout=BUILD_TIMEOUT_MS,
+                          check_params_cb=lambda r, f, stage: stage == "Delaunay triangulation"):
+        first = window.open_path(big)
+    with qtbot.waitSignals([window.loader.cancelled, window.model.datasetChanged],
+                           timeout=BUILD_TIMEOUT_MS):
+        window.open_path(small)
+    window.loader.wait()
+    assert window.model.dataset.path == small and first < window.loader.current
+    assert not entry_path(big_points).exists()
+    assert multiprocessing.active_children() == []
+    show_all_layers(window, window.layers_panel.styles)
+    press(qtbot, window, Qt.Key.Key_Right)
+    assert_layers_match(window)
+
+
 def test_signature_cursor_follows_alpha(opened, qtbot) -> None:
     """The signature plots' cursor sits at the current alpha after a key step."""
     panel = opened.signatures_panel

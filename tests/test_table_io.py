@@ -199,5 +199,5 @@ def test_damaged_signatures_are_rejected(tmp_path, edit: str) -> None:
     else:
         arrays["topo_dual_edges"] = arrays["topo_dual_edges"][:-1]
     np.savez(path, **arrays)
-    with pytest.raises(FileFormatError, match="table.npz"):
+    with pytest.raises(FileFormatError, match=r"table\.npz"):
         AlphaComplex.load(path)
