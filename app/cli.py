@@ -99,7 +99,10 @@ def load(args) -> tuple:
     update, close = _progress()
     start = time.perf_counter()
     try:
-        ac = build_cached(ps, use_cache=not args.no_cache, progress=update)
+        # Where the optimal alpha is needed, the topology is cached with the table too.
+        needs_topology = args.command == "info" or getattr(args, "alpha", None) is None
+        ac = build_cached(ps, use_cache=not args.no_cache, progress=update,
+                          signatures=needs_topology and not getattr(args, "table", False))
     finally:
         close()
     return ps, ac, time.perf_counter() - start, cached
