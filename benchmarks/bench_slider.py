@@ -1,15 +1,19 @@
 """Benchmark of a slider step in the explorer (issue 6, Performance).
 
     python benchmarks/bench_slider.py [--n 200000] [--steps 40] [--seed 0] [--size 1280x800]
-        [--all-layers] [--json out.json]
+        [--all-layers] [--skip-open3d] [--json out.json]
 
 A step is what the window does when the alpha index moves: `cursor.move(alpha)` (the
 dataset's ShapeCursor, as app.model uses it) plus swapping the connectivity of the visible
 layers' persistent meshes (app.scene.Scene.set_shape). Steps: arrow keys (next critical
 value), a mouse drag over a 1000-pixel slider (spectrum/1000 per pixel) and Page keys
-(spectrum/50). The render is timed apart: here it is software rendering (llvmpipe), on a
-desktop GPU it is not. Every figure is reported as a ratio to the table build time measured
+(spectrum/50), each kind going on from where the last stopped and turning at the ends. The
+render is timed apart: here it is software rendering (llvmpipe), on a desktop GPU it is not.
+Every figure is reported as a ratio to the table build time measured
 in the same run; the cursor's one-off set-up (done in the loader thread) is reported too.
+When `import open3d` works, Open3D's per-alpha reconstruction (TetraMesh made once, then
+create_from_point_cloud_alpha_shape) is timed on the same points at the first arrow and page
+alphas, and the slowest step of each kind is given as a ratio to Open3D's fastest alpha.
 """
 
 from __future__ import annotations
@@ -45,6 +49,7 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     parser.add_argument("--size", default="1280x800", help="render window WxH")
     parser.add_argument("--all-layers", action="store_true",
                         help="also update the interior (cells) layer, hidden by default in 3D")
+    parser.add_argument("--skip-open3d", action="store_true", help="do not time Open3D")
     parser.add_argument("--json", help="write the figures to this JSON file")
     return parser.parse_args(argv)
 
@@ -62,10 +67,38 @@ def step_times(cursor, spectrum: np.ndarray, scene: Scene, indexes: np.ndarray) 
             for i in indexes]
 
 
+def bounce(indexes: np.ndarray, length: int) -> np.ndarray:
+    """Indexes folded back into [0, length) at both ends, as a user paging on would turn."""
+    period = 2 * (length - 1)
+    folded = np.asarray(indexes) % period
+    return np.where(folded < length, folded, period - folded)
+
+
 def rerender(plotter: pv.Plotter) -> None:
     """One full software render of the scene (marks it modified first, so VTK redraws)."""
     plotter.renderer.Modified()
     plotter.render_window.Render()
+
+
+def open3d_times(points: np.ndarray, alphas: list[float]) -> dict | None:
+    """Open3D's alpha shape at each alpha (a radius, as ours) after one TetraMesh; None when
+    open3d does not import."""
+    try:
+        import open3d as o3d
+    except ImportError:
+        return None
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
+    started = time.perf_counter()
+    tetra, pt_map = o3d.geometry.TetraMesh.create_from_point_cloud(cloud)
+    tetra_s = time.perf_counter() - started
+    create = o3d.geometry.TriangleMesh.create_from_point_cloud_alpha_shape
+    per_alpha = []
+    for alpha in alphas:
+        started = time.perf_counter()
+        mesh = create(cloud, alpha, tetra, pt_map)
+        per_alpha.append({"alpha": alpha, "seconds": time.perf_counter() - started,
+                          "triangles": len(mesh.triangles)})
+    return {"version": o3d.__version__, "tetra_mesh_s": tetra_s, "per_alpha": per_alpha}
 
 
 def summary(times: list[float]) -> dict[str, float]:
@@ -99,16 +132,20 @@ def run(args: argparse.Namespace) -> dict:
         plotter.render_window.Render()
         steps = 1 + np.arange(args.steps)
         arrows = step_times(cursor, spectrum, scene, start + steps)
-        drags = step_times(cursor, spectrum, scene, (start + pixel * steps) % len(spectrum))
-        pages = step_times(cursor, spectrum, scene, (start + page * steps) % len(spectrum))
+        drags = step_times(cursor, spectrum, scene, bounce(start + pixel * steps, len(spectrum)))
+        pages = step_times(cursor, spectrum, scene, bounce(start + page * steps, len(spectrum)))
         renders = [timed(lambda: rerender(plotter)) for _ in range(5)]
     finally:
         plotter.close()
+    open3d = None if args.skip_open3d else open3d_times(
+        points, [float(spectrum[start + 1]),
+                 float(spectrum[bounce(start + page, len(spectrum))])])
     return {
         "n_points": args.n, "n_cells": len(ac.simplices(ac.dim)), "spectrum": len(spectrum),
         "build_s": build_s, "cursor_setup_s": cursor_s, "arrow_step": summary(arrows),
         "drag_step": summary(drags), "page_step": summary(pages),
         "render": summary(renders), "window": args.size, "all_layers": args.all_layers,
+        "open3d": open3d,
     }
 
 
@@ -122,6 +159,17 @@ def report(figures: dict) -> str:
         median, worst = figures[kind]["median_s"], figures[kind]["max_s"]
         lines.append(f"{kind:10s} median {1e3 * median:8.3f} ms  worst {1e3 * worst:8.3f} ms  "
                      f"median/build 1/{build / median:,.0f}  worst/build 1/{build / worst:,.0f}")
+    if figures.get("open3d"):
+        o3d = figures["open3d"]
+        fastest = min(entry["seconds"] for entry in o3d["per_alpha"])
+        for entry in o3d["per_alpha"]:
+            lines.append(f"Open3D {o3d['version']} alpha {entry['alpha']:.6g}: "
+                         f"{entry['seconds']:.3f} s, {entry['triangles']:,} triangles "
+                         f"(TetraMesh once: {o3d['tetra_mesh_s']:.2f} s)")
+        for kind in ("arrow_step", "drag_step", "page_step"):
+            worst = figures[kind]["max_s"]
+            lines.append(f"{kind:10s} worst / Open3D's fastest alpha = {worst / fastest:.5f} "
+                         f"(goal <= 0.1)")
     render = figures["render"]
     lines.append(f"render     median {1e3 * render['median_s']:8.1f} ms (software, "
                  f"{figures['window']}; not part of the step)")

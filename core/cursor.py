@@ -1,9 +1,10 @@
 """A moving alpha (the explorer's slider): each step updates the shape by what changed.
 
 `ShapeCursor.move(alpha)` returns the same AlphaShape as `ac.shape(alpha)`, but its REGULAR
-facets and SINGULAR simplices come from sets kept since the last move: a step costs the
-simplices whose class changed between the two alphas plus one contiguous copy of the answer,
-not a scan of the table and a gather of every answer row. Far jumps fall back to a fresh query.
+facets and SINGULAR simplices come from sets kept since the last move. Each set ranks its
+candidates by the alpha at which they join; the members are kept as a sorted rank array, so a
+step costs the simplices that changed plus sequential passes over the answer (no random
+gathers of answer rows), and a far jump is one sequential filter of a prefix.
 """
 
 from __future__ import annotations
@@ -19,8 +20,9 @@ from .table import argsort_radii
 if TYPE_CHECKING:
     from .complex import AlphaComplex
 
-Rows = Callable[[np.ndarray], np.ndarray]
-Query = Callable[[AlphaShape], np.ndarray]
+FEW = 256  # changes up to this many are spliced by runs of memcpy, more by a masked pass
+SORT_COST = 8  # a sorted element costs about this many elements of a sequential pass
+NOT_A_CANDIDATE = np.iinfo(np.int32).max
 
 
 def _between(sorted_values: np.ndarray, low: float, high: float) -> slice:
@@ -30,92 +32,136 @@ def _between(sorted_values: np.ndarray, low: float, high: float) -> slice:
 
 
 class IntervalSet:
-    """The simplices i with lo[i] <= alpha < hi[i], kept as an unordered dense list.
+    """The simplices i with lo[i] <= alpha < hi[i] at a moving alpha.
 
-    Candidates are indexed twice, by lo and by hi, so the simplices that join or leave
-    between two alphas are two contiguous ranges of those orders. Members sit in the first
-    `size` slots of `members`/`rows`; removals fill their holes from the tail.
+    Candidates (lo < hi) get a rank in ascending lo; at alpha the members are the ranks
+    below K(alpha) = #(lo <= alpha) whose hi exceeds alpha. Moving up keeps the members that
+    the hi order does not end and appends a contiguous rank range; moving down truncates and
+    inserts what the hi order says is open again. Member ranks and rows are new read-only
+    arrays at every step (never written afterwards), so shapes can hold them without a copy.
     """
 
-    def __init__(self, n: int, lo: np.ndarray, hi: np.ndarray, by_lo: np.ndarray,
-                 by_hi: np.ndarray, rows: Rows, width: int, query: Query) -> None:
-        """`lo`, `hi`: (n,) bounds of all n simplices; `by_lo`/`by_hi`: the candidates
-        (lo < hi) sorted by each; `rows(ids)` gives their (k, width) connectivity and
-        `query(shape)` their ids from a fresh AlphaShape (for far jumps)."""
-        self._lo, self._hi = lo, hi
-        self._by_lo, self._lo_sorted = by_lo, np.take(lo, by_lo)
-        self._by_hi, self._hi_sorted = by_hi, np.take(hi, by_hi)
-        self._rows, self._query = rows, query
-        self._slot = np.full(n, -1, dtype=np.int32)
-        self._row = np.dtype((np.void, 4 * width))  # a row as one item: 1D moves are faster
-        self._width = width
-        self.members = np.empty(0, dtype=np.int64)
-        self.rows = np.empty(0, dtype=self._row)
-        self.size = 0
+    def __init__(self, lo: np.ndarray, hi: np.ndarray, by_lo: np.ndarray, by_hi: np.ndarray,
+                 hi_sorted: np.ndarray, rows_by_lo: np.ndarray) -> None:
+        """`lo`, `hi`: (n,) bounds of all n simplices; `by_lo`: the candidates by ascending
+        lo; `by_hi`, `hi_sorted`: simplex ids by ascending hi and their hi values (others
+        than candidates are ignored); `rows_by_lo`: (m, width) int32 rows of the candidates
+        in `by_lo` order."""
+        self._by_lo = by_lo.astype(np.int32)
+        self._lo_sorted = np.take(lo, by_lo)
+        self._hi_by_lo = np.take(hi, by_lo)
+        self._rank = np.full(len(lo), NOT_A_CANDIDATE, dtype=np.int32)
+        self._rank[by_lo] = np.arange(len(by_lo), dtype=np.int32)
+        self._by_hi, self._hi_sorted = by_hi, hi_sorted
+        self._width = rows_by_lo.shape[1]
+        self._row = np.dtype((np.void, 4 * self._width))  # one row as one item: faster moves
+        self._rows_by_lo = np.ascontiguousarray(rows_by_lo, np.int32).view(self._row).ravel()
+        self._count = 0  # K at the current alpha
+        self.members = readonly(np.zeros(0, dtype=np.int32))  # sorted ranks
+        self.rows = readonly(np.zeros(0, dtype=self._row))
 
-    def changes(self, old: float, new: float) -> tuple[np.ndarray, np.ndarray]:
-        """Ids that join and that leave the set when alpha moves from old to new."""
-        low, high = min(old, new), max(old, new)
-        by_lo = self._by_lo[_between(self._lo_sorted, low, high)]
-        by_hi = self._by_hi[_between(self._hi_sorted, low, high)]
-        # Starting inside (low, high] by lo: members at high only if they also end after it;
-        # ending inside it by hi: members at low only if they started by then.
-        at_high = by_lo[np.take(self._hi, by_lo) > high]
-        at_low = by_hi[np.take(self._lo, by_hi) <= low]
-        return (at_high, at_low) if new > old else (at_low, at_high)
+    @property
+    def size(self) -> int:
+        """Number of members at the current alpha."""
+        return len(self.members)
 
-    def event_count(self, old: float, new: float) -> int:
-        """How many candidate bounds lie between the two alphas (the cost of a delta step)."""
-        low, high = min(old, new), max(old, new)
-        for_lo, for_hi = _between(self._lo_sorted, low, high), _between(self._hi_sorted, low, high)
-        return (for_lo.stop - for_lo.start) + (for_hi.stop - for_hi.start)
+    def _entered(self, alpha: float) -> int:
+        return int(np.searchsorted(self._lo_sorted, alpha, "right"))
 
-    def move(self, old: float, new: float) -> None:
-        """Update the members from alpha `old` to alpha `new` by the simplices that changed."""
-        joining, leaving = self.changes(old, new)
-        self._remove(leaving)
-        self._append(joining)
+    def _set(self, members: np.ndarray, rows: np.ndarray, count: int) -> None:
+        self.members, self.rows, self._count = readonly(members), readonly(rows), count
 
-    def reset(self, shape: AlphaShape) -> None:
-        """Replace the members by those of a fresh shape (far jumps, first use)."""
-        self._slot[self.members[: self.size]] = -1
-        self.size = 0
-        self._append(self._query(shape))
+    def reset(self, alpha: float) -> None:
+        """Members at alpha from scratch: one sequential filter of the entered prefix."""
+        count = self._entered(alpha)
+        keep = self._hi_by_lo[:count] > alpha
+        self._set(np.flatnonzero(keep).astype(np.int32), self._rows_by_lo[:count][keep], count)
 
-    def _append(self, ids: np.ndarray) -> None:
-        end = self.size + len(ids)
-        if end > len(self.members):  # grow with headroom: a slider step never reallocates
-            capacity = max(end + end // 2, 2 * len(self.members), 1024)
-            members = np.empty(capacity, dtype=np.int64)
-            members[: self.size] = self.members[: self.size]
-            rows = np.empty(capacity, dtype=self._row)
-            rows[: self.size] = self.rows[: self.size]
-            self.members, self.rows = members, rows
-        self.members[self.size:end] = ids
-        self.rows[self.size:end] = np.ascontiguousarray(self._rows(ids), np.int32).view(
-            self._row).ravel()
-        self._slot[ids] = np.arange(self.size, end, dtype=np.int32)
-        self.size = end
-
-    def _remove(self, ids: np.ndarray) -> None:
-        if len(ids) == 0:
+    def go(self, old: float, new: float) -> None:
+        """Move from alpha `old` (the current one) to `new`: by the changes or from scratch,
+        whichever costs less."""
+        if new == old:
             return
-        slots = self._slot[ids]
-        size = self.size - len(ids)
-        holes = slots[slots < size]
-        tail = np.ones(self.size - size, dtype=bool)
-        tail[slots[slots >= size] - size] = False
-        movers = size + np.flatnonzero(tail)
-        self.members[holes] = self.members[movers]
-        self.rows[holes] = self.rows[movers]
-        self._slot[self.members[holes]] = holes
-        self._slot[ids] = -1
-        self.size = size
+        count = self._entered(new)
+        ended = self._by_hi[_between(self._hi_sorted, min(old, new), max(old, new))]
+        if self._cheaper_to_reset(count, len(ended)):
+            self.reset(new)
+        elif new > old:
+            self._up(new, count, ended)
+        else:
+            self._down(count, ended)
 
-    def snapshot(self) -> tuple[np.ndarray, np.ndarray]:
-        """Read-only copies of the member ids (k,) and rows (k, width), in slot order."""
-        rows = self.rows[: self.size].copy().view(np.int32).reshape(-1, self._width)
-        return readonly(self.members[: self.size].copy()), readonly(rows)
+    def _cheaper_to_reset(self, count: int, n_ended: int) -> bool:
+        """A reset scans `count` ranks; a delta step sorts the ended ones and passes over the
+        members and the newly entered ranks."""
+        return count <= self.size + SORT_COST * n_ended + abs(count - self._count)
+
+    def _up(self, new: float, count: int, ended: np.ndarray) -> None:
+        ranks = np.take(self._rank, ended)
+        leaving = ranks[ranks < self._count]  # were members: lo <= old < hi <= new
+        start = self._count
+        joining = np.flatnonzero(self._hi_by_lo[start:count] > new)
+        size = self.size - len(leaving) + len(joining)
+        members, rows = np.empty(size, dtype=np.int32), np.empty(size, dtype=self._row)
+        kept = self.size - len(leaving)
+        if len(leaving) <= FEW:  # copy the runs between them
+            gaps = np.searchsorted(self.members, np.sort(leaving))
+            _copy_runs(self.members, self.rows, members, rows, gaps, skip=True)
+        else:  # a byte map by rank stays in cache; binary searches would not
+            gone = np.zeros(self._count, dtype=bool)
+            gone[leaving] = True
+            keep = ~np.take(gone, self.members)
+            np.compress(keep, self.members, out=members[:kept])
+            np.compress(keep, self.rows, out=rows[:kept])
+        np.add(joining, start, out=members[kept:], casting="unsafe")
+        np.take(self._rows_by_lo[start:count], joining, out=rows[kept:])
+        self._set(members, rows, count)
+
+    def _down(self, count: int, ended: np.ndarray) -> None:
+        ranks = np.take(self._rank, ended)
+        returning = np.sort(ranks[ranks < count])  # members again: lo <= new < hi <= old
+        cut = int(np.searchsorted(self.members, count))
+        if len(returning) <= FEW:  # copy the runs between the insertion points
+            size = cut + len(returning)
+            members, rows = np.empty(size, dtype=np.int32), np.empty(size, dtype=self._row)
+            at = np.searchsorted(self.members[:cut], returning)
+            _copy_runs(self.members[:cut], self.rows[:cut], members, rows, at, skip=False)
+            slots = at + np.arange(len(at))
+            members[slots] = returning
+            rows[slots] = np.take(self._rows_by_lo, returning)
+        else:  # merge through a map by rank: 1 staying member, 2 returning
+            source = np.zeros(count, dtype=np.uint8)
+            source[self.members[:cut]] = 1
+            source[returning] = 2
+            members = np.flatnonzero(source).astype(np.int32)
+            origin = np.take(source, members)
+            rows = np.empty(len(members), dtype=self._row)
+            rows[origin == 1] = self.rows[:cut]
+            rows[origin == 2] = np.take(self._rows_by_lo, returning)
+        self._set(members, rows, count)
+
+    def snapshot(self) -> tuple[Callable[[], np.ndarray], np.ndarray]:
+        """(ids, rows) of the members: a function giving the (k,) int64 ids (computed only if
+        asked) and the read-only (k, width) int32 rows, both in rank order."""
+        members, by_lo = self.members, self._by_lo
+        return (lambda: np.take(by_lo, members).astype(np.int64),
+                self.rows.view(np.int32).reshape(-1, self._width))
+
+
+def _copy_runs(members: np.ndarray, rows: np.ndarray, out_members: np.ndarray,
+               out_rows: np.ndarray, at: np.ndarray, skip: bool) -> None:
+    """Copy members/rows into the front of the outputs run by run around the sorted
+    positions `at`: dropping the items there (skip) or leaving a hole before each (insert).
+    A few memcpy calls: cheaper than a masked pass when the positions are few."""
+    source, target = 0, 0
+    for position in at.tolist():
+        run = position - source
+        out_members[target:target + run] = members[source:position]
+        out_rows[target:target + run] = rows[source:position]
+        source, target = (position + 1, target + run) if skip else (position, target + run + 1)
+    run = len(members) - source
+    out_members[target:target + run] = members[source:]
+    out_rows[target:target + run] = rows[source:]
 
 
 class ShapeCursor:
@@ -126,54 +172,54 @@ class ShapeCursor:
     """
 
     def __init__(self, complex_: AlphaComplex) -> None:
-        """Index the REGULAR facets by (regular, interior) and every SINGULAR level by
+        """Rank the REGULAR facets by (regular, interior) and every SINGULAR level by
         (enter, regular)."""
         self._ac = ac = complex_
         dim = ac.dim
         facets = ac._level(dim - 1)
-        cells = ac.facet_cells()
         by_regular = argsort_radii(facets.regular)
         by_regular = by_regular[np.take(facets.interior, by_regular)
                                 > np.take(facets.regular, by_regular)]
-
-        def oriented(ids: np.ndarray) -> np.ndarray:
-            # In its REGULAR interval a facet bounds exactly one cell: the one entered first
-            # (cells are sorted by enter), which is cell 1 when that is real and lower.
-            pairs = cells[ids]  # fancy indexing: np.take would copy the strided columns first
-            inside_second = (pairs[:, 1] >= 0) & (pairs[:, 1] < pairs[:, 0])
-            return np.take(ac._oriented_facets, 2 * ids + inside_second, 0)
-
-        ac._oriented_facets, ac._facets_by_interior  # noqa: B018 (built here, not on a step)
-        interior_order = ac._table.facet_interior_order
-        by_interior = interior_order[np.take(facets.regular, interior_order)
-                                     < np.take(facets.interior, interior_order)]
-        self.regular = IntervalSet(len(facets.enter), facets.regular, facets.interior,
-                                   by_regular, by_interior, oriented, dim,
-                                   lambda shape: shape.regular_facet_ids)
+        self.regular = IntervalSet(facets.regular, facets.interior, by_regular,
+                                   ac._table.facet_interior_order, ac._facets_by_interior[0],
+                                   _oriented_rows(ac, by_regular))
         self.singular: dict[int, IntervalSet] = {}
         for k in range(dim):
             level = ac._level(k)
             by_enter = np.flatnonzero(level.enter < level.regular)  # sorted by enter already
-            by_regular = by_enter[argsort_radii(np.take(level.regular, by_enter))]
+            by_ended = by_enter[argsort_radii(np.take(level.regular, by_enter))]
             self.singular[k] = IntervalSet(
-                len(level.enter), level.enter, level.regular, by_enter, by_regular,
-                lambda ids, s=level.simplices: np.take(s, ids, 0), k + 1,
-                lambda shape, k=k: shape.singular_ids(k))
+                level.enter, level.regular, by_enter, by_ended,
+                np.take(level.regular, by_ended), np.take(level.simplices, by_enter, 0))
         self.alpha: float | None = None
 
-    def _sets(self) -> list[tuple[IntervalSet, int | None]]:
-        return [(self.regular, None)] + [(s, k) for k, s in self.singular.items()]
+    def _sets(self) -> list[IntervalSet]:
+        return [self.regular, *self.singular.values()]
 
     def move(self, alpha: float) -> AlphaShape:
         """The shape at alpha (a radius), from the previous one by the simplices that changed."""
         shape = self._ac.shape(alpha)
         alpha = shape.alpha
-        for tracked, _ in self._sets():
-            if self.alpha is None or tracked.event_count(self.alpha, alpha) > max(
-                    tracked.size, 4096):
-                tracked.reset(shape)
+        for tracked in self._sets():
+            if self.alpha is None:
+                tracked.reset(alpha)
             else:
-                tracked.move(self.alpha, alpha)
+                tracked.go(self.alpha, alpha)
         self.alpha = alpha
         singular = {k: tracked.snapshot() for k, tracked in self.singular.items()}
         return shape._seed(self.regular.snapshot(), singular)
+
+
+def _oriented_rows(ac: AlphaComplex, ids: np.ndarray) -> np.ndarray:
+    """(len(ids), dim) int32 facets as the shape orients them while REGULAR.
+
+    In its REGULAR interval a facet bounds exactly one cell: the one entered first (cells
+    are sorted by enter), which is cell 1 when that is real and lower. Facing out of cell 0
+    reverses the stored facet where `facet_flip` says so; facing out of cell 1, elsewhere.
+    """
+    rows = np.take(ac._level(ac.dim - 1).simplices, ids, 0)
+    pairs = ac.facet_cells()[ids]
+    inside_second = (pairs[:, 1] >= 0) & (pairs[:, 1] < pairs[:, 0])
+    reverse = np.take(ac._table.facet_flip, ids) ^ inside_second
+    rows[reverse, -2:] = rows[reverse][:, [-1, -2]]
+    return rows

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -76,7 +77,8 @@ class AlphaShape:
     @cached_property
     def regular_facet_ids(self) -> np.ndarray:
         """(r,) int64 rows of `simplices(dim-1)` that are REGULAR at alpha."""
-        return readonly(self._facet_ids[1])
+        seeded = self.__dict__.get("_seeded_ids", {}).get("regular")
+        return readonly(seeded() if seeded else self._facet_ids[1])
 
     @cached_property
     def regular_facets(self) -> np.ndarray:
@@ -93,7 +95,10 @@ class AlphaShape:
         if not 0 <= k < self.dim:
             raise ValueError(f"singular simplices exist for 0 <= k < {self.dim}, not k={k}")
         cache = self.__dict__.setdefault("_singular_ids", {})
-        if k not in cache and k == self.dim - 1:
+        seeded = self.__dict__.get("_seeded_ids", {})
+        if k not in cache and k in seeded:
+            cache[k] = readonly(seeded[k]())
+        elif k not in cache and k == self.dim - 1:
             cache[k] = readonly(self._facet_ids[2])
         elif k not in cache:
             level = self._ac._level(k)
@@ -109,12 +114,13 @@ class AlphaShape:
             cache[k] = readonly(np.take(self._ac._level(k).simplices, ids, 0))
         return cache[k]
 
-    def _seed(self, regular: tuple[np.ndarray, np.ndarray],
-              singular: dict[int, tuple[np.ndarray, np.ndarray]]) -> AlphaShape:
-        """Fill the REGULAR facets and SINGULAR simplices with (ids, rows) pairs a
-        ShapeCursor kept (same sets as computed here, in the cursor's order)."""
-        self.__dict__["regular_facet_ids"], self.__dict__["regular_facets"] = regular
-        self.__dict__["_singular_ids"] = {k: ids for k, (ids, _) in singular.items()}
+    def _seed(self, regular: tuple[Callable[[], np.ndarray], np.ndarray],
+              singular: dict[int, tuple[Callable[[], np.ndarray], np.ndarray]]) -> AlphaShape:
+        """Fill the REGULAR facets and SINGULAR simplices with what a ShapeCursor kept: per
+        class, a function giving the ids (called only if they are asked for) and the rows
+        (the same sets as computed here, in the cursor's order)."""
+        ids, self.__dict__["regular_facets"] = regular
+        self.__dict__["_seeded_ids"] = {"regular": ids, **{k: f for k, (f, _) in singular.items()}}
         self.__dict__["_singular"] = {k: rows for k, (_, rows) in singular.items()}
         return self
 

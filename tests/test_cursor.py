@@ -36,6 +36,17 @@ def assert_same_as_fresh(ac: AlphaComplex, shape, alpha: float) -> None:
     assert shape.measure == fresh.measure
 
 
+@pytest.fixture(params=["cost model", "always delta", "always reset"])
+def strategy(request, monkeypatch):
+    """Run a test with the cursor's own choice, or forcing delta steps or resets."""
+    from core.cursor import IntervalSet
+
+    if request.param != "cost model":
+        force = request.param == "always reset"
+        monkeypatch.setattr(IntervalSet, "_cheaper_to_reset", lambda self, c, n: force)
+    return request.param
+
+
 def walk(ac: AlphaComplex, indexes) -> None:
     """Move one cursor along spectrum indexes, checking every stop."""
     spectrum = ac.spectrum()
@@ -46,7 +57,7 @@ def walk(ac: AlphaComplex, indexes) -> None:
 
 
 @pytest.mark.parametrize("dim", [2, 3])
-def test_arrow_page_and_far_steps_both_ways(dim):
+def test_arrow_page_and_far_steps_both_ways(dim, strategy):
     rng = np.random.default_rng(dim)
     ac = AlphaComplex.from_points(rng.random((1500, dim)))
     n = len(ac.spectrum())
@@ -58,12 +69,12 @@ def test_arrow_page_and_far_steps_both_ways(dim):
     walk(ac, np.concatenate([arrows, pages, back, far, [0, n - 1, 0, n // 2]]))
 
 
-def test_ties_on_a_lattice():
+def test_ties_on_a_lattice(strategy):
     ac = AlphaComplex.from_points(lattice_3d(5))
     walk(ac, list(range(len(ac.spectrum()))) + list(range(len(ac.spectrum()) - 1, -1, -1)))
 
 
-def test_alpha_between_critical_values_and_beyond():
+def test_alpha_between_critical_values_and_beyond(strategy):
     ac = AlphaComplex.from_points(np.random.default_rng(7).random((300, 3)))
     spectrum = ac.spectrum()
     cursor = ac.cursor()
@@ -100,14 +111,23 @@ def test_bad_alpha_is_an_input_error_and_keeps_the_cursor():
     assert_same_as_fresh(ac, cursor.move(float(ac.spectrum()[60])), float(ac.spectrum()[60]))
 
 
-@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(seed=st.integers(0, 2**32 - 1), dim=st.sampled_from([2, 3]),
-       grid=st.booleans(), steps=st.lists(st.integers(-400, 400), min_size=1, max_size=25))
-def test_any_walk_matches_fresh_shapes(seed, dim, grid, steps):
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1), dim=st.sampled_from([2, 3]), grid=st.booleans(),
+       force=st.sampled_from([None, True, False]),
+       steps=st.lists(st.integers(-400, 400), min_size=1, max_size=25))
+def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, steps):
+    import contextlib
+    from unittest import mock
+
+    from core.cursor import IntervalSet
+
     rng = np.random.default_rng(seed)
     points = rng.integers(0, 5, (60, dim)).astype(float) if grid else rng.random((60, dim))
     try:
         ac = AlphaComplex.from_points(points)
     except InputError:
         return
-    walk(ac, np.cumsum([len(ac.spectrum()) // 2, *steps]))
+    choice = (mock.patch.object(IntervalSet, "_cheaper_to_reset", lambda self, c, n: force)
+              if force is not None else contextlib.nullcontext())
+    with choice:
+        walk(ac, np.cumsum([len(ac.spectrum()) // 2, *steps]))
