@@ -21,7 +21,8 @@ if TYPE_CHECKING:
     from .complex import AlphaComplex
 
 FEW = 256  # changes up to this many are spliced by runs of memcpy, more by a masked pass
-SORT_COST = 8  # a sorted element costs about this many elements of a sequential pass
+EVENT_COST = 8  # an ended simplex (random look-ups, a sort) costs about this many elements
+#                of a sequential pass
 NOT_A_CANDIDATE = np.iinfo(np.int32).max
 
 
@@ -92,9 +93,9 @@ class IntervalSet:
             self._down(count, ended)
 
     def _cheaper_to_reset(self, count: int, n_ended: int) -> bool:
-        """A reset scans `count` ranks; a delta step sorts the ended ones and passes over the
-        members and the newly entered ranks."""
-        return count <= self.size + SORT_COST * n_ended + abs(count - self._count)
+        """A reset scans `count` ranks; a delta step looks up the ended ones and passes over
+        the members and the newly entered ranks."""
+        return count <= self.size + EVENT_COST * n_ended + abs(count - self._count)
 
     def _up(self, new: float, count: int, ended: np.ndarray) -> None:
         ranks = np.take(self._rank, ended)
@@ -168,7 +169,8 @@ class ShapeCursor:
     """The alpha shape at a moving alpha; `move(alpha)` equals `ac.shape(alpha)` as sets.
 
     Build once per complex with `ac.cursor()` (a few sorts of the table); one cursor serves
-    one caller at a time (not thread-safe). Ids and rows it hands out are in no set order.
+    one caller at a time (not thread-safe). Ids and rows it hands out are in the order the
+    simplices joined their class, not by id.
     """
 
     def __init__(self, complex_: AlphaComplex) -> None:
