@@ -4,7 +4,8 @@ The child builds the table and its signatures, writes them to the cache (or to a
 file when the cache cannot be written) and says where; the caller loads that file, which takes
 a few percent of the build. Cancel kills the child at once, so a newer open or closing the
 window never waits for a Delaunay triangulation to finish. Small sets build in the caller's
-thread: they take about a second, less than starting a process.
+thread: under IN_THREAD_BELOW points a build takes a few seconds at most, and a process would
+add about one (its start and the table's trip through a file).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from core.cache import build_cached, load_cached, store
 from core.complex import AlphaComplex
 
 Progress = Callable[[float, str], None]
-IN_THREAD_BELOW = 50_000  # points; such builds take about a second here
+IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
 POLL_SECONDS = 0.1
 TABLE_SHARE, SAVE_START = 0.65, 0.95  # of the child's progress; the topology pass between
 

@@ -108,3 +108,24 @@ def test_bad_options_exit_with_a_message(argv, capsys):
     with pytest.raises(SystemExit) as stop:
         main(argv)
     assert stop.value.code == 2 and "error:" in capsys.readouterr().err
+
+
+def test_slider_benchmark_end_to_end(tmp_path):
+    """bench_slider.py runs on a small torus and reports every step kind against the build.
+    It runs in its own process: importing it would pick VTK's window class for this one."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    out = tmp_path / "slider.json"
+    script = Path(__file__).with_name("bench_slider.py")
+    done = subprocess.run([sys.executable, str(script), "--n", "3000", "--steps", "4",
+                           "--skip-open3d", "--size", "320x240", "--json", str(out)],
+                          capture_output=True, text=True, timeout=300, env=dict(os.environ))
+    assert done.returncode == 0, done.stderr
+    figures = json.loads(out.read_text())
+    assert figures["n_points"] == 3000 and figures["build_s"] > 0
+    for kind in ("arrow_step", "drag_step", "page_step"):
+        assert 0 < figures[kind]["median_s"] <= figures[kind]["max_s"]
+        assert f"{kind:10s} median" in done.stdout
