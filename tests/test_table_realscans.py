@@ -109,3 +109,29 @@ def assert_cospherical_or_flat(pts: np.ndarray, cells: np.ndarray) -> None:
         near = np.abs(d - radii[sl, None]) <= 1e-7 * radii[sl, None]
         on_sphere[sl] = near.sum(axis=1) >= 5
     assert on_sphere.all(), f"{int((~on_sphere).sum())} differing cells are in general position"
+
+
+@pytest.mark.parametrize("name", ["milk.pcd", "plane_flat.laz"])
+def test_slider_cursor_walk_matches_classify_on_a_real_scan(name: str) -> None:
+    """The slider's incremental shapes on real data (ties, duplicates, a planar patch built
+    in 2D) hold exactly classify()'s REGULAR facets and SINGULAR simplices at every stop."""
+    from core import REGULAR, SINGULAR
+
+    path = DATA / name
+    if not path.is_file():
+        pytest.skip(f"{name} is absent")
+    ac = AlphaComplex.from_points(read_scan_raw(path))
+    spectrum = ac.spectrum()
+    n = len(spectrum)
+    optimal = int(np.searchsorted(spectrum, ac.optimal_alpha(), side="right")) - 1
+    stops = [optimal, *range(optimal + 1, optimal + 30), *(optimal - n // 50 * np.arange(1, 8)),
+             n // 3, n - 1, 0, optimal]
+    cursor = ac.cursor()
+    for index in stops:
+        alpha = float(spectrum[int(np.clip(index, 0, n - 1))])
+        shape = cursor.move(alpha)
+        regular = np.flatnonzero(ac.classify(alpha, ac.dim - 1) == REGULAR)
+        np.testing.assert_array_equal(np.sort(shape.regular_facet_ids), regular)
+        for k in range(ac.dim):
+            np.testing.assert_array_equal(np.sort(shape.singular_ids(k)),
+                                          np.flatnonzero(ac.classify(alpha, k) == SINGULAR))
