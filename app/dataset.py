@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from core import AlphaComplex
-from core.cache import build_cached
+from core.cache import build_cached, is_cached
 from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
 from core.signatures import Signatures
@@ -39,6 +39,12 @@ class Dataset:
     load_seconds: float
     build_seconds: float
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
+    from_cache: bool = False  # the table was loaded from the cache, not built
+
+    def build_line(self) -> str:
+        """How the table came: 'built in 12.3 s' or 'loaded from cache in 0.4 s'."""
+        how = "loaded from cache" if self.from_cache else "built"
+        return f"{how} in {self.build_seconds:.2f} s"
 
 
 def load_dataset(path: str | Path, progress: Progress, build: Build = build_here) -> Dataset:
@@ -56,6 +62,7 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     def build_progress(fraction: float, stage: str) -> None:
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
+    cached = is_cached(pointset)
     ac = build(pointset.points, build_progress)
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
@@ -68,4 +75,5 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
+        from_cache=cached,
     )

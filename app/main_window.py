@@ -137,7 +137,7 @@ class MainWindow(QMainWindow):
         ds = self.model.dataset
         self.status.setText(
             f"{len(ds.ac.points):,} points · {len(self.model.shape.cells):,} cells · "
-            f"alpha {self.model.alpha:.6g} · built in {ds.build_seconds:.2f} s"
+            f"alpha {self.model.alpha:.6g} · {ds.build_line()}"
         )
 
     def _set_style(self, name: str, style) -> None:

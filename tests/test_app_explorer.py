@@ -303,6 +303,27 @@ def test_newer_open_kills_a_big_build_in_its_triangulation(window, qtbot, points
     assert_layers_match(window)
 
 
+def test_reopening_loads_the_cached_table_and_says_so(window, qtbot, points_file,
+                                                      monkeypatch) -> None:
+    """The second open of the same points is a cache load, topology included."""
+    import core.topology
+
+    path = points_file(blobs_3d(700, seed=12), "again.npy")
+    open_and_wait(qtbot, window, path)
+    first = window.model.dataset
+    assert not first.from_cache and "built in" in window.status.text()
+
+    def no_topology_pass(ac):
+        raise AssertionError("re-opening recomputed the topology")
+
+    monkeypatch.setattr(core.topology, "build_topology", no_topology_pass)
+    open_and_wait(qtbot, window, path)
+    second = window.model.dataset
+    assert second.from_cache and "loaded from cache in" in window.status.text()
+    np.testing.assert_array_equal(second.signatures.betti, first.signatures.betti)
+    assert second.optimal_alpha == first.optimal_alpha
+
+
 def test_signature_cursor_follows_alpha(opened, qtbot) -> None:
     """The signature plots' cursor sits at the current alpha after a key step."""
     panel = opened.signatures_panel
