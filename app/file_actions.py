@@ -52,14 +52,14 @@ def ask_save_path(parent: QWidget, prefs: Preferences, title: str, formats: dict
     return path
 
 
-def export_shape(ac, alpha: float, path: Path) -> str:
+def export_shape(ac, alpha: float, path: Path, progress=None) -> str:
     """Write the shape at alpha to path with core.export; returns what was written."""
-    return write_shape(ac, alpha, path).line()
+    return write_shape(ac, alpha, path, progress=progress).line()
 
 
-def export_table(ac, path: Path) -> str:
+def export_table(ac, path: Path, progress=None) -> str:
     """Write the interval table to path with core.export; returns what was written."""
-    return write_table(ac, path).line()
+    return write_table(ac, path, progress=progress).line()
 
 
 def save_screenshot(plotter, path: Path) -> str:

@@ -19,6 +19,7 @@ from pyvistaqt import QtInteractor
 from app import file_actions
 from app.alpha_panel import AlphaPanel
 from app.info_panel import InfoPanel
+from app.jobs import JobRunner
 from app.layers_panel import LayersPanel
 from app.menus import build_menus
 from app.model import ExplorerModel
@@ -45,6 +46,7 @@ class MainWindow(QMainWindow):
         self.start_alpha: float | None = None
         self.model = ExplorerModel()
         self.loader = Loader(self)
+        self.jobs = JobRunner(self)
         self.plotter = QtInteractor(self, auto_update=False)
         self.plotter.setAcceptDrops(False)
         self.setCentralWidget(self.plotter)
@@ -54,9 +56,11 @@ class MainWindow(QMainWindow):
         self.info_panel = InfoPanel(self.model)
         self.signatures_panel = SignaturesPanel(self.model)
         self.progress = ProgressWidget()
+        self.job_progress = ProgressWidget()
         self.status = QLabel("Open a point set: File → Open, or drop a file here.")
         self.statusBar().addWidget(self.status, 1)
         self.statusBar().addPermanentWidget(self.progress)
+        self.statusBar().addPermanentWidget(self.job_progress)
         self._add_dock("Alpha", self.alpha_panel, Qt.DockWidgetArea.RightDockWidgetArea)
         self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
         self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
@@ -80,6 +84,11 @@ class MainWindow(QMainWindow):
         self.loader.failed.connect(self._on_failed)
         self.loader.cancelled.connect(self._on_cancelled)
         self.progress.cancelRequested.connect(self.loader.cancel)
+        self.jobs.progress.connect(self.job_progress.update_progress)
+        self.jobs.finished.connect(self._on_job_done)
+        self.jobs.failed.connect(self._on_job_failed)
+        self.jobs.cancelled.connect(self._on_job_cancelled)
+        self.job_progress.cancelRequested.connect(self.jobs.cancel)
         self.model.datasetChanged.connect(self._show_dataset)
         self.model.alphaChanged.connect(self._show_shape)
         self.layers_panel.styleChanged.connect(self._set_style)
@@ -90,6 +99,21 @@ class MainWindow(QMainWindow):
         self.prefs.set_last_dir(path)
         self.progress.start(f"opening {path.name}")
         return self.loader.open(path)
+
+    def _on_job_done(self, title: str, message: str) -> None:
+        """An export finished: say what it wrote."""
+        self.job_progress.stop()
+        self.report(message)
+
+    def _on_job_failed(self, title: str, message: str) -> None:
+        """An export failed: one dialog naming what failed."""
+        self.job_progress.stop()
+        QMessageBox.warning(self, title, message)
+
+    def _on_job_cancelled(self, title: str) -> None:
+        """An export was cancelled: nothing was written (an old file stays as it was)."""
+        self.job_progress.stop()
+        self.report(f"{title} cancelled; nothing was written")
 
     def _on_progress(self, request: int, fraction: float, stage: str) -> None:
         """Show the current request's progress (older requests are ignored)."""
@@ -176,10 +200,13 @@ class MainWindow(QMainWindow):
         self.prefs.store.setValue("window/geometry", self.saveGeometry())
         self.prefs.store.setValue("window/state", self.saveState())
         self.loader.cancel()
-        if self.loader.is_busy():
+        self.jobs.cancel()
+        if self.loader.is_busy() or self.jobs.is_busy():
             self.hide()
         if not self.loader.wait(CLOSE_WAIT_MS):
             self.loader.blockSignals(True)  # the late result must not reach a closed window
+        if not self.jobs.wait(CLOSE_WAIT_MS):
+            self.jobs.blockSignals(True)
         self.plotter.close()
         super().closeEvent(event)
 

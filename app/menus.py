@@ -49,6 +49,16 @@ def run_writer(window, title: str, write) -> None:
         window.report(message)
 
 
+def run_in_background(window, title: str, job) -> None:
+    """Start a writer in the window's job runner (progress and Cancel in the status bar);
+    its outcome arrives through the runner's signals. One at a time."""
+    if not window.jobs.start(title, job):
+        QMessageBox.information(window, title, "Another export is still running; wait for it "
+                                               "or cancel it first.")
+        return
+    window.job_progress.start(title)
+
+
 def export_shape(window) -> None:
     """File → Export shape: formats from core.export, the oriented surface by default."""
     if window.model.dataset is None:
@@ -59,7 +69,8 @@ def export_shape(window) -> None:
                                       f"{stem}_alpha")
     if path:
         ac, alpha = window.model.dataset.ac, window.model.alpha
-        run_writer(window, "Export shape", lambda: file_actions.export_shape(ac, alpha, path))
+        run_in_background(window, "Export shape",
+                          lambda progress: file_actions.export_shape(ac, alpha, path, progress))
 
 
 def export_table(window) -> None:
@@ -71,7 +82,8 @@ def export_table(window) -> None:
                                       TABLE_FORMATS, f"{stem}_table")
     if path:
         ac = window.model.dataset.ac
-        run_writer(window, "Export table", lambda: file_actions.export_table(ac, path))
+        run_in_background(window, "Export table",
+                          lambda progress: file_actions.export_table(ac, path, progress))
 
 
 def save_screenshot(window) -> None:

@@ -335,17 +335,25 @@ def test_signature_cursor_follows_alpha(opened, qtbot) -> None:
         assert cursor.get_xdata()[0] == pytest.approx(opened.model.alpha)
 
 
+def run_file_action(qtbot, win, action: str) -> None:
+    """Trigger a File menu action and wait until any background export it started is over."""
+    win.menus[action].trigger()
+    qtbot.waitUntil(lambda: not win.jobs.is_busy() and not win.job_progress.isVisible(),
+                    timeout=BUILD_TIMEOUT_MS)
+
+
 @pytest.mark.parametrize(("action", "name"), [("export_shape", "shape.ply"),
                                               ("export_table", "table.npz"),
                                               ("screenshot", "view.png")])
-def test_file_menu_writes_and_reports(opened, tmp_path, monkeypatch, action, name) -> None:
+def test_file_menu_writes_and_reports(opened, qtbot, tmp_path, monkeypatch, action,
+                                      name) -> None:
     """Export shape/table and screenshot write the chosen file and say what they wrote."""
     target = tmp_path / name
     monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
                         lambda *args, **kwargs: (str(target), ""))
     warnings: list[str] = []
     monkeypatch.setattr("app.menus.QMessageBox.warning", lambda *args: warnings.append(args[-1]))
-    opened.menus[action].trigger()
+    run_file_action(qtbot, opened, action)
     assert warnings == []
     assert target.stat().st_size > 0
     assert str(target) in opened.status.text()
@@ -354,7 +362,7 @@ def test_file_menu_writes_and_reports(opened, tmp_path, monkeypatch, action, nam
 
 
 @pytest.mark.parametrize("action", ["export_shape", "export_table", "screenshot"])
-def test_file_menu_shows_any_writer_error_in_a_dialog(opened, tmp_path, monkeypatch,
+def test_file_menu_shows_any_writer_error_in_a_dialog(opened, qtbot, tmp_path, monkeypatch,
                                                       action) -> None:
     """A writer failing with any exception gives one dialog naming it; nothing escapes."""
     monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
@@ -369,11 +377,44 @@ def test_file_menu_shows_any_writer_error_in_a_dialog(opened, tmp_path, monkeypa
     warnings: list[tuple[str, str]] = []
     monkeypatch.setattr("app.menus.QMessageBox.warning",
                         lambda parent, title, text: warnings.append((title, text)))
-    opened.menus[action].trigger()
+    run_file_action(qtbot, opened, action)
     assert len(warnings) == 1
     title, text = warnings[0]
     assert text.startswith(f"{title} failed") and "renderer fell over" in text
     assert "Traceback" not in text
+
+
+def test_exports_run_in_the_background_and_cancel_leaves_the_old_file(opened, qtbot, tmp_path,
+                                                                      monkeypatch) -> None:
+    """While an export runs the window keeps stepping alpha; Cancel stops it before the
+    rename, so the file already at the target is untouched and no temporary file is left."""
+    import threading
+
+    import core.export.table as table_writers
+
+    target = tmp_path / "table.npz"
+    target.write_bytes(b"the user's old file")
+    monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
+                        lambda *args, **kwargs: (str(target), ""))
+    started, release = threading.Event(), threading.Event()
+    real = table_writers.TABLE_WRITERS[".npz"]
+
+    def slow_npz(path, ac):
+        started.set()
+        release.wait(30)
+        real(path, ac)
+
+    monkeypatch.setitem(table_writers.TABLE_WRITERS, ".npz", slow_npz)
+    opened.menus["export_table"].trigger()
+    assert started.wait(10) and opened.jobs.is_busy() and opened.job_progress.isVisible()
+    press(qtbot, opened, Qt.Key.Key_Right)  # the GUI thread is free meanwhile
+    assert_layers_match(opened)
+    with qtbot.waitSignal(opened.jobs.cancelled, timeout=BUILD_TIMEOUT_MS):
+        qtbot.mouseClick(opened.job_progress.cancel, Qt.MouseButton.LeftButton)
+        release.set()
+    assert target.read_bytes() == b"the user's old file"
+    assert [p.name for p in tmp_path.iterdir()] == ["table.npz"]
+    assert "cancelled" in opened.status.text() and not opened.job_progress.isVisible()
 
 
 def test_closing_does_not_wait_for_a_build_that_cannot_stop(qtbot, tmp_path, monkeypatch):

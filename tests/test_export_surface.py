@@ -220,3 +220,29 @@ def test_edges_needing_mixed_gluing_are_resolved(monkeypatch):
     assert report.unresolved_edges == 0 and np.all(edge_face_counts(f) == 2)
     assert np.all(vertex_fans(f)[np.unique(f)] == 1)
     assert signed_volume(v, f) == pytest.approx(shape.measure, rel=1e-9)
+
+
+@pytest.mark.parametrize("stop_at", ["computing the shape", "writing PLY", "replacing the file"])
+def test_cancelled_export_leaves_the_old_file(tmp_path, ball, stop_at):
+    from core.errors import Cancelled
+    from core.export import write_table
+
+    stages: list[str] = []
+
+    def progress(fraction: float, stage: str) -> None:
+        stages.append(stage)
+        if stage == stop_at:
+            raise Cancelled("cancelled by the user")
+
+    target = tmp_path / "shape.ply"
+    target.write_bytes(b"old")
+    with pytest.raises(Cancelled):
+        write_shape(ball, ALPHA, target, progress=progress)
+    assert target.read_bytes() == b"old" and [p.name for p in tmp_path.iterdir()] == ["shape.ply"]
+    assert stages[-1] == stop_at
+    done: list[str] = []
+    write_shape(ball, ALPHA, target, progress=lambda f, s: done.append(s))
+    assert done == ["computing the shape", "writing PLY", "replacing the file"]
+    table: list[str] = []
+    write_table(ball, tmp_path / "t.npz", progress=lambda f, s: table.append(s))
+    assert table == ["writing NPZ", "replacing the file"]

@@ -1,13 +1,15 @@
 """Write a chosen alpha shape (or the whole interval table) to files other tools read.
 
 Every write is atomic: a temporary file beside the target, renamed over it only on success.
+Writers take an optional `progress(fraction, stage)`; raising core.errors.Cancelled from it
+stops the write, and the target (or the file already there) is left as it was.
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -20,6 +22,8 @@ from core.export.metadata import shape_metadata, sidecar_text
 from core.export.polygons import POLYGON_WRITERS
 from core.export.surface import SURFACE_WRITERS, manifold_meta, surface_arrays
 from core.export.table import TABLE_WRITERS
+
+Progress = Callable[[float, str], None]
 
 __all__ = ["SHAPE_FORMATS", "TABLE_FORMATS", "ExportReport", "write_shape", "write_table"]
 
@@ -118,8 +122,14 @@ def _write_surface(tmp: Path, ext: str, ac, shape, manifold: bool, meta: dict) -
             "manifold": None if split is None else split.line()}
 
 
+def _step(progress: Progress | None, fraction: float, stage: str) -> None:
+    if progress is not None:
+        progress(fraction, stage)
+
+
 def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = False,
-                sidecar: bool = False, source: str | os.PathLike | None = None) -> ExportReport:
+                sidecar: bool = False, source: str | os.PathLike | None = None,
+                progress: Progress | None = None) -> ExportReport:
     """Write ac.shape(alpha) in the format of `path`'s extension (SHAPE_FORMATS).
 
     3D: surfaces are the outward REGULAR facets (`manifold=True` splits where the shape
@@ -131,16 +141,19 @@ def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = F
     if ac.dim == 3 and ext in POLYGON_WRITERS:
         raise FileFormatError(f"{path}: {ext} holds 2D polygons, but this shape is 3D; "
                               f"use one of {' '.join(SURFACE_WRITERS)} .vtu")
+    _step(progress, 0.0, "computing the shape")
     shape = ac.shape(alpha)
     meta = shape_metadata(ac, shape, source)
     fields: dict = {}
     with _reported(path), atomic_path(path) as tmp:
+        _step(progress, 0.2, f"writing {ext.lstrip('.').upper()}")
         if ext in POLYGON_WRITERS:
             POLYGON_WRITERS[ext](tmp, ac, shape, meta)
         elif ext == ".vtu":
             write_vtu(tmp, ac, shape, meta)
         else:
             fields = _write_surface(tmp, ext, ac, shape, manifold, meta)
+        _step(progress, 0.95, "replacing the file")
     side = None
     if sidecar:
         side = str(path) + ".json"
@@ -150,7 +163,8 @@ def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = F
                         measure=float(shape.measure), sidecar=side, metadata=meta, **fields)
 
 
-def write_table(ac, path: str | os.PathLike) -> ExportReport:
+def write_table(ac, path: str | os.PathLike, *,
+                progress: Progress | None = None) -> ExportReport:
     """Write the interval table as .npz (layout in core/export/table.py) or .csv, atomically.
 
     The report's n_faces counts the simplices of every dimension; its alpha is None.
@@ -158,7 +172,9 @@ def write_table(ac, path: str | os.PathLike) -> ExportReport:
     path = Path(path)
     ext = _extension(path, TABLE_FORMATS)
     with _reported(path), atomic_path(path) as tmp:
+        _step(progress, 0.0, f"writing {ext.lstrip('.').upper()}")
         TABLE_WRITERS[ext](tmp, ac)
+        _step(progress, 0.95, "replacing the file")
     n = sum(len(ac.simplices(k)) for k in range(ac.dim + 1))
     return ExportReport(path=str(path), format=ext.lstrip(".").upper(), alpha=None,
                         n_vertices=len(ac.points), n_faces=n)
