@@ -36,14 +36,20 @@ def assert_same_as_fresh(ac: AlphaComplex, shape, alpha: float) -> None:
     assert shape.measure == fresh.measure
 
 
-@pytest.fixture(params=["cost model", "always delta", "always reset"])
+@pytest.fixture(params=["cost model", "always delta", "always reset", "delta in halves",
+                        "reset in halves"])
 def strategy(request, monkeypatch):
-    """Run a test with the cursor's own choice, or forcing delta steps or resets."""
-    from core.cursor import IntervalSet
+    """Run a test with the cursor's own choice, or forcing delta steps or resets (with
+    every pass split between two threads, as long ones are)."""
+    import core.cursor
 
     if request.param != "cost model":
-        force = request.param == "always reset"
-        monkeypatch.setattr(IntervalSet, "_cheaper_to_reset", lambda self, c, n: force)
+        force = "reset" in request.param
+        monkeypatch.setattr(core.cursor.IntervalSet, "_cheaper_to_reset",
+                            lambda self, c, n: force)
+    if "halves" in request.param:
+        monkeypatch.setattr(core.cursor, "PARALLEL_ABOVE", 2)
+        monkeypatch.setattr(core.cursor, "FEW", 0)
     return request.param
 
 
@@ -113,12 +119,13 @@ def test_bad_alpha_is_an_input_error_and_keeps_the_cursor():
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), dim=st.sampled_from([2, 3]), grid=st.booleans(),
-       force=st.sampled_from([None, True, False]),
+       force=st.sampled_from([None, True, False]), halves=st.booleans(),
        steps=st.lists(st.integers(-400, 400), min_size=1, max_size=25))
-def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, steps):
+def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, halves, steps):
     import contextlib
     from unittest import mock
 
+    import core.cursor
     from core.cursor import IntervalSet
 
     rng = np.random.default_rng(seed)
@@ -129,5 +136,7 @@ def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, steps):
         return
     choice = (mock.patch.object(IntervalSet, "_cheaper_to_reset", lambda self, c, n: force)
               if force is not None else contextlib.nullcontext())
-    with choice:
+    split = (mock.patch.multiple(core.cursor, PARALLEL_ABOVE=2, FEW=0) if halves
+             else contextlib.nullcontext())
+    with choice, split:
         walk(ac, np.cumsum([len(ac.spectrum()) // 2, *steps]))
