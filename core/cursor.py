@@ -10,11 +10,11 @@ gathers of answer rows), and a far jump is one sequential filter of a prefix.
 from __future__ import annotations
 
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .parallel import halves, place, select
 from .shape import AlphaShape, readonly
 from .table import argsort_radii
 
@@ -25,45 +25,6 @@ FEW = 256  # changes up to this many are spliced by runs of memcpy, more by a ma
 EVENT_COST = 8  # an ended simplex (random look-ups, a sort) costs about this many elements
 #                of a sequential pass
 NOT_A_CANDIDATE = np.iinfo(np.int32).max
-PARALLEL_ABOVE = 1 << 19  # elements: longer passes are split between two threads
-_helper: ThreadPoolExecutor | None = None
-
-
-def _halves(part: Callable[[int, int], object], n: int) -> None:
-    """part(start, stop) over [0, n): long ranges in two halves at once, one of them in a
-    helper thread. These numpy passes release the GIL and are bound by memory latency, so
-    the second core nearly halves them."""
-    global _helper
-    if n < PARALLEL_ABOVE:
-        part(0, n)
-        return
-    if _helper is None:
-        _helper = ThreadPoolExecutor(1, thread_name_prefix="alphascoop-cursor")
-    other = _helper.submit(part, n // 2, n)
-    part(0, n // 2)
-    other.result()
-
-
-def _select(keep: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]],
-            ranks: np.ndarray | None = None) -> None:
-    """out[:] = source[keep] for each (source, out) pair, and ranks[:] = flatnonzero(keep),
-    in halves; the outputs are preallocated with exactly count_nonzero(keep) items."""
-    half = len(keep) // 2
-    before = {0: 0, half: int(np.count_nonzero(keep[:half]))}
-
-    def part(start: int, stop: int) -> None:
-        mask = keep[start:stop]
-        offset = before[start] if start in before else 0
-        taken = int(np.count_nonzero(mask))
-        for source, out in pairs:
-            np.compress(mask, source[start:stop], out=out[offset:offset + taken])
-        if ranks is not None:
-            np.add(np.flatnonzero(mask), start, out=ranks[offset:offset + taken],
-                   casting="unsafe")
-
-    _halves(part, len(keep))
-
-
 def _between(sorted_values: np.ndarray, low: float, high: float) -> slice:
     """Positions of the values in (low, high] of an ascending array."""
     return slice(int(np.searchsorted(sorted_values, low, "right")),
@@ -114,10 +75,10 @@ class IntervalSet:
         """Members at alpha from scratch: one sequential filter of the entered prefix."""
         count = self._entered(alpha)
         keep = np.empty(count, dtype=bool)
-        _halves(lambda a, b: np.greater(self._hi_by_lo[a:b], alpha, out=keep[a:b]), count)
+        halves(lambda a, b: np.greater(self._hi_by_lo[a:b], alpha, out=keep[a:b]), count)
         size = int(np.count_nonzero(keep))
         members, rows = np.empty(size, dtype=np.int32), np.empty(size, dtype=self._row)
-        _select(keep, [(self._rows_by_lo[:count], rows)], ranks=members)
+        select(keep, [(self._rows_by_lo[:count], rows)], ranks=members)
         self._set(members, rows, count)
 
     def go(self, old: float, new: float) -> None:
@@ -137,7 +98,7 @@ class IntervalSet:
     def _ranks(self, ids: np.ndarray) -> np.ndarray:
         """Ranks of simplex ids (NOT_A_CANDIDATE for others): random reads, in halves."""
         ranks = np.empty(len(ids), dtype=np.int32)
-        _halves(lambda a, b: np.take(self._rank, ids[a:b], out=ranks[a:b]), len(ids))
+        halves(lambda a, b: np.take(self._rank, ids[a:b], out=ranks[a:b]), len(ids))
         return ranks
 
     def _cheaper_to_reset(self, count: int, n_ended: int) -> bool:
@@ -165,11 +126,11 @@ class IntervalSet:
                 np.take(gone, self.members[a:b], out=keep[a:b])
                 np.logical_not(keep[a:b], out=keep[a:b])
 
-            _halves(stays, self.size)
-            _select(keep, [(self.members, members[:kept]), (self.rows, rows[:kept])])
+            halves(stays, self.size)
+            select(keep, [(self.members, members[:kept]), (self.rows, rows[:kept])])
         np.add(joining, start, out=members[kept:], casting="unsafe")
         entered, fresh = self._rows_by_lo[start:count], rows[kept:]
-        _halves(lambda a, b: np.take(entered, joining[a:b], out=fresh[a:b]), len(joining))
+        halves(lambda a, b: np.take(entered, joining[a:b], out=fresh[a:b]), len(joining))
         self._set(members, rows, count)
 
     def _down(self, count: int, ended: np.ndarray) -> None:
@@ -190,15 +151,15 @@ class IntervalSet:
             present[returning] = back[returning] = True
             size = cut + len(returning)
             members, rows = np.empty(size, dtype=np.int32), np.empty(size, dtype=self._row)
-            _select(present, [], ranks=members)
+            select(present, [], ranks=members)
             staying = np.empty(size, dtype=bool)
 
             def stays(a: int, b: int) -> None:
                 np.take(back, members[a:b], out=staying[a:b])
                 np.logical_not(staying[a:b], out=staying[a:b])
 
-            _halves(stays, size)
-            _place(staying, self.rows[:cut], np.take(self._rows_by_lo, returning), rows)
+            halves(stays, size)
+            place(staying, self.rows[:cut], np.take(self._rows_by_lo, returning), rows)
         self._set(members, rows, count)
 
     def snapshot(self) -> tuple[Callable[[], np.ndarray], np.ndarray]:
@@ -207,22 +168,6 @@ class IntervalSet:
         members, by_lo = self.members, self._by_lo
         return (lambda: np.take(by_lo, members).astype(np.int64),
                 self.rows.view(np.int32).reshape(-1, self._width))
-
-
-def _place(first: np.ndarray, ones: np.ndarray, others: np.ndarray, out: np.ndarray) -> None:
-    """out[first] = ones and out[~first] = others (each in order), in halves."""
-    half = len(first) // 2
-    before = int(np.count_nonzero(first[:half]))
-
-    def part(start: int, stop: int) -> None:
-        mask = first[start:stop]
-        taken = int(np.count_nonzero(mask))
-        done = before if start else 0
-        out[start:stop][mask] = ones[done:done + taken]
-        rest = start - done
-        out[start:stop][~mask] = others[rest:rest + (stop - start - taken)]
-
-    _halves(part, len(first))
 
 
 def _copy_runs(members: np.ndarray, rows: np.ndarray, out_members: np.ndarray,

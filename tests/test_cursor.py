@@ -42,13 +42,14 @@ def strategy(request, monkeypatch):
     """Run a test with the cursor's own choice, or forcing delta steps or resets (with
     every pass split between two threads, as long ones are)."""
     import core.cursor
+    import core.parallel
 
     if request.param != "cost model":
         force = "reset" in request.param
         monkeypatch.setattr(core.cursor.IntervalSet, "_cheaper_to_reset",
                             lambda self, c, n: force)
     if "halves" in request.param:
-        monkeypatch.setattr(core.cursor, "PARALLEL_ABOVE", 2)
+        monkeypatch.setattr(core.parallel, "PARALLEL_ABOVE", 2)
         monkeypatch.setattr(core.cursor, "FEW", 0)
     return request.param
 
@@ -126,6 +127,7 @@ def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, halves, steps):
     from unittest import mock
 
     import core.cursor
+    import core.parallel
     from core.cursor import IntervalSet
 
     rng = np.random.default_rng(seed)
@@ -136,7 +138,9 @@ def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, halves, steps):
         return
     choice = (mock.patch.object(IntervalSet, "_cheaper_to_reset", lambda self, c, n: force)
               if force is not None else contextlib.nullcontext())
-    split = (mock.patch.multiple(core.cursor, PARALLEL_ABOVE=2, FEW=0) if halves
-             else contextlib.nullcontext())
+    split = contextlib.ExitStack()
+    if halves:
+        split.enter_context(mock.patch.object(core.cursor, "FEW", 0))
+        split.enter_context(mock.patch.object(core.parallel, "PARALLEL_ABOVE", 2))
     with choice, split:
         walk(ac, np.cumsum([len(ac.spectrum()) // 2, *steps]))

@@ -1,0 +1,67 @@
+"""Memory-bound numpy passes split between two threads (the explorer's slider steps).
+
+numpy releases the GIL in take/compress/comparisons on plain dtypes, and on this kind of
+machine such passes are bound by memory latency, not by one core: two halves at once take
+little more than half the time. Short passes stay in the calling thread.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+PARALLEL_ABOVE = 1 << 19  # elements: longer passes are split between two threads
+_helper: ThreadPoolExecutor | None = None
+
+
+def halves(part: Callable[[int, int], object], n: int) -> None:
+    """part(start, stop) over [0, n): long ranges in two halves at once, one of them in a
+    helper thread. These numpy passes release the GIL and are bound by memory latency, so
+    the second core nearly halves them."""
+    global _helper
+    if n < PARALLEL_ABOVE:
+        part(0, n)
+        return
+    if _helper is None:
+        _helper = ThreadPoolExecutor(1, thread_name_prefix="alphascoop-cursor")
+    other = _helper.submit(part, n // 2, n)
+    part(0, n // 2)
+    other.result()
+
+
+def select(keep: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]],
+            ranks: np.ndarray | None = None) -> None:
+    """out[:] = source[keep] for each (source, out) pair, and ranks[:] = flatnonzero(keep),
+    in halves; the outputs are preallocated with exactly count_nonzero(keep) items."""
+    half = len(keep) // 2
+    before = {0: 0, half: int(np.count_nonzero(keep[:half]))}
+
+    def part(start: int, stop: int) -> None:
+        mask = keep[start:stop]
+        offset = before[start]
+        taken = int(np.count_nonzero(mask))
+        for source, out in pairs:
+            np.compress(mask, source[start:stop], out=out[offset:offset + taken])
+        if ranks is not None:
+            np.add(np.flatnonzero(mask), start, out=ranks[offset:offset + taken],
+                   casting="unsafe")
+
+    halves(part, len(keep))
+
+
+def place(first: np.ndarray, ones: np.ndarray, others: np.ndarray, out: np.ndarray) -> None:
+    """out[first] = ones and out[~first] = others (each in order), in halves."""
+    half = len(first) // 2
+    before = int(np.count_nonzero(first[:half]))
+
+    def part(start: int, stop: int) -> None:
+        mask = first[start:stop]
+        taken = int(np.count_nonzero(mask))
+        done = before if start else 0
+        out[start:stop][mask] = ones[done:done + taken]
+        rest = start - done
+        out[start:stop][~mask] = others[rest:rest + (stop - start - taken)]
+
+    halves(part, len(first))
