@@ -41,8 +41,9 @@ def build(points: np.ndarray, progress: Progress, cancel: threading.Event,
         return build_cached(points, use_cache=use_cache, progress=progress, signatures=True)
     if use_cache and (ac := load_cached(points)) is not None:
         progress(1.0, "loaded from cache")
-        if "_signatures" not in ac.__dict__:
+        if "_signatures" not in ac.__dict__:  # an entry the command line left without them
             ac.signatures()
+            store(ac, points)
         return ac
     with tempfile.TemporaryDirectory(prefix="alphascoop-build-") as folder:
         source, target = Path(folder) / "points.npy", Path(folder) / "table.npz"

@@ -97,3 +97,13 @@ def test_a_child_that_dies_is_a_readable_error():
 
     with pytest.raises(AlphaScoopError, match="exit code -9"):
         build_process._follow(Dead(), receiver, never, threading.Event())
+
+
+def test_a_cached_table_without_signatures_is_upgraded_in_place(in_process):
+    from core.cache import build_cached, load_cached
+
+    points = np.random.default_rng(5).random((800, 3))
+    build_cached(points)  # as `alphascoop export --alpha R` leaves it: no signatures
+    assert "_signatures" not in load_cached(points).__dict__
+    ac = build_process.build(points, never, threading.Event())
+    assert "_signatures" in ac.__dict__ and "_signatures" in load_cached(points).__dict__
