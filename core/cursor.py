@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .parallel import halves, place, select
+from .parallel import halves, place, select, together
 from .shape import AlphaShape, readonly
 from .table import argsort_radii
 
@@ -196,24 +196,12 @@ class ShapeCursor:
 
     def __init__(self, complex_: AlphaComplex) -> None:
         """Rank the REGULAR facets by (regular, interior) and every SINGULAR level by
-        (enter, regular)."""
+        (enter, regular); the two jobs run in two threads."""
         self._ac = ac = complex_
-        dim = ac.dim
-        facets = ac._level(dim - 1)
-        by_regular = argsort_radii(facets.regular)
-        by_regular = by_regular[np.take(facets.interior, by_regular)
-                                > np.take(facets.regular, by_regular)]
-        self.regular = IntervalSet(facets.regular, facets.interior, by_regular,
-                                   ac._table.facet_interior_order, ac._facets_by_interior[0],
-                                   _oriented_rows(ac, by_regular))
-        self.singular: dict[int, IntervalSet] = {}
-        for k in range(dim):
-            level = ac._level(k)
-            by_enter = np.flatnonzero(level.enter < level.regular)  # sorted by enter already
-            by_ended = by_enter[argsort_radii(np.take(level.regular, by_enter))]
-            self.singular[k] = IntervalSet(
-                level.enter, level.regular, by_enter, by_ended,
-                np.take(level.regular, by_ended), np.take(level.simplices, by_enter, 0))
+        ac._facets_by_interior  # noqa: B018 (a cached property: made here, not in a thread)
+        singular = together(lambda: {k: _singular_set(ac, k) for k in range(ac.dim)})
+        self.regular = _regular_set(ac)
+        self.singular: dict[int, IntervalSet] = singular()
         self.alpha: float | None = None
 
     def _sets(self) -> list[IntervalSet]:
@@ -231,6 +219,26 @@ class ShapeCursor:
         self.alpha = alpha
         singular = {k: tracked.snapshot() for k, tracked in self.singular.items()}
         return shape._seed(self.regular.snapshot(), singular)
+
+
+def _regular_set(ac: AlphaComplex) -> IntervalSet:
+    """The REGULAR facets: candidates ranked by regular, ended by interior."""
+    facets = ac._level(ac.dim - 1)
+    by_regular = argsort_radii(facets.regular)
+    by_regular = by_regular[np.take(facets.interior, by_regular)
+                            > np.take(facets.regular, by_regular)]
+    return IntervalSet(facets.regular, facets.interior, by_regular,
+                       ac._table.facet_interior_order, ac._facets_by_interior[0],
+                       _oriented_rows(ac, by_regular))
+
+
+def _singular_set(ac: AlphaComplex, k: int) -> IntervalSet:
+    """The SINGULAR k-simplices: candidates (enter < regular) ranked by enter, ended by regular."""
+    level = ac._level(k)
+    by_enter = np.flatnonzero(level.enter < level.regular)  # sorted by enter already
+    by_ended = by_enter[argsort_radii(np.take(level.regular, by_enter))]
+    return IntervalSet(level.enter, level.regular, by_enter, by_ended,
+                       np.take(level.regular, by_ended), np.take(level.simplices, by_enter, 0))
 
 
 def _oriented_rows(ac: AlphaComplex, ids: np.ndarray) -> np.ndarray:

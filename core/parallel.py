@@ -7,32 +7,46 @@ little more than half the time. Short passes stay in the calling thread.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
+from typing import TypeVar
 
 import numpy as np
 
 PARALLEL_ABOVE = 1 << 19  # elements: longer passes are split between two threads
+HELPER = "alphascoop-helper"
 _helper: ThreadPoolExecutor | None = None
+T = TypeVar("T")
+
+
+def _pool() -> ThreadPoolExecutor:
+    global _helper
+    if _helper is None:
+        _helper = ThreadPoolExecutor(1, thread_name_prefix=HELPER)
+    return _helper
+
+
+def together(job: Callable[[], T]) -> Callable[[], T]:
+    """Start job in the helper thread; returns a function that waits for its result (for
+    the caller to do other work meanwhile)."""
+    return _pool().submit(job).result
 
 
 def halves(part: Callable[[int, int], object], n: int) -> None:
     """part(start, stop) over [0, n): long ranges in two halves at once, one of them in a
     helper thread. These numpy passes release the GIL and are bound by memory latency, so
     the second core nearly halves them."""
-    global _helper
-    if n < PARALLEL_ABOVE:
-        part(0, n)
+    if n < PARALLEL_ABOVE or threading.current_thread().name.startswith(HELPER):
+        part(0, n)  # short, or already in the helper (waiting on itself would deadlock)
         return
-    if _helper is None:
-        _helper = ThreadPoolExecutor(1, thread_name_prefix="alphascoop-cursor")
-    other = _helper.submit(part, n // 2, n)
+    other = _pool().submit(part, n // 2, n)
     part(0, n // 2)
     other.result()
 
 
 def select(keep: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]],
-            ranks: np.ndarray | None = None) -> None:
+           ranks: np.ndarray | None = None) -> None:
     """out[:] = source[keep] for each (source, out) pair, and ranks[:] = flatnonzero(keep),
     in halves; the outputs are preallocated with exactly count_nonzero(keep) items."""
     half = len(keep) // 2

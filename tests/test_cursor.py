@@ -144,3 +144,24 @@ def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, halves, steps):
         split.enter_context(mock.patch.object(core.parallel, "PARALLEL_ABOVE", 2))
     with choice, split:
         walk(ac, np.cumsum([len(ac.spectrum()) // 2, *steps]))
+
+
+def test_split_passes_fill_every_element_and_never_wait_on_their_own_thread():
+    from core.parallel import PARALLEL_ABOVE, halves, select, together
+
+    n = 2 * PARALLEL_ABOVE + 3
+    seen = np.zeros(n, dtype=np.int8)
+
+    def mark(start: int, stop: int) -> None:
+        seen[start:stop] += 1
+
+    halves(mark, n)
+    assert (seen == 1).all()
+    together(lambda: halves(mark, n))()  # from inside the helper: runs there, whole
+    assert (seen == 2).all()
+    keep = np.random.default_rng(0).random(n) < 0.3
+    values = np.arange(n, dtype=np.int64) * 7
+    out, ranks = np.empty(int(keep.sum()), np.int64), np.empty(int(keep.sum()), np.int32)
+    select(keep, [(values, out)], ranks=ranks)
+    np.testing.assert_array_equal(out, values[keep])
+    np.testing.assert_array_equal(ranks, np.flatnonzero(keep))
