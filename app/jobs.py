@@ -20,6 +20,18 @@ Progress = Callable[[float, str], None]
 Job = Callable[[Progress], str]
 
 
+def cancellable(cancel: threading.Event, report: Progress, why: str) -> Progress:
+    """A progress callback for a worker thread: forwards reports, and raises Cancelled(why)
+    at the first report after `cancel` is set."""
+
+    def progress(fraction: float, stage: str) -> None:
+        if cancel.is_set():
+            raise Cancelled(why)
+        report(fraction, stage)
+
+    return progress
+
+
 class JobRunner(QObject):
     """One background job at a time; its outcome comes back through queued signals."""
 
@@ -59,12 +71,7 @@ class JobRunner(QObject):
 
     def _run(self, title: str, job: Job, cancel: threading.Event) -> None:
         """Worker-thread body: emit exactly one of finished/failed/cancelled."""
-
-        def progress(fraction: float, stage: str) -> None:
-            if cancel.is_set():
-                raise Cancelled(f"{title} cancelled")
-            self.progress.emit(fraction, stage)
-
+        progress = cancellable(cancel, self.progress.emit, f"{title} cancelled")
         try:
             message = job(progress)
         except Cancelled:

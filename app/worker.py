@@ -16,6 +16,7 @@ from PySide6.QtCore import QObject, QThreadPool, Signal
 
 from app import build_process
 from app.dataset import load_dataset
+from app.jobs import cancellable
 from core.errors import AlphaScoopError, Cancelled
 
 
@@ -64,12 +65,9 @@ class Loader(QObject):
 
     def _run(self, request: int, path: Path, cancel: threading.Event) -> None:
         """Worker-thread body: emit exactly one of finished/failed/cancelled."""
-
-        def progress(fraction: float, stage: str) -> None:
-            if cancel.is_set():
-                raise Cancelled("cancelled by the user")
-            self.progress.emit(request, fraction, stage)
-
+        progress = cancellable(
+            cancel, lambda fraction, stage: self.progress.emit(request, fraction, stage),
+            "cancelled by the user")
         try:
             dataset = load_dataset(
                 path, progress, lambda points, report: build_process.build(points, report, cancel))

@@ -15,22 +15,25 @@ from core.export import csvrows, surface, table, write_shape, write_table
 ALPHA = 0.3
 
 
+def clusters(dim: int, n_centres: int, spread: float, seed: int) -> AlphaComplex:
+    """Complex of 50 random points around each of n_centres random centres, so that
+    singular simplices exist."""
+    rng = np.random.default_rng(seed)
+    centres = rng.uniform(-3, 3, (n_centres, dim))
+    return AlphaComplex.from_points(np.vstack([c + spread * rng.normal(size=(50, dim))
+                                               for c in centres]))
+
+
 @pytest.fixture(scope="module")
 def cloud() -> AlphaComplex:
-    """Complex of 300 random 3D points (clusters so that singular simplices exist)."""
-    rng = np.random.default_rng(11)
-    centres = rng.uniform(-3, 3, (6, 3))
-    return AlphaComplex.from_points(np.vstack([c + 0.4 * rng.normal(size=(50, 3))
-                                               for c in centres]))
+    """Complex of 300 random 3D points in 6 clusters."""
+    return clusters(3, 6, 0.4, seed=11)
 
 
 @pytest.fixture(scope="module")
 def flat() -> AlphaComplex:
-    """Complex of 400 random 2D points in clusters (singular edges and vertices exist)."""
-    rng = np.random.default_rng(12)
-    centres = rng.uniform(-3, 3, (8, 2))
-    return AlphaComplex.from_points(np.vstack([c + 0.3 * rng.normal(size=(50, 2))
-                                               for c in centres]))
+    """Complex of 400 random 2D points in 8 clusters (singular edges and vertices exist)."""
+    return clusters(2, 8, 0.3, seed=12)
 
 
 MESHIO_TYPES = {0: "vertex", 1: "line", 2: "triangle", 3: "tetra"}
