@@ -70,6 +70,7 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
     cursor.move(alpha)
+    ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
     progress(1.0, "done")
     return Dataset(
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=alpha,

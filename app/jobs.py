@@ -47,9 +47,11 @@ class JobRunner(QObject):
         self._pool.setMaxThreadCount(1)
         self._cancel = threading.Event()
         self._busy = False
+        for outcome in (self.finished, self.failed, self.cancelled):
+            outcome.connect(self._idle)  # queued: runs in the GUI thread, after the job ends
 
     def is_busy(self) -> bool:
-        """True from start() until the job's outcome has been signalled."""
+        """True from start() until the job's outcome has reached the GUI thread."""
         return self._busy
 
     def start(self, title: str, job: Job) -> bool:
@@ -60,6 +62,9 @@ class JobRunner(QObject):
         self._cancel = cancel = threading.Event()
         self._pool.start(lambda: self._run(title, job, cancel))
         return True
+
+    def _idle(self, *_outcome) -> None:
+        self._busy = False
 
     def cancel(self) -> None:
         """Ask the running job to stop at its next progress report."""
@@ -75,13 +80,10 @@ class JobRunner(QObject):
         try:
             message = job(progress)
         except Cancelled:
-            self._busy = False
             self.cancelled.emit(title)
         except Exception as error:  # every failure becomes a dialog; none escapes the thread
             if not isinstance(error, AlphaScoopError):  # a bug: keep its traceback too
                 traceback.print_exc(file=sys.stderr)
-            self._busy = False
             self.failed.emit(title, f"{title} failed: {error or type(error).__name__}")
         else:
-            self._busy = False
             self.finished.emit(title, message)

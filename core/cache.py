@@ -50,14 +50,17 @@ def entry_path(points: np.ndarray) -> Path:
 
 def is_cached(pointset) -> bool:
     """True when a cache entry exists for these points (it may still prove unreadable)."""
-    return entry_path(np.asarray(getattr(pointset, "points", pointset))).is_file()
+    try:
+        return entry_path(np.asarray(getattr(pointset, "points", pointset))).is_file()
+    except OSError:  # a cache folder we may not read is no cache
+        return False
 
 
 def _load(path: Path, n_points: int) -> AlphaComplex | None:
     """The cached complex, or None (and the entry removed) if it is missing or unusable."""
-    if not path.is_file():
-        return None
     try:
+        if not path.is_file():
+            return None
         if not zipfile.is_zipfile(path):
             raise ValueError("not an .npz archive")
         ac = AlphaComplex.load(path)

@@ -99,7 +99,13 @@ class AlphaComplex:
         for level in table.levels:
             for arr in (level.enter, level.regular, level.interior):
                 arr *= scale
-        table.cell_measure *= scale ** coords.shape[1]
+        with np.errstate(over="ignore"):
+            measure_scale = np.float64(scale) ** coords.shape[1]
+        if not np.isfinite(measure_scale):
+            raise InputError(f"coordinates up to {scale:.3g} are too large: their "
+                             f"{'areas' if coords.shape[1] == 2 else 'volumes'} overflow "
+                             "float64; rescale the points (e.g. to metres or kilometres)")
+        table.cell_measure *= measure_scale
         return cls(np.ascontiguousarray(coords), input_index, table, frame, raw.shape[1])
 
     # --- the table -------------------------------------------------------------------------

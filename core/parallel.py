@@ -16,31 +16,34 @@ import numpy as np
 
 PARALLEL_ABOVE = 1 << 19  # elements: longer passes are split between two threads
 HELPER = "alphascoop-helper"
-_helper: ThreadPoolExecutor | None = None
+_lock = threading.Lock()
+_pools: dict[str, ThreadPoolExecutor] = {}
 T = TypeVar("T")
 
 
-def _pool() -> ThreadPoolExecutor:
-    global _helper
-    if _helper is None:
-        _helper = ThreadPoolExecutor(1, thread_name_prefix=HELPER)
-    return _helper
+def _pool(role: str) -> ThreadPoolExecutor:
+    """The one-thread helper for `role`: split passes and background jobs get separate
+    ones, so a slider step never queues behind a cursor being set up for the next file."""
+    with _lock:
+        if role not in _pools:
+            _pools[role] = ThreadPoolExecutor(1, thread_name_prefix=f"{HELPER}-{role}")
+        return _pools[role]
 
 
 def together(job: Callable[[], T]) -> Callable[[], T]:
-    """Start job in the helper thread; returns a function that waits for its result (for
+    """Start job in a helper thread; returns a function that waits for its result (for
     the caller to do other work meanwhile)."""
-    return _pool().submit(job).result
+    return _pool("jobs").submit(job).result
 
 
 def halves(part: Callable[[int, int], object], n: int) -> None:
     """part(start, stop) over [0, n): long ranges in two halves at once, one of them in a
     helper thread. These numpy passes release the GIL and are bound by memory latency, so
     the second core nearly halves them."""
-    if n < PARALLEL_ABOVE or threading.current_thread().name.startswith(HELPER):
-        part(0, n)  # short, or already in the helper (waiting on itself would deadlock)
+    if n < PARALLEL_ABOVE or threading.current_thread().name.startswith(f"{HELPER}-halves"):
+        part(0, n)  # short, or already in that helper (waiting on itself would deadlock)
         return
-    other = _pool().submit(part, n // 2, n)
+    other = _pool("halves").submit(part, n // 2, n)
     part(0, n // 2)
     other.result()
 

@@ -157,8 +157,10 @@ def test_split_passes_fill_every_element_and_never_wait_on_their_own_thread():
 
     halves(mark, n)
     assert (seen == 1).all()
-    together(lambda: halves(mark, n))()  # from inside the helper: runs there, whole
+    together(lambda: halves(mark, n))()  # from a background job
     assert (seen == 2).all()
+    halves(lambda start, stop: halves(mark, n) if start else None, n)  # nested in the helper
+    assert (seen == 3).all()
     keep = np.random.default_rng(0).random(n) < 0.3
     values = np.arange(n, dtype=np.int64) * 7
     out, ranks = np.empty(int(keep.sum()), np.int64), np.empty(int(keep.sum()), np.int32)

@@ -165,3 +165,14 @@ def test_signatures_are_cached_with_the_table(cache, points):
     reopened = build_cached(points, signatures=True)
     assert "_signatures" in reopened.__dict__
     np.testing.assert_array_equal(reopened.signatures().betti, upgraded.signatures().betti)
+
+
+def test_a_cache_folder_that_cannot_be_read_is_no_cache(cache, points, monkeypatch):
+    from pathlib import Path
+
+    def refused(self):
+        raise PermissionError(13, "Permission denied", str(self))
+
+    monkeypatch.setattr(Path, "is_file", refused)
+    assert not is_cached(points)
+    assert len(build_cached(points).points) == 200  # built, not an error

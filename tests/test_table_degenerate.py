@@ -261,3 +261,10 @@ def test_progress_reports_fractions_and_cancel_stops_the_build() -> None:
 
     with pytest.raises(Cancelled):
         AlphaComplex.from_points(pts, progress=cancel)
+
+
+@pytest.mark.parametrize(("dim", "extent"), [(2, 1e160), (3, 1e110)])
+def test_extents_whose_measures_overflow_are_an_input_error(dim, extent):
+    points = np.random.default_rng(3).random((50, dim)) * extent
+    with pytest.raises(InputError, match="too large"):
+        AlphaComplex.from_points(points)

@@ -172,6 +172,8 @@ def _rematch(faces, corner_vertex, wedge, edge, bad) -> np.ndarray:
     n_bad = int(bad.sum())
     budget = MAX_REMATCH_TOTAL
     for e in np.unique(edge[bad]):
+        if budget <= 0:
+            break
         hs = np.flatnonzero(edge == e)
         face, corner = np.divmod(hs, 3)
         ends = np.sort(np.stack([corner_vertex[3 * face + (corner + s) % 3] for s in (1, 2)],
@@ -179,6 +181,8 @@ def _rematch(faces, corner_vertex, wedge, edge, bad) -> np.ndarray:
         pos = [np.argmax(faces[face] == ends[:, j, None], axis=1) for j in (0, 1)]
         forward = (pos[1] - pos[0]) % 3 == 1  # the face runs low -> high along the edge
         outs, ins = hs[forward], hs[~forward]
+        if len(outs) != len(ins):  # not a pairing problem this can solve
+            continue
         for perm in itertools.islice(itertools.permutations(ins), min(MAX_REMATCH_TRIES, budget)):
             budget -= 1
             trial = wedge.copy()
