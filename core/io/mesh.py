@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import importlib
 import logging
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -62,11 +63,33 @@ def _trimesh_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tu
     return vertices, attrs, (note,)
 
 
+def _without_strings(path: Path, folder: str) -> Path:
+    """A copy of a VTU without its String arrays (meshio refuses the type; VTK and our own
+    export write them as field data), or the file itself when it has none."""
+    from xml.etree import ElementTree
+
+    with open(path, "rb") as fh:
+        if b'type="String"' not in fh.read():
+            return path
+    try:
+        tree = ElementTree.parse(path)
+    except ElementTree.ParseError:
+        return path  # raw appended data: meshio has its own parser for those
+    for parent in tree.iter():
+        for child in [c for c in parent if c.get("type") == "String"]:
+            parent.remove(child)
+    out = Path(folder) / "strings_removed.vtu"
+    tree.write(out)
+    return out
+
+
 def _meshio_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """Points of a VTK-family file plus its numeric point data."""
     module = importlib.import_module(f"meshio.{MESHIO_READERS[path.suffix.lower()]}")
     try:  # the format's own reader: meshio.read() calls sys.exit on failure
-        mesh = module.read(str(path))
+        with tempfile.TemporaryDirectory(prefix="alphascoop-vtu-") as folder:
+            source = _without_strings(path, folder) if module.__name__ == "meshio.vtu" else path
+            mesh = module.read(str(source))
     except OSError:
         raise
     except Exception as exc:  # meshio raises ReadError, ValueError, KeyError...
