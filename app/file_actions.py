@@ -52,9 +52,10 @@ def ask_save_path(parent: QWidget, prefs: Preferences, title: str, formats: dict
     return path
 
 
-def export_shape(ac, alpha: float, path: Path, progress=None) -> str:
-    """Write the shape at alpha to path with core.export; returns what was written."""
-    return write_shape(ac, alpha, path, progress=progress).line()
+def export_shape(ac, alpha: float, path: Path, progress=None, georef=None) -> str:
+    """Write the shape at alpha to path with core.export (back in longitude/latitude when the
+    points were read from them: `georef`); returns what was written."""
+    return write_shape(ac, alpha, path, progress=progress, georef=georef).line()
 
 
 def export_table(ac, path: Path, progress=None) -> str:
