@@ -78,7 +78,7 @@ def write_prj(path: Path) -> Path:
     """The `.prj` file naming the CRS (WGS 84 longitude/latitude) beside `path`."""
     from pyproj import CRS
 
-    from core.export.atomic import atomic_write_text
+    from core.atomic import atomic_write_text
 
     prj = path.with_suffix(".prj")
     atomic_write_text(prj, CRS.from_user_input(WGS84).to_wkt("WKT1_ESRI") + "\n")
