@@ -34,24 +34,36 @@ def cache_dir() -> Path:
     return Path(user_cache_dir("alphascoop")) / "tables"
 
 
-def points_key(points: np.ndarray) -> str:
-    """Hex digest of the points' shape and float64 bytes, plus the cache version."""
+def points_key(points: np.ndarray, weights: np.ndarray | None = None) -> str:
+    """Hex digest of the points' shape and float64 bytes (and of the weights' for a weighted
+    set), plus the cache version."""
     arr = np.ascontiguousarray(points, dtype=np.float64)
     digest = hashlib.blake2b(digest_size=20)
     digest.update(f"alphascoop-table-v{CACHE_VERSION}:{arr.shape}".encode())
     digest.update(memoryview(arr).cast("B"))
+    if weights is not None:
+        w = np.ascontiguousarray(weights, dtype=np.float64)
+        digest.update(f":weights{w.shape}".encode())
+        digest.update(memoryview(w).cast("B"))
     return digest.hexdigest()
 
 
-def entry_path(points: np.ndarray) -> Path:
-    """Where the table of these (n, d) points is (or would be) cached."""
-    return cache_dir() / f"{points_key(points)}.npz"
+def entry_path(points: np.ndarray, weights: np.ndarray | None = None) -> Path:
+    """Where the table of these (n, d) points (with these weights) is (or would be) cached."""
+    return cache_dir() / f"{points_key(points, weights)}.npz"
+
+
+def pointset_weights(pointset) -> np.ndarray | None:
+    """The (n,) weights a point set carries (its `weights` attribute), None for arrays."""
+    weights = getattr(pointset, "weights", None)
+    return None if weights is None else np.asarray(weights, dtype=np.float64)
 
 
 def is_cached(pointset) -> bool:
     """True when a cache entry exists for these points (it may still prove unreadable)."""
     try:
-        return entry_path(np.asarray(getattr(pointset, "points", pointset))).is_file()
+        points = np.asarray(getattr(pointset, "points", pointset))
+        return entry_path(points, pointset_weights(pointset)).is_file()
     except OSError:  # a cache folder we may not read is no cache
         return False
 
@@ -73,10 +85,11 @@ def _load(path: Path, n_points: int) -> AlphaComplex | None:
         return None
 
 
-def store(ac: AlphaComplex, points: np.ndarray) -> Path | None:
-    """Save ac as the entry of these points (with its signatures, if computed); None when
-    the cache folder cannot be written."""
-    path = entry_path(np.asarray(points, dtype=np.float64))
+def store(ac: AlphaComplex, points: np.ndarray, weights: np.ndarray | None = None
+          ) -> Path | None:
+    """Save ac as the entry of these points and weights (with its signatures, if computed);
+    None when the cache folder cannot be written."""
+    path = entry_path(np.asarray(points, dtype=np.float64), weights)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         ac.save(path)
@@ -86,10 +99,11 @@ def store(ac: AlphaComplex, points: np.ndarray) -> Path | None:
     return path
 
 
-def load_cached(points: np.ndarray) -> AlphaComplex | None:
-    """The cached complex of these (n, d) points, or None (a bad entry is removed)."""
+def load_cached(points: np.ndarray, weights: np.ndarray | None = None) -> AlphaComplex | None:
+    """The cached complex of these (n, d) points and weights, or None (a bad entry is
+    removed)."""
     points = np.asarray(points, dtype=np.float64)
-    path = entry_path(points)
+    path = entry_path(points, weights)
     ac = _load(path, len(points))
     if ac is not None:
         with contextlib.suppress(OSError):
@@ -131,23 +145,24 @@ def build_cached(pointset, *, use_cache: bool = True, progress: Progress | None 
     needs no topology pass either.
     """
     points = np.asarray(getattr(pointset, "points", pointset), dtype=np.float64)
+    weights = pointset_weights(pointset)
     if not use_cache:
-        ac = AlphaComplex.from_points(points, progress=progress)
+        ac = AlphaComplex.from_points(points, progress=progress, weights=weights)
         if signatures:
             ac.signatures()
         return ac
-    ac = load_cached(points)
+    ac = load_cached(points, weights)
     if ac is not None:
         if progress is not None:
             progress(1.0, "loaded from cache")
         if signatures and "_signatures" not in ac.__dict__:
             ac.signatures()
-            store(ac, points)
+            store(ac, points, weights)
         return ac
-    ac = AlphaComplex.from_points(points, progress=progress)
+    ac = AlphaComplex.from_points(points, progress=progress, weights=weights)
     if signatures:
         if progress is not None:
             progress(1.0, "topology")
         ac.signatures()
-    store(ac, points)
+    store(ac, points, weights)
     return ac
