@@ -94,6 +94,12 @@ def test_bad_weights_are_input_errors(bad) -> None:
         AlphaComplex.from_points(pts, weights=bad)
 
 
+def test_weights_and_alpha_modes_do_not_combine() -> None:
+    pts = np.random.default_rng(2).random((100, 2))
+    with pytest.raises(InputError, match="weights cannot be combined"):
+        AlphaComplex.from_points(pts, weights=np.full(100, 1e-4), density=4)
+
+
 def test_save_and_load_keep_weights(weighted, tmp_path) -> None:
     ac, _, _ = weighted
     ac.signatures()
@@ -127,10 +133,10 @@ def test_cache_key_includes_weights(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path))
     pts = np.random.default_rng(6).random((150, 2))
     w = np.random.default_rng(7).uniform(0, 1e-3, 150)
-    assert entry_path(pts) != entry_path(pts, w) != entry_path(pts, 2 * w)
+    assert entry_path(pts) != entry_path(pts, weights=w) != entry_path(pts, weights=2 * w)
     built = build_cached(Weighted(pts, w))
-    assert entry_path(pts, w).is_file() and not entry_path(pts).is_file()
-    cached = load_cached(pts, w)
+    assert entry_path(pts, weights=w).is_file() and not entry_path(pts).is_file()
+    cached = load_cached(pts, weights=w)
     np.testing.assert_array_equal(cached.weights, built.weights)
     assert load_cached(pts) is None
     assert build_cached(pts).weights is None
