@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import os
 import warnings
 from collections.abc import Callable, Sequence
@@ -12,6 +13,7 @@ import numpy as np
 from core.errors import FileFormatError
 from core.georef import Georef
 from core.io.columns import parse_columns
+from core.io.e57 import read_e57
 from core.io.geographic import geographic_points
 from core.io.las import read_las
 from core.io.mesh import read_mesh
@@ -42,6 +44,7 @@ READ_FORMATS: dict[str, str] = {
     ".gltf": "glTF mesh (vertices)",
     ".vtk": "Legacy VTK (vertices)",
     ".vtu": "VTK unstructured grid (vertices)",
+    ".e57": "E57 terrestrial scans (ASTM E2807), every scan with its pose",
 }
 
 Reader = Callable[[Path, object], tuple[np.ndarray, dict[str, np.ndarray], tuple]]
@@ -50,6 +53,7 @@ READERS: dict[str, Reader] = {
     ".npy": read_npy, ".npz": read_npy,
     **dict.fromkeys((".xyz", ".pts", ".txt", ".csv"), read_text),
     **dict.fromkeys((".obj", ".stl", ".off", ".glb", ".gltf", ".vtk", ".vtu"), read_mesh),
+    ".e57": read_e57,
 }
 
 
@@ -78,18 +82,22 @@ def read_points(
     subsample: int | None = None,
     seed: int = 0,
     subsample_method: str = "voxel",
+    scan: int | None = None,
 ) -> PointSet:
     """Read a point file by extension; non-finite rows dropped, duplicates merged, reported.
 
     `columns` picks coordinate columns ('lon,lat' or [0, 1, 2]) in text and NumPy files;
-    `subsample` thins to at most that many points ('voxel' grid or 'random', seeded).
+    `subsample` thins to at most that many points ('voxel' grid or 'random', seeded);
+    `scan` reads only that scan (0-based) of an E57 file instead of all of them.
     Every failure is a FileFormatError whose message names the file and the problem.
     """
     path = Path(path)
     ext = _check_file(path)
+    if scan is not None and ext != ".e57":
+        raise FileFormatError(f"{path}: choosing a scan applies to E57 files only")
     with np.errstate(all="ignore"), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        points, attrs, notes, georef = _read(path, ext, columns)
+        points, attrs, notes, georef = _read(path, ext, columns, scan)
         if points.ndim != 2 or points.shape[1] not in (2, 3):
             raise FileFormatError(f"{path}: points must have 2 or 3 coordinates, "
                                   f"got shape {points.shape}")
@@ -108,10 +116,11 @@ def _warning_notes(caught: list[warnings.WarningMessage]) -> tuple[str, ...]:
     return tuple(f"reader warning: {m}" for m in list(seen)[:3])
 
 
-def _read(path: Path, ext: str, columns) -> tuple[np.ndarray, dict[str, np.ndarray], tuple,
-                                                  Georef | None]:
+def _read(path: Path, ext: str, columns, scan: int | None = None
+          ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, Georef | None]:
     """(points, attributes, notes, georef): named longitude/latitude columns of text files
-    projected to metres (core.io.geographic), the other formats' points as they are."""
+    projected to metres (core.io.geographic), the other formats' points as they are;
+    `scan` picks one scan of an E57 file."""
     if READERS[ext] is read_text:
         points, attrs, notes, names = _reported(path, ext, read_text_columns, columns)
         if names is None or _by_index(columns):
@@ -119,7 +128,8 @@ def _read(path: Path, ext: str, columns) -> tuple[np.ndarray, dict[str, np.ndarr
         points, attrs, more, georef = geographic_points(points, attrs, names,
                                                         explicit=columns is not None)
         return points, attrs, tuple(notes) + more, georef
-    return (*_reported(path, ext, READERS[ext], columns), None)
+    reader = functools.partial(read_e57, scan=scan) if ext == ".e57" else READERS[ext]
+    return (*_reported(path, ext, reader, columns), None)
 
 
 def _by_index(columns) -> bool:
