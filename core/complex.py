@@ -284,6 +284,15 @@ class AlphaComplex:
 
         return optimal_alpha(self._signatures, self._cover_alpha, n_components)
 
+    def default_alpha(self) -> float:
+        """The alpha a view opens at: where the shape looks like the object (core.opening).
+
+        The smallest alpha at which the triangles (surface and solid) join at least 99 % of the
+        points into one piece, and never more than `optimal_alpha()` (CGAL's rule for solids).
+        Computed with the signatures and saved with them.
+        """
+        return min(self._signatures.opening_alpha, self.optimal_alpha())
+
     def suggest_alphas(self, k: int = 5) -> tuple:
         """The k alpha ranges where the Betti numbers hold longest on a log scale, best first."""
         from .suggest import suggest_alphas
