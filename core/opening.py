@@ -46,9 +46,14 @@ def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndar
     edges: (e, 2) int vertex rows; edge_first_triangle: (e,) float64 enter of each edge's first
     triangle (inf: none). Returns inf when no alpha reaches the share.
     """
-    finite = np.isfinite(edge_first_triangle) & (edge_first_triangle > 0)
-    edges = np.asarray(edges, dtype=np.int64)[finite]
-    weights, a, b = spanning_forest(n_points, edges[:, 0], edges[:, 1], edge_first_triangle[finite])
+    values = np.asarray(edge_first_triangle, dtype=np.float64)
+    finite = np.flatnonzero(np.isfinite(values))
+    order = finite[np.argsort(values[finite], kind="stable")]
+    edges = np.asarray(edges, dtype=np.int64)[order]
+    # ranks as weights: scipy needs them > 0, and weighted tables hold signed radii
+    ranks, a, b = spanning_forest(n_points, edges[:, 0], edges[:, 1],
+                                  np.arange(1.0, len(order) + 1))
+    weights = values[order[ranks.astype(np.int64) - 1]]
     low, high = 0, len(weights)  # the first `high` merges reach the share; `low` do not
     if n_points == 0 or joined_share(n_points, a, b) < share:
         return float("inf")
