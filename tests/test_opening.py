@@ -129,3 +129,14 @@ def test_opening_shape_matches_the_bunny() -> None:
     ac = AlphaComplex.from_points(vertices)
     assert ac.default_alpha() < ac.optimal_alpha() / 10
     assert_matches(ac, vertices, faces, spacing(ac.points))
+
+
+def test_weighted_complex_opens_at_a_signed_radius() -> None:
+    """Weighted tables hold signed radii (negative below zero radius): the opening alpha is
+    still the first that joins the share, and no later than the optimal one."""
+    rng = np.random.default_rng(8)
+    points = rng.random((300, 3))
+    ac = AlphaComplex.from_points(points, weights=rng.uniform(0.0, 0.01, 300))
+    opening = ac.default_alpha()
+    assert np.isfinite(opening) and opening <= ac.optimal_alpha()
+    assert largest_share(ac, opening) >= OPENING_SHARE
