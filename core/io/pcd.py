@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
+from core.io.pcd_checks import check_pcd_header
 
 NORMAL_FIELDS = ("normal_x", "normal_y", "normal_z")
 
@@ -59,6 +60,7 @@ def _load(path: Path):
 
 def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, 3) xyz and normals/colours/intensity when the PCD has those fields."""
+    declared = check_pcd_header(path)
     _check_size(path)
     cloud = _load(path)
     fields = tuple(cloud.fields)
@@ -78,4 +80,7 @@ def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
             attrs["intensity"] = cloud.numpy(("intensity",))[:, 0].astype(np.float64)
     except (ValueError, KeyError) as exc:
         raise FileFormatError(f"{path}: bad PCD fields ({exc})") from None
+    if len(points) != declared:
+        raise FileFormatError(f"{path}: truncated PCD (header declares {declared:,} points, "
+                              f"{len(points):,} read)")
     return points, attrs, (f"PCD {cloud.metadata.data.value}",)
