@@ -119,7 +119,7 @@ def test_pcd_compressed_beyond_memory(tmp_path, monkeypatch):
     assert error is not None and "memory" in str(error) and peak < SMALL_PEAK
 
 
-@pytest.mark.parametrize("ext", [".pcd"])
+@pytest.mark.parametrize("ext", [".pcd", ".ply"])
 def test_header_without_end_gives_up_early(tmp_path, ext):
     first = b"# .PCD v0.7\nFIELDS x y z\n" if ext == ".pcd" else b"ply\nformat ascii 1.0\n"
     path = tmp_path / f"endless{ext}"

@@ -50,8 +50,9 @@ def _counts(fields: dict[str, list[str]], path: Path) -> tuple[int, int, int, st
     return n, sum(s * c for s, c in zip(sizes, counts, strict=True)), sum(counts), kind
 
 
-def check_pcd_header(path: Path) -> int:
-    """The number of points the header declares, once the sizes it implies are plausible."""
+def check_pcd_header(path: Path) -> tuple[int, dict[str, list[str]]]:
+    """(points declared, header fields: upper-case keyword -> words), once the sizes the
+    header implies are plausible."""
     fields, start, size = _header(path)
     n, row, values, kind = _counts(fields, path)
     body = size - start
@@ -67,9 +68,9 @@ def check_pcd_header(path: Path) -> int:
                                   f"bytes claims {unpacked:,} bytes for {n:,} points; the file "
                                   f"holds {body:,})")
         check_memory(path, unpacked, "the compressed PCD data")
-        return n
+        return n, fields
     need = n * (row if kind == "binary" else values * MIN_ASCII_VALUE_BYTES)
     if need > body:
         raise FileFormatError(f"{path}: truncated PCD (header declares {n:,} points, the "
                               f"file holds {body:,} bytes of data)")
-    return n
+    return n, fields
