@@ -65,7 +65,7 @@ def build_parser() -> Parser:
     info = subs.add_parser("info", help="load report, spectrum, optimal alpha, shape summary")
     _common(info)
     at = info.add_mutually_exclusive_group()
-    at.add_argument("--alpha", type=radius, metavar="R", help="alpha radius (default optimal)")
+    at.add_argument("--alpha", type=radius, metavar="R", help="alpha radius (default: opening)")
     at.add_argument("--alpha2", type=squared_radius, metavar="A2",
                     help="squared alpha (may be negative for weighted points)")
     info.add_argument("--json", action="store_true", help="print JSON instead of text")
@@ -125,7 +125,7 @@ def load(args) -> tuple:
 
 def chosen_alpha(args) -> dict | None:
     """The alpha the command line asks for, as keyword arguments of the core's queries
-    ({"alpha": R} or {"alpha2": A2}), or None (the optimal alpha)."""
+    ({"alpha": R} or {"alpha2": A2}), or None (the default)."""
     if getattr(args, "alpha2", None) is not None:
         return {"alpha2": args.alpha2}
     if getattr(args, "alpha", None) is not None:
@@ -134,9 +134,10 @@ def chosen_alpha(args) -> dict | None:
 
 
 def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
-    """Everything `info` reports, as a JSON-ready dict (`at`: chosen_alpha's result)."""
-    optimal = float(ac.optimal_alpha())
-    shape = ac.shape(**(at or {"alpha2": ac.optimal_alpha2()}))
+    """Everything `info` reports, as a JSON-ready dict (`at`: chosen_alpha's result; None:
+    the opening alpha)."""
+    optimal, opening = float(ac.optimal_alpha()), float(ac.default_alpha())
+    shape = ac.shape(**(at or {"alpha2": opening * abs(opening)}))
     alpha = shape.alpha
     spectrum = np.asarray(ac.spectrum())
     weighted = ac.weights is not None
@@ -156,6 +157,8 @@ def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
         "hidden_points": int((np.asarray(ac.input_index) < 0).sum()),
         "optimal_alpha": optimal,
         "optimal_alpha2": _sq(optimal),
+        "default_alpha": opening,
+        "default_alpha2": _sq(opening),
         "alpha": alpha,
         "alpha2": shape.alpha2 if np.isfinite(shape.alpha2) else None,
         "betti": [int(b) for b in ac.betti(alpha2=shape.alpha2)],
@@ -200,13 +203,18 @@ def _text(info: dict, lines: list[str]) -> str:
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
     ]
     if info["weighted"]:
-        lines.append(f"hidden      {info['hidden_points']:,} points (their ball adds nothing)")
-    if info["weighted"]:
-        lines += [f"optimal     {_alpha_text(info['optimal_alpha'], info['optimal_alpha2'])}",
-                  f"at          {_alpha_text(info['alpha'], info['alpha2'])}"]
+        lines += [
+            f"hidden      {info['hidden_points']:,} points (their ball adds nothing)",
+            f"optimal     {_alpha_text(info['optimal_alpha'], info['optimal_alpha2'])}"
+            " (every point in one solid)",
+            f"opening     {_alpha_text(info['default_alpha'], info['default_alpha2'])}"
+            " (the shape looks like the object)",
+            f"at          {_alpha_text(info['alpha'], info['alpha2'])}"]
     else:
-        lines += [f"optimal     alpha {info['optimal_alpha']:.6g}",
-                  f"at alpha    {info['alpha']:.6g}"]
+        lines += [
+            f"optimal     alpha {info['optimal_alpha']:.6g} (every point in one solid)",
+            f"opening     alpha {info['default_alpha']:.6g} (the shape looks like the object)",
+            f"at alpha    {info['alpha']:.6g}"]
     lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))
     if info.get("units") == "m":
         unit = "m²" if measure == "area" else "m³"

@@ -9,6 +9,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns
+from core.io.sizes import check_npy, check_npz_member
 
 POINT_KEYS = ("points", "xyz", "coords", "coordinates", "positions", "vertices")
 ATTRIBUTE_KEYS = {"normals": "normals", "colors": "colors", "colours": "colors",
@@ -49,6 +50,8 @@ def read_npy(path: Path, columns=None, extra: tuple[str, ...] = ()
     the arrays named in `extra` under their own names)."""
     with open(path, "rb") as fh:  # our handle: np.load leaks its own when a zip is broken
         try:
+            if path.suffix.lower() == ".npy":
+                check_npy(path, fh)
             data = np.load(fh, allow_pickle=False)
             if isinstance(data, np.ndarray):
                 return _from_array(data, path, columns), {}, ()
@@ -67,7 +70,11 @@ def _from_archive(data, path: Path, columns, extra: tuple[str, ...] = ()
     if key is None:
         raise FileFormatError(f"{path}: no points array (looked for {', '.join(POINT_KEYS)};"
                               f" found {', '.join(keys) or 'nothing'})")
+    check_npz_member(path, data.zip, key)
     points = _from_array(data[key], path, columns)
+    for k in keys:
+        if k in ATTRIBUTE_KEYS:
+            check_npz_member(path, data.zip, k)
     attrs = {ATTRIBUTE_KEYS[k]: data[k] for k in keys if k in ATTRIBUTE_KEYS}
     attrs.update({k: data[k] for k in extra if k in keys})
     attrs = {k: v for k, v in attrs.items() if len(v) == len(points)}
