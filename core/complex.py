@@ -12,6 +12,7 @@ import numpy as np
 from . import storage
 from .delaunay import triangulate
 from .errors import InputError
+from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
 from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
 from .shape import AlphaShape, readonly
 from .table import Level, Progress, Table, build_table
@@ -39,6 +40,15 @@ def _radius(alpha: object) -> float:
     return value
 
 
+def _point_normals(normals: np.ndarray, input_index: np.ndarray, m: int,
+                   frame: Frame | None) -> np.ndarray:
+    """(m, dim) unit normals of the complex's points from the (n, ambient) input normals
+    (planar 3D: projected onto the plane; a duplicate point takes one of its rows)."""
+    out = np.zeros((m, normals.shape[1]))
+    out[input_index] = normals
+    return unit_rows(out if frame is None else out @ frame.basis.T)
+
+
 class AlphaComplex:
     """Alpha complex of a 2D or 3D point set over all alphas (radii) at once.
 
@@ -47,8 +57,10 @@ class AlphaComplex:
     """
 
     def __init__(self, points: np.ndarray, input_index: np.ndarray, table: Table,
-                 frame: Frame | None = None, ambient_dim: int | None = None) -> None:
+                 frame: Frame | None = None, ambient_dim: int | None = None,
+                 mode: Mode | None = None) -> None:
         self._table = table
+        self.mode = mode or Mode()
         self.points = readonly(points)
         self.input_index = readonly(input_index)
         self.frame = frame
@@ -63,11 +75,17 @@ class AlphaComplex:
             readonly(arr)
 
     @classmethod
-    def from_points(cls, points: object, progress: Progress | None = None) -> AlphaComplex:
+    def from_points(cls, points: object, progress: Progress | None = None, *,
+                    density: int | None = None, combine: str = "mean",
+                    anisotropy: float = 0.0, normals: object = None) -> AlphaComplex:
         """Build from (n, 2) or (n, 3) points; duplicates merged, planar 3D built in 2D.
 
         `progress(fraction, stage)` is called between stages; raising core.errors.Cancelled
         from it stops the build. Raises InputError for points that make no complex.
+        Modes (core/modes.py; alpha is then in the mode's units): `density=k` divides radii
+        by the local spacing (distance to the k-th neighbour, `combine`d over a simplex's
+        vertices by "mean" or "max"); `anisotropy=tau` in [0, 1) compresses the alpha ball
+        along the surface normal, taken from `normals` ((n, d) like the points) or estimated.
         """
         def step(fraction: float, stage: str) -> None:
             if progress is not None:
@@ -75,6 +93,9 @@ class AlphaComplex:
 
         step(0.0, "checking points")
         raw = as_points(points)
+        mode = make_mode(density, combine, anisotropy, normals is not None)
+        if mode.anisotropy > 0.0 and normals is not None:
+            normals = check_normals(normals, len(raw), raw.shape[1])
         unique, input_index = merge_duplicates(raw)
         frame = check_spread(unique)
         coords = unique if frame is None else (unique - frame.origin) @ frame.basis.T
@@ -94,11 +115,17 @@ class AlphaComplex:
         scale = _power_of_two_scale(coords)
         local = coords / scale
         step(0.6, "interval table")
+        share = 0.3 if mode.active else 0.4
         table = build_table(local, tri.cells, tri.neighbors,
-                            None if progress is None else lambda f, s: step(0.6 + 0.4 * f, s))
+                            None if progress is None else lambda f, s: step(0.6 + share * f, s))
         for level in table.levels:
             for arr in (level.enter, level.regular, level.interior):
                 arr *= scale
+        if mode.active:
+            table = scaled_table(table, coords, mode,
+                                 _point_normals(normals, input_index, len(coords), frame)
+                                 if mode.normals == "given" else None,
+                                 None if progress is None else lambda f, s: step(0.9 + 0.1 * f, s))
         with np.errstate(over="ignore"):
             measure_scale = np.float64(scale) ** coords.shape[1]
         if not np.isfinite(measure_scale):
@@ -106,7 +133,7 @@ class AlphaComplex:
                              f"{'areas' if coords.shape[1] == 2 else 'volumes'} overflow "
                              "float64; rescale the points (e.g. to metres or kilometres)")
         table.cell_measure *= measure_scale
-        return cls(np.ascontiguousarray(coords), input_index, table, frame, raw.shape[1])
+        return cls(np.ascontiguousarray(coords), input_index, table, frame, raw.shape[1], mode)
 
     # --- the table -------------------------------------------------------------------------
     def _level(self, k: int) -> Level:

@@ -11,6 +11,9 @@ Optional, written once computed, so re-opening skips the topology pass: `sig_alp
 float64 (the spectrum), `sig_betti` (s, dim) int32, `sig_solid` (s,) int32, `sig_measure`,
 `sig_boundary` (s,) float64; `topo_vertex_forest`, `topo_dual_forest` (float64),
 `topo_dual_edges` (fd, 2) int64, `topo_solid_forest` (float64).
+
+Optional, for a table built in a mode (core/modes.py; absent = classic): `mode_density` (int,
+0 = off), `mode_combine` (str), `mode_anisotropy` (float), `mode_normals` (str).
 """
 
 from __future__ import annotations
@@ -22,7 +25,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .atomic import atomic_write
-from .errors import FileFormatError
+from .errors import FileFormatError, InputError
+from .modes import Mode, make_mode
 from .npz import read_npz
 from .points import Frame
 from .table import Level, Table
@@ -50,6 +54,11 @@ def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
            "facet_interior_order": table.facet_interior_order}
     if ac.frame is not None:
         out["frame_origin"], out["frame_basis"] = ac.frame.origin, ac.frame.basis
+    if ac.mode.active:
+        out.update(mode_density=np.array(ac.mode.density or 0),
+                   mode_combine=np.array(ac.mode.combine),
+                   mode_anisotropy=np.array(ac.mode.anisotropy),
+                   mode_normals=np.array(ac.mode.normals))
     out.update(_derived_arrays(ac))
     for k, level in enumerate(table.levels):
         out[f"simplices_{k}"] = level.simplices
@@ -95,6 +104,18 @@ def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], check: Checker) -
     ac._adopt(topology, signatures)
 
 
+def _mode(a: dict[str, np.ndarray], path: Path) -> Mode:
+    """The mode saved with a table (classic when none was)."""
+    if "mode_density" not in a:
+        return Mode()
+    try:
+        density = int(a["mode_density"])
+        return make_mode(density or None, str(a["mode_combine"]), float(a["mode_anisotropy"]),
+                         str(a["mode_normals"]) == "given")
+    except (InputError, TypeError, ValueError):
+        raise FileFormatError(f"{path}: not a valid Alpha Scoop table (mode)") from None
+
+
 def save(ac: AlphaComplex, path: str | os.PathLike) -> None:
     """Write `ac` to `path` (.npz) atomically."""
     atomic_write(path, lambda handle: np.savez(handle, **_arrays(ac)))
@@ -125,7 +146,8 @@ def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
         frame = Frame(a["frame_origin"], a["frame_basis"]) if "frame_origin" in a else None
         table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"],
                       a["facet_interior_order"])
-        ac = cls(a["points"], a["input_index"], table, frame, int(a["ambient_dim"]))
+        ac = cls(a["points"], a["input_index"], table, frame, int(a["ambient_dim"]),
+                 _mode(a, path))
         if "sig_alphas" in a:
             _adopt_derived(ac, a, check)
         return ac
