@@ -7,6 +7,10 @@ k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter, `enter_k`/`regular_
 (f, 2) int32 (-1 = outside), `facet_flip` (f,) bool, `cell_measure` (c,) float64,
 `facet_interior_order` (f,) int32 (facet rows by ascending interior).
 
+Weighted tables (tables without it are classic, so older files load unchanged) add `weights`
+(m,) float64 squared radii aligned with `points`; their values are signed radii and
+`input_index` holds -1 for hidden points.
+
 Optional, written once computed, so re-opening skips the topology pass: `sig_alphas` (s,)
 float64 (the spectrum), `sig_betti` (s, dim) int32, `sig_solid` (s,) int32, `sig_measure`,
 `sig_boundary` (s,) float64; `topo_vertex_forest`, `topo_dual_forest` (float64),
@@ -54,6 +58,8 @@ def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
            "facet_interior_order": table.facet_interior_order}
     if ac.frame is not None:
         out["frame_origin"], out["frame_basis"] = ac.frame.origin, ac.frame.basis
+    if ac.weights is not None:
+        out["weights"] = ac.weights
     if ac.mode.active:
         out.update(mode_density=np.array(ac.mode.density or 0),
                    mode_combine=np.array(ac.mode.combine),
@@ -147,7 +153,7 @@ def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
         table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"],
                       a["facet_interior_order"])
         ac = cls(a["points"], a["input_index"], table, frame, int(a["ambient_dim"]),
-                 _mode(a, path))
+                 _mode(a, path), a.get("weights"))
         if "sig_alphas" in a:
             _adopt_derived(ac, a, check)
         return ac

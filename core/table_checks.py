@@ -108,8 +108,12 @@ def check_table(check: Checker, a: dict, dim: int) -> None:
     points = check.array(a["points"], "points", np.float64, (None, dim))
     m = len(points)
     check.that(m > dim and bool(np.isfinite(points).all()), "points not finite")
+    weighted = "weights" in a  # weighted tables: -1 marks a hidden input point
+    if weighted:
+        weights = check.array(a["weights"], "weights", np.float64, (m,))
+        check.that(bool(np.isfinite(weights).all()), "weights not finite")
     index = check.array(a["input_index"], "input_index", np.int64, (None,))
-    check.ids(index, "input_index", 0, m)
+    check.ids(index, "input_index", -1 if weighted else 0, m)
     counts = [m]
     for k in range(dim + 1):
         counts.append(check_level(check, a, k, m, counts[-1]))
@@ -164,7 +168,8 @@ def check_signature_arrays(check: Checker, a: dict, dim: int) -> np.ndarray:
     """Dtypes, shapes and ranges of the saved signatures; returns the (s,) alphas."""
     alphas = check.array(a["sig_alphas"], "sig_alphas", np.float64, (None,))
     s = len(alphas)
-    check.that(s > 0 and alphas[0] == 0.0, "sig_alphas must start at 0")
+    first = float(a["enter_0"].min()) if "weights" in a and len(a["enter_0"]) else 0.0
+    check.that(s > 0 and alphas[0] == first, "sig_alphas must start at the first vertex")
     check.ascending(alphas, "sig_alphas", strict=True)
     last = max(float(a[f"enter_{k}"][-1]) for k in range(dim + 1) if len(a[f"enter_{k}"]))
     check.that(alphas[-1] == last, "sig_alphas do not end at the largest enter value")
