@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import io
 import zipfile
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -14,17 +15,20 @@ from core.cache import build_cached, entry_path
 from core.errors import FileFormatError
 
 
-@pytest.fixture(params=[2, 3])
+@pytest.fixture(params=[2, 3, "weighted"])
 def saved(request, tmp_path):
-    """(points, the complex with signatures, its arrays as saved by `save`)."""
-    points = np.random.default_rng(request.param).normal(size=(150, request.param))
-    ac = AlphaComplex.from_points(points)
+    """(points, the complex with signatures, its arrays as saved by `save`, input weights)."""
+    dim = 3 if request.param == "weighted" else request.param
+    rng = np.random.default_rng(dim)
+    points = rng.normal(size=(150, dim))
+    weights = rng.uniform(0, 0.05, 150) if request.param == "weighted" else None
+    ac = AlphaComplex.from_points(points, weights=weights)
     ac.signatures()
     path = tmp_path / "good.npz"
     ac.save(path)
     with np.load(path, allow_pickle=False) as z:
         arrays = {name: z[name].copy() for name in z.files}
-    return points, ac, arrays
+    return points, ac, arrays, weights
 
 
 def top(a: dict) -> int:
@@ -146,12 +150,12 @@ def test_crafted_table_is_a_file_format_error(saved, tmp_path, craft):
 
 @pytest.mark.parametrize("craft", ALL)
 def test_cache_rebuilds_and_replaces_a_crafted_entry(saved, tmp_path, monkeypatch, craft):
-    points, ac, _ = saved
+    points, ac, _, weights = saved
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
-    entry = entry_path(points)
+    entry = entry_path(points, weights=weights)
     entry.parent.mkdir()
     crafted(saved, tmp_path, craft).replace(entry)
-    got = build_cached(points, signatures=True)
+    got = build_cached(SimpleNamespace(points=points, weights=weights), signatures=True)
     assert got.optimal_alpha() == ac.optimal_alpha()
     assert got.shape(ac.optimal_alpha()).measure == ac.shape(ac.optimal_alpha()).measure
     np.testing.assert_array_equal(got.signatures().solid_components,
@@ -160,7 +164,7 @@ def test_cache_rebuilds_and_replaces_a_crafted_entry(saved, tmp_path, monkeypatc
 
 
 def test_good_tables_pass_the_checks(saved, tmp_path):
-    _, ac, arrays = saved
+    _, ac, arrays, _ = saved
     for compressed in (False, True):
         path = tmp_path / f"ok{compressed}.npz"
         (np.savez_compressed if compressed else np.savez)(path, **arrays)
