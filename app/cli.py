@@ -57,7 +57,7 @@ def build_parser() -> Parser:
     subs = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     info = subs.add_parser("info", help="load report, spectrum, optimal alpha, shape summary")
     _common(info)
-    info.add_argument("--alpha", type=radius, metavar="R", help="alpha radius (default optimal)")
+    info.add_argument("--alpha", type=radius, metavar="R", help="alpha radius (default: opening)")
     info.add_argument("--json", action="store_true", help="print JSON instead of text")
     export = subs.add_parser("export", help="write the shape at one alpha (format from -o)")
     _common(export)
@@ -112,8 +112,8 @@ def load(args) -> tuple:
 
 def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
     """Everything `info` reports, as a JSON-ready dict."""
-    optimal = float(ac.optimal_alpha())
-    alpha = optimal if alpha is None else alpha
+    optimal, opening = float(ac.optimal_alpha()), float(ac.default_alpha())
+    alpha = opening if alpha is None else alpha
     spectrum = np.asarray(ac.spectrum())
     shape = ac.shape(alpha)
     classes = {SIMPLEX_NAMES[k]: dict(zip(CLASS_NAMES, np.bincount(
@@ -126,6 +126,7 @@ def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
         "spectrum": {"count": len(spectrum), "min": float(spectrum[1 if len(spectrum) > 1 else 0]),
                      "max": float(spectrum[-1])},
         "optimal_alpha": optimal,
+        "default_alpha": opening,
         "alpha": alpha,
         "betti": [int(b) for b in ac.betti(alpha)],
         "volume" if ac.dim == 3 else "area": shape.measure,
@@ -154,7 +155,8 @@ def _text(info: dict, lines: list[str]) -> str:
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}",
-        f"optimal     alpha {info['optimal_alpha']:.6g}",
+        f"optimal     alpha {info['optimal_alpha']:.6g} (every point in one solid)",
+        f"opening     alpha {info['default_alpha']:.6g} (the shape looks like the object)",
         f"at alpha    {info['alpha']:.6g}",
     ]
     lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))

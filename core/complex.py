@@ -379,6 +379,15 @@ class AlphaComplex:
 
         return optimal_alpha(self._signatures, self._cover_alpha, n_components)
 
+    def default_alpha(self) -> float:
+        """The alpha a view opens at: where the shape looks like the object (core.opening).
+
+        The smallest alpha at which the triangles (surface and solid) join at least 99 % of the
+        points into one piece, and never more than `optimal_alpha()` (CGAL's rule for solids).
+        Computed with the signatures and saved with them.
+        """
+        return min(self._signatures.opening_alpha, self.optimal_alpha())
+
     def optimal_alpha2(self, n_components: int = 1) -> float:
         """optimal_alpha as a squared value (may be negative for weighted complexes)."""
         return float(signed_square(np.float64(self.optimal_alpha(n_components))))

@@ -9,6 +9,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns
+from core.io.sizes import check_npy, check_npz_member
 
 POINT_KEYS = ("points", "xyz", "coords", "coordinates", "positions", "vertices")
 ATTRIBUTE_KEYS = {"normals": "normals", "colors": "colors", "colours": "colors",
@@ -47,6 +48,8 @@ def read_npy(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
     """Points (and for .npz any normals/colors/weights arrays of matching length)."""
     with open(path, "rb") as fh:  # our handle: np.load leaks its own when a zip is broken
         try:
+            if path.suffix.lower() == ".npy":
+                check_npy(path, fh)
             data = np.load(fh, allow_pickle=False)
             if isinstance(data, np.ndarray):
                 return _from_array(data, path, columns), {}, ()
@@ -64,7 +67,11 @@ def _from_archive(data, path: Path, columns) -> tuple[np.ndarray, dict[str, np.n
     if key is None:
         raise FileFormatError(f"{path}: no points array (looked for {', '.join(POINT_KEYS)};"
                               f" found {', '.join(keys) or 'nothing'})")
+    check_npz_member(path, data.zip, key)
     points = _from_array(data[key], path, columns)
+    for k in keys:
+        if k in ATTRIBUTE_KEYS:
+            check_npz_member(path, data.zip, k)
     attrs = {ATTRIBUTE_KEYS[k]: data[k] for k in keys if k in ATTRIBUTE_KEYS}
     attrs = {k: v for k, v in attrs.items() if len(v) == len(points)}
     return points, attrs, (f"points from array {key!r}",)
