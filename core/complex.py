@@ -287,7 +287,8 @@ class AlphaComplex:
     def shape(self, alpha: float | None = None, *, alpha2: float | None = None) -> AlphaShape:
         """The alpha shape at `alpha` (a radius) or `alpha2` (squared); arrays are computed
         when first used. Its `alpha` attribute is the table value (signed radius)."""
-        return AlphaShape(self, table_value(alpha, alpha2))
+        return AlphaShape(self, table_value(alpha, alpha2),
+                          None if alpha2 is None else float(alpha2))
 
     def cursor(self) -> ShapeCursor:
         """A ShapeCursor: shapes at one alpha after another, each step costing what changed
