@@ -26,17 +26,24 @@ def _face(header: Header) -> tuple[int, str] | None:
 
 
 def _ascii_items(fh, header: Header, index: int, name: str, where: str) -> np.ndarray:
-    """Indices of one list property of an ascii element (one text line per row)."""
+    """Indices of one list property of an ascii element (one text line per row): numpy's C
+    parser when every row is the same polygon size, else row by row."""
     element = header.elements[index]
-    lines = itertools.islice(fh, sum(e.n for e in header.elements[:index]), None)
-    rows = [ln.split() for ln in itertools.islice(lines, element.n)]
+    for _ in range(sum(e.n for e in header.elements[:index])):
+        fh.readline()
+    at = [p.name for p in element.properties].index(name)
+    if at == 0 and element.n:
+        start = fh.tell()
+        try:
+            table = np.loadtxt(itertools.islice(fh, element.n), dtype=np.int64, ndmin=2)
+            if len(table) == element.n and np.all(table[:, 0] == table.shape[1] - 1):
+                return table[:, 1:].ravel()
+        except ValueError:  # rows of different lengths (mixed polygons)
+            pass
+        fh.seek(start)
+    rows = [ln.split() for ln in itertools.islice(fh, element.n)]
     if len(rows) < element.n:
         raise FileFormatError(f"{where}: truncated PLY (faces)")
-    at = [p.name for p in element.properties].index(name)
-    if at == 0 and len({len(r) for r in rows}) == 1:  # the usual case: same-size polygons only
-        table = np.array(rows, dtype=np.bytes_).astype(np.int64)
-        if np.all(table[:, 0] == table.shape[1] - 1):
-            return table[:, 1:].ravel()
     parts = [_row_items(r, element, at, where) for r in rows]
     return np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
 
