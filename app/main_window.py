@@ -153,7 +153,8 @@ class MainWindow(QMainWindow):
         ds = self.model.dataset
         ac = ds.ac
         styles = self.prefs.styles(ac.dim)
-        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles)
+        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
+                               ds.frame)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
