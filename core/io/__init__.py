@@ -11,6 +11,7 @@ import numpy as np
 from core.errors import FileFormatError
 from core.io.las import read_las
 from core.io.mesh import read_mesh
+from core.io.molecule import molecule_extension, read_molecule_points
 from core.io.npy import read_npy
 from core.io.pcd import read_pcd
 from core.io.ply import read_ply
@@ -38,6 +39,8 @@ READ_FORMATS: dict[str, str] = {
     ".gltf": "glTF mesh (vertices)",
     ".vtk": "Legacy VTK (vertices)",
     ".vtu": "VTK unstructured grid (vertices)",
+    ".pdb": "PDB molecule (atoms; also .ent and .gz)",
+    ".cif": "mmCIF molecule (atoms; also .mmcif and .gz)",
 }
 
 Reader = Callable[[Path, object], tuple[np.ndarray, dict[str, np.ndarray], tuple]]
@@ -46,6 +49,7 @@ READERS: dict[str, Reader] = {
     ".npy": read_npy, ".npz": read_npy,
     **dict.fromkeys((".xyz", ".pts", ".txt", ".csv"), read_text),
     **dict.fromkeys((".obj", ".stl", ".off", ".glb", ".gltf", ".vtk", ".vtu"), read_mesh),
+    **dict.fromkeys((".pdb", ".ent", ".cif", ".mmcif"), read_molecule_points),
 }
 
 
@@ -56,7 +60,7 @@ def _format_name(ext: str) -> str:
 
 def _check_file(path: Path) -> str:
     """The lower-case extension of a readable, non-empty file, or a clear error."""
-    ext = path.suffix.lower()
+    ext = molecule_extension(path) or path.suffix.lower()
     if ext not in READERS:
         known = " ".join(sorted(READERS))
         raise FileFormatError(f"{path}: unknown extension {ext or '(none)'!r}; known: {known}")
