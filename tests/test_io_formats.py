@@ -89,6 +89,14 @@ def test_text_round_trip(tmp_path, cloud, normals, name):
     path = tmp_path / name
     path.write_text(header + "\n".join(rows) + "\n")
     ps = read_points(path)
+    if kind == "lonlat":  # a 2D footprint in metres (pyproj, the CRS the reader chose)
+        from pyproj import Transformer
+
+        to_crs = Transformer.from_crs("EPSG:4326", ps.report.georef.crs, always_xy=True)
+        want = np.column_stack(to_crs.transform(cloud[:, 0], cloud[:, 1]))
+        np.testing.assert_allclose(ps.points, want, rtol=1e-12)
+        np.testing.assert_array_equal(ps.attributes["altitude"], cloud[:, 2])
+        return
     np.testing.assert_array_equal(ps.points, cloud)
     if "nx" in header:
         np.testing.assert_array_equal(ps.attributes["normals"], normals)

@@ -159,6 +159,12 @@ def _parse_row(row: list[str], usecols: list[int], path: Path, lineno: int) -> l
 
 def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, d) coordinates, attributes and notes from a delimited text file."""
+    return read_text_columns(path, columns)[:3]
+
+
+def read_text_columns(path: Path, columns=None
+                      ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, list[str] | None]:
+    """read_text's result and the coordinate columns' header names (None without a header)."""
     layout = sniff(path)
     coords, attrs = choose_columns(layout, columns, path)
     usecols = coords + [c for cols in attrs.values() for c in cols]
@@ -176,7 +182,8 @@ def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarra
         attributes[name] = _attribute(name, block)
     names = layout.names or [str(i + 1) for i in range(layout.n_cols)]
     note = f"coordinates from columns {', '.join(names[c] for c in coords)}"
-    return points, attributes, (note,)
+    coord_names = [layout.names[c] for c in coords] if layout.names else None
+    return points, attributes, (note,), coord_names
 
 
 def _attribute(name: str, block: np.ndarray) -> np.ndarray:
