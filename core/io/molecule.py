@@ -147,12 +147,16 @@ def _molecule(path: Path, st, n_models: int, waters: int, altlocs: int) -> Molec
     return Molecule(centres, elements, numbers, radii, residues, report)
 
 
+def molecule_attributes(mol: Molecule, probe: float = DEFAULT_PROBE) -> dict[str, np.ndarray]:
+    """Per-atom attributes of a molecule's point set: `vdw_radius`, `atomic_number` and
+    `weights` (squared ball radius with the probe)."""
+    return {"vdw_radius": mol.vdw_radii, "atomic_number": mol.atomic_numbers,
+            "weights": mol.weights(probe)}
+
+
 def read_molecule_points(path: Path, columns: object) -> tuple[np.ndarray, dict, tuple]:
-    """The point-reader view of a molecule: atom centres with per-atom attributes
-    `vdw_radius`, `atomic_number` and `weights` (squared radius with the default probe)."""
+    """The point-reader view of a molecule (see molecule_attributes; default probe)."""
     if columns is not None:
         raise FileFormatError(f"{path}: --columns does not apply to molecule files")
     mol = read_molecule(path)
-    attrs = {"vdw_radius": mol.vdw_radii, "atomic_number": mol.atomic_numbers,
-             "weights": mol.weights(DEFAULT_PROBE)}
-    return mol.centres, attrs, (mol.report.summary(),)
+    return mol.centres, molecule_attributes(mol), (mol.report.summary(),)
