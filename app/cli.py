@@ -15,6 +15,7 @@ import sys
 import time
 import warnings
 from collections.abc import Iterator, Sequence
+from pathlib import Path
 
 import numpy as np
 
@@ -43,12 +44,27 @@ def count(text: str) -> int:
     return int(text)
 
 
+def probe_radius(text: str) -> float:
+    """A finite radius >= 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a radius >= 0, not {text!r}") from None
+    if not 0 <= value < float("inf"):
+        raise argparse.ArgumentTypeError(f"expected a radius >= 0, not {text!r}")
+    return value
+
+
 def _common(sub: argparse.ArgumentParser) -> None:
     """Options shared by info and export."""
     sub.add_argument("file", help="point file (see README: Formats)")
     sub.add_argument("--columns", metavar="A,B[,C]", help="coordinate columns (names or 0-based)")
     sub.add_argument("--subsample", type=count, metavar="N", help="thin to at most N points")
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
+    sub.add_argument("--probe", type=probe_radius, default=1.4, metavar="R",
+                     help="molecules: solvent probe radius in Å added to every atom "
+                     "(default 1.4; 0 = van der Waals surface)")
+    sub.add_argument("--keep-water", action="store_true", help="molecules: keep water atoms")
 
 
 def build_parser() -> Parser:
@@ -94,20 +110,64 @@ def _progress():
 def load(args) -> tuple:
     """(PointSet, AlphaComplex, seconds, from cache?) for the file and options."""
     from core.cache import build_cached, is_cached
-    from core.io import read_points
 
-    ps = read_points(args.file, columns=args.columns, subsample=args.subsample)
-    cached = not args.no_cache and is_cached(ps)
+    ps, source = _read(args)
+    cached = not args.no_cache and is_cached(source)
     update, close = _progress()
     start = time.perf_counter()
     try:
         # Where the optimal alpha is needed, the topology is cached with the table too.
         needs_topology = args.command == "info" or getattr(args, "alpha", None) is None
-        ac = build_cached(ps, use_cache=not args.no_cache, progress=update,
+        ac = build_cached(source, use_cache=not args.no_cache, progress=update,
                           signatures=needs_topology and not getattr(args, "table", False))
     finally:
         close()
     return ps, ac, time.perf_counter() - start, cached
+
+
+def is_molecule(args) -> bool:
+    """The file is a PDB/mmCIF molecule (read as balls: atoms with radii plus the probe)."""
+    from core.io.molecule import molecule_extension
+
+    return molecule_extension(Path(args.file)) is not None
+
+
+def _read(args) -> tuple:
+    """(PointSet, what to build: the PointSet, or the atoms with their weights)."""
+    from core.io import read_points
+
+    if not is_molecule(args):
+        ps = read_points(args.file, columns=args.columns, subsample=args.subsample)
+        return ps, ps
+    from core.io.molecule import read_molecule_pointset
+    from core.molecule.analysis import WeightedPoints
+
+    for option in ("columns", "subsample"):
+        if getattr(args, option) is not None:
+            raise UsageError(f"--{option} does not apply to molecule files")
+    ps, _ = read_molecule_pointset(args.file, probe=args.probe, keep_water=args.keep_water)
+    return ps, WeightedPoints(ps.points, ps.attributes["weights"])
+
+
+def molecule_summary(ac, probe: float) -> dict:
+    """The `molecule` object of `info`: exact area and volume, per-atom area, cavities."""
+    from core.molecule.analysis import measure_molecule
+
+    return {**measure_molecule(ac, probe).to_dict(), "pockets": None}
+
+
+def _molecule_text(mol: dict) -> list[str]:
+    """Text lines of the `molecule` object."""
+    kind = "solvent-accessible" if mol["probe"] > 0 else "van der Waals"
+    cavities = ", ".join(f"{v:.4g} ± {e:.2g}" for v, e in
+                         zip(mol["cavities"], mol["cavity_errors"], strict=True))
+    return [
+        f"atoms       {mol['atoms']:,} balls, probe {mol['probe']:g} Å ({kind} surface)",
+        f"surface     {mol['surface_area']:,.2f} Å² (exact)",
+        f"volume      {mol['volume']:,.2f} Å³ (exact, union of balls)",
+        f"cavities    {len(mol['cavities'])}" + (f": {cavities} Å³" if cavities else ""),
+        "pockets     not computed (see README: Molecules)",
+    ]
 
 
 def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
@@ -172,10 +232,15 @@ def _text(info: dict, lines: list[str]) -> str:
 
 
 def cmd_info(args) -> int:
-    """Print the load report and the shape summary."""
+    """Print the load report and the shape summary (and a molecule's measures)."""
     ps, ac, seconds, cached = load(args)
     info = summary(ps, ac, seconds, cached, args.alpha)
-    print(json.dumps(info, indent=2) if args.json else _text(info, ps.report.lines()))
+    if is_molecule(args):
+        info["molecule"] = molecule_summary(ac, args.probe)
+    text = None if args.json else _text(info, ps.report.lines())
+    if text is not None and "molecule" in info:
+        text += "\n" + "\n".join(_molecule_text(info["molecule"]))
+    print(json.dumps(info, indent=2) if args.json else text)
     return 0
 
 

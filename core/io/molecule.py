@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
+from core.io.report import PointSet
 
 MOLECULE_EXTENSIONS = (".pdb", ".ent", ".cif", ".mmcif")
 DEFAULT_PROBE = 1.4  # Å, a water molecule
@@ -131,7 +132,8 @@ def _molecule(path: Path, st, n_models: int, waters: int, altlocs: int) -> Molec
     centres = np.array([a.pos.tolist() for _, _, a in atoms], dtype=np.float64)
     elements = np.array([a.element.name for _, _, a in atoms])
     numbers = np.array([a.element.atomic_number for _, _, a in atoms], dtype=np.int16)
-    radii = np.array([a.element.vdw_r for _, _, a in atoms], dtype=np.float64)
+    # gemmi stores radii as float32: round back to the table's 2-3 decimals
+    radii = np.round(np.array([a.element.vdw_r for _, _, a in atoms], dtype=np.float64), 3)
     unknown = (numbers == 0) | ~(radii > 0)
     radii[unknown] = UNKNOWN_RADIUS
     residues = np.array([f"{c}:{r.name}:{r.seqid.num}{r.seqid.icode.strip()}"
@@ -152,6 +154,18 @@ def molecule_attributes(mol: Molecule, probe: float = DEFAULT_PROBE) -> dict[str
     `weights` (squared ball radius with the probe)."""
     return {"vdw_radius": mol.vdw_radii, "atomic_number": mol.atomic_numbers,
             "weights": mol.weights(probe)}
+
+
+def read_molecule_pointset(path: str | Path, *, probe: float = DEFAULT_PROBE,
+                           keep_water: bool = False) -> tuple[PointSet, Molecule]:
+    """(PointSet of the atoms with molecule_attributes for `probe`, the Molecule read)."""
+    from core.io.report import finish
+
+    mol = read_molecule(path, keep_water=keep_water)
+    ext = molecule_extension(Path(path)) or ""
+    ps = finish(Path(path), ext.lstrip(".").upper(), mol.centres,
+                molecule_attributes(mol, probe), notes=(mol.report.summary(),))
+    return ps, mol
 
 
 def read_molecule_points(path: Path, columns: object) -> tuple[np.ndarray, dict, tuple]:
