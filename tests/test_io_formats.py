@@ -270,3 +270,14 @@ def test_gltf_vertices_read(tmp_path, ext):
         (tmp_path / "m.gltf").write_bytes(files["model.gltf"])
     ps = read_points(tmp_path / f"m{ext}")
     assert {tuple(p) for p in ps.points} == {tuple(p) for p in pts}
+
+
+@pytest.mark.parametrize("data", ["ascii", "binary"])
+def test_pcd_without_the_optional_count_line(tmp_path, cloud, data):
+    head = ("# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+            f"WIDTH {len(cloud)}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {len(cloud)}\n"
+            f"DATA {data}\n").encode()
+    body = (cloud.astype("<f4").tobytes() if data == "binary"
+            else "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in cloud.tolist()).encode())
+    (tmp_path / "p.pcd").write_bytes(head + body)
+    np.testing.assert_array_equal(read_points(tmp_path / "p.pcd").points, cloud)

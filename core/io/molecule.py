@@ -164,7 +164,8 @@ def read_molecule_pointset(path: str | Path, *, probe: float = DEFAULT_PROBE,
     mol = read_molecule(path, keep_water=keep_water)
     ext = molecule_extension(Path(path)) or ""
     ps = finish(Path(path), ext.lstrip(".").upper(), mol.centres,
-                molecule_attributes(mol, probe), notes=(mol.report.summary(),))
+                molecule_attributes(mol, probe), notes=(mol.report.summary(),),
+                weights_from=f"atoms: (van der Waals radius + probe {probe:g} Å)²")
     return ps, mol
 
 

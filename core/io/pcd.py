@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
-import os
+import io
+import re
 from pathlib import Path
 
 import numpy as np
 
 from core.errors import FileFormatError
+from core.io.pcd_checks import check_pcd_header
 
 NORMAL_FIELDS = ("normal_x", "normal_y", "normal_z")
 
@@ -19,39 +21,23 @@ def _unpack_rgb(packed: np.ndarray) -> np.ndarray:
     return np.column_stack([(as_int >> s) & 0xFF for s in (16, 8, 0)]).astype(np.uint8)
 
 
-MAX_LZF_RATIO = 200  # a compressed body claiming more than this expansion is bogus
-HEADER_LINES = 20
+def _with_count(path: Path, n_fields: int) -> io.BytesIO:
+    """The file with the optional COUNT line (1 per field) that pypcd4 requires added."""
+    data = path.read_bytes()
+    count = b"COUNT " + b" ".join([b"1"] * n_fields) + b"\n"
+    match = re.search(rb"^SIZE[^\n]*\n", data, re.M)
+    if match is None:
+        raise FileFormatError(f"{path}: bad PCD header (no SIZE line)")
+    return io.BytesIO(data[: match.end()] + count + data[match.end() :])
 
 
-def _check_size(path: Path) -> None:
-    """Refuse headers whose POINTS x row size the body cannot hold (before any allocation)."""
-    fields: dict[str, list[str]] = {}
-    with open(path, "rb") as fh:
-        for _ in range(HEADER_LINES):
-            words = fh.readline().decode("ascii", "replace").split()
-            if words and not words[0].startswith("#"):
-                fields[words[0].upper()] = words[1:]
-            if words and words[0].upper() == "DATA":
-                break
-        body = os.fstat(fh.fileno()).st_size - fh.tell()
-    try:
-        n = int(fields["POINTS"][0])
-        row = sum(int(s) * int(c) for s, c in zip(fields["SIZE"], fields.get(
-            "COUNT", ["1"] * len(fields["SIZE"])), strict=False))
-        kind = fields["DATA"][0].lower()
-    except (KeyError, IndexError, ValueError):
-        raise FileFormatError(f"{path}: bad PCD header (POINTS, SIZE or DATA missing)") from None
-    limit = {"binary": body, "binary_compressed": body * MAX_LZF_RATIO}.get(kind, body * 64)
-    if n * row > limit or n < 0:
-        raise FileFormatError(f"{path}: truncated PCD (header claims {n:,} points, "
-                              f"the file holds {body:,} bytes of data)")
-
-
-def _load(path: Path):
+def _load(path: Path, fields: dict[str, list[str]]):
     """pypcd4's PointCloud, with any parser failure as a format error naming the file."""
     from pypcd4 import PointCloud
 
     try:
+        if "COUNT" not in fields:
+            return PointCloud.from_fileobj(_with_count(path, len(fields["SIZE"])))
         return PointCloud.from_path(path)
     except Exception as exc:  # pypcd4 raises many types (ValueError, struct.error, lzf...)
         raise FileFormatError(f"{path}: unreadable PCD ({type(exc).__name__}: {exc})") from None
@@ -59,8 +45,8 @@ def _load(path: Path):
 
 def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, 3) xyz and normals/colours/intensity when the PCD has those fields."""
-    _check_size(path)
-    cloud = _load(path)
+    declared, fields = check_pcd_header(path)
+    cloud = _load(path, fields)
     fields = tuple(cloud.fields)
     if not {"x", "y"}.issubset(fields):
         raise FileFormatError(f"{path}: PCD has no x/y fields ({', '.join(fields)})")
@@ -78,4 +64,7 @@ def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
             attrs["intensity"] = cloud.numpy(("intensity",))[:, 0].astype(np.float64)
     except (ValueError, KeyError) as exc:
         raise FileFormatError(f"{path}: bad PCD fields ({exc})") from None
+    if len(points) != declared:
+        raise FileFormatError(f"{path}: truncated PCD (header declares {declared:,} points, "
+                              f"{len(points):,} read)")
     return points, attrs, (f"PCD {cloud.metadata.data.value}",)

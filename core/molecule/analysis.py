@@ -13,14 +13,6 @@ from .cavities import void_cells, void_volumes
 from .measures import union_measures
 
 
-@dataclass(frozen=True)
-class WeightedPoints:
-    """Points (n, 3) with weights (n,) squared radii: what core.cache.build_cached builds."""
-
-    points: np.ndarray
-    weights: np.ndarray
-
-
 @dataclass(frozen=True, eq=False)
 class MoleculeMeasures:
     """Measures of the union of atom balls at alpha² = `alpha2` (0: the balls themselves).
