@@ -44,11 +44,20 @@ def count(text: str) -> int:
     return int(text)
 
 
+def index(text: str) -> int:
+    """A whole number from 0."""
+    if not text.isdigit():
+        raise argparse.ArgumentTypeError(f"expected a whole number from 0, not {text!r}")
+    return int(text)
+
+
 def _common(sub: argparse.ArgumentParser) -> None:
     """Options shared by info and export."""
     sub.add_argument("file", help="point file (see README: Formats)")
     sub.add_argument("--columns", metavar="A,B[,C]", help="coordinate columns (names or 0-based)")
     sub.add_argument("--subsample", type=count, metavar="N", help="thin to at most N points")
+    sub.add_argument("--scan", type=index, metavar="N",
+                     help="E57: read only scan N (0-based; default all scans, poses applied)")
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
     sizes = sub.add_mutually_exclusive_group()
     sizes.add_argument("--weights", metavar="COLUMN",
@@ -140,10 +149,10 @@ def _read(args):
     if not is_molecule(args):
         return read_points(args.file, columns=args.columns, subsample=args.subsample,
                            weights=args.weights, radius=args.radius,
-                           radius_add=args.radius_add)
+                           radius_add=args.radius_add, scan=args.scan)
     from core.io.molecule import read_molecule_pointset
 
-    for option in ("columns", "subsample", "weights", "radius", "radius_add"):
+    for option in ("columns", "subsample", "weights", "radius", "radius_add", "scan"):
         if getattr(args, option) is not None:
             raise UsageError(f"--{option.replace('_', '-')} does not apply to molecule files "
                              "(use --probe)")
