@@ -45,9 +45,10 @@ class Preferences:
         """Remember the Export shape dialog's manifold choice."""
         self.store.setValue("export/manifold", bool(manifold))
 
-    def styles(self, dim: int) -> dict[str, LayerStyle]:
-        """Layer styles for a dim-D dataset: defaults overridden by saved ones."""
-        styles = default_styles(dim)
+    def styles(self, dim: int, weighted: bool = False) -> dict[str, LayerStyle]:
+        """Layer styles for a dim-D dataset (weighted: with the balls layer): defaults
+        overridden by saved ones."""
+        styles = default_styles(dim, weighted)
         for name, default in styles.items():
             key = f"layers/{dim}d/{name}"
             styles[name] = LayerStyle(
