@@ -162,7 +162,7 @@ class MainWindow(QMainWindow):
             styles["balls"], styles["cavities"] = ATOM_STYLE, CAVITY_STYLE
             rgb = cpk_rgb(ds.atomic_numbers)
         self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                               radii, ds.frame, rgb)
+                               radii, ds.frame, ds.unit, rgb)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
