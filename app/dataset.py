@@ -33,6 +33,7 @@ class Dataset:
     ac: AlphaComplex
     spectrum: np.ndarray
     optimal_alpha: float
+    default_alpha: float  # where the view opens (ac.default_alpha())
     signatures: Signatures
     n_input: int
     report: LoadReport | None
@@ -66,14 +67,15 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     ac = build(pointset.points, build_progress)
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
-    alpha = float(ac.optimal_alpha())
+    optimal, alpha = float(ac.optimal_alpha()), float(ac.default_alpha())
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
     cursor.move(alpha)
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
     progress(1.0, "done")
     return Dataset(
-        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=alpha,
+        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=optimal,
+        default_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
         from_cache=cached,

@@ -44,6 +44,7 @@ class MainWindow(QMainWindow):
         self.setAcceptDrops(True)
         self.prefs = Preferences(settings)
         self.start_alpha: float | None = None
+        self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
         self.model = ExplorerModel()
         self.loader = Loader(self)
         self.jobs = JobRunner(self)
@@ -130,6 +131,9 @@ class MainWindow(QMainWindow):
         if self.start_alpha is not None:
             self.model.set_alpha(self.start_alpha)
             self.start_alpha = None
+        elif self.start_optimal:
+            self.model.set_index(self.model.optimal_index())
+        self.start_optimal = False
 
     def _on_failed(self, request: int, message: str) -> None:
         """Show why the current request failed; the previous dataset stays."""

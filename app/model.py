@@ -50,10 +50,10 @@ class ExplorerModel(QObject):
         return self._shape
 
     def set_dataset(self, dataset: Dataset) -> None:
-        """Replace the dataset and move to its optimal alpha."""
+        """Replace the dataset and move to its opening (default) alpha."""
         self.dataset = dataset
         self._cursor = dataset.cursor or dataset.ac.cursor()
-        self.index = snap_index(dataset.spectrum, dataset.optimal_alpha)
+        self.index = self.default_index()
         self._shape = None
         self.datasetChanged.emit()
         self.alphaChanged.emit()
@@ -73,6 +73,10 @@ class ExplorerModel(QObject):
         """Move to the shape at alpha (snapped to the critical value at or below it)."""
         if self.dataset is not None:
             self.set_index(snap_index(self.spectrum, alpha))
+
+    def default_index(self) -> int:
+        """Index of the dataset's opening alpha (where a new dataset starts)."""
+        return snap_index(self.spectrum, self.dataset.default_alpha) if self.dataset else -1
 
     def optimal_index(self) -> int:
         """Index of the dataset's optimal alpha."""

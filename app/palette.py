@@ -25,29 +25,37 @@ class LayerStyle:
 
 
 LAYER_TITLES = {
+    "surface": "Surface",
+    "singular_highlight": "Singular triangles (highlight)",
     "boundary": "Boundary (regular)",
     "interior": "Interior cells",
-    "singular_faces": "Singular triangles",
     "singular_edges": "Singular edges",
     "singular_points": "Singular points",
     "points": "Points",
     "delaunay": "Delaunay edges",
 }
 
+#: 3D: the shape reads as one object. Its lower-dimensional parts (dangling edges, lone
+#: points) take the surface's colour; singular triangles are a highlight to switch on.
 DEFAULT_STYLES = {
-    "boundary": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
+    "surface": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
+    "singular_highlight": LayerStyle(False, CLASS_COLOURS["singular"], 1.0),
     "interior": LayerStyle(False, CLASS_COLOURS["interior"], 0.35),
-    "singular_faces": LayerStyle(True, CLASS_COLOURS["singular"], 1.0),
-    "singular_edges": LayerStyle(True, "#f3a712", 1.0),
-    "singular_points": LayerStyle(True, "#d65ac8", 1.0),
+    "singular_edges": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
+    "singular_points": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
     "points": LayerStyle(False, "#c9d1d9", 1.0),
     "delaunay": LayerStyle(False, "#9aa5b1", 0.15),
 }
 
-#: In 2D the triangles are the cells and never singular: no singular-triangle layer.
+#: In 2D the triangles are the cells and never singular: the boundary is the regular edges,
+#: and singular edges and points (sticks and lone points) stand out in their own colours.
 DEFAULT_STYLES_2D = {
-    **{name: style for name, style in DEFAULT_STYLES.items() if name != "singular_faces"},
+    "boundary": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
     "interior": LayerStyle(True, CLASS_COLOURS["interior"], 0.6),
+    "singular_edges": LayerStyle(True, "#f3a712", 1.0),
+    "singular_points": LayerStyle(True, "#d65ac8", 1.0),
+    "points": DEFAULT_STYLES["points"],
+    "delaunay": DEFAULT_STYLES["delaunay"],
 }
 
 

@@ -18,8 +18,8 @@ from app.palette import BACKGROUND, LayerStyle
 
 SHRINK_FACTOR = 0.8
 KINDS_3D = {
-    "delaunay": "lines", "points": "verts", "interior": "tets", "boundary": "tris",
-    "singular_faces": "tris", "singular_edges": "lines", "singular_points": "verts",
+    "delaunay": "lines", "points": "verts", "interior": "tets", "surface": "tris",
+    "singular_highlight": "tris", "singular_edges": "lines", "singular_points": "verts",
 }
 KINDS_2D = {
     "delaunay": "lines", "points": "verts", "interior": "tris", "boundary": "lines",
@@ -28,7 +28,7 @@ KINDS_2D = {
 STATIC_LAYERS = ("points", "delaunay")
 DRAW_OPTIONS = {
     "points": {"point_size": 3.0},
-    "singular_points": {"point_size": 7.0, "render_points_as_spheres": True},
+    "singular_points": {"point_size": 5.0, "render_points_as_spheres": True},
     "singular_edges": {"line_width": 3.0},
     "boundary": {"line_width": 2.0},
     "delaunay": {"line_width": 1.0},
@@ -50,12 +50,18 @@ def cell_array(cells: np.ndarray) -> pv.CellArray:
 
 
 def shape_cells(shape, name: str) -> np.ndarray:
-    """(k, s) int32 simplices an AlphaShape gives the named layer."""
+    """(k, s) int32 simplices an AlphaShape gives the named layer.
+
+    The 3D surface is what a scan looks like: regular and singular triangles as one surface
+    (at small alphas much of a thin scan is singular); `singular_highlight` marks the latter.
+    """
     if name == "interior":
         return shape.cells
     if name == "boundary":
         return shape.regular_facets
-    order = {"singular_points": 0, "singular_edges": 1, "singular_faces": 2}[name]
+    if name == "surface":
+        return np.concatenate([shape.regular_facets, shape.singular(2)])
+    order = {"singular_points": 0, "singular_edges": 1, "singular_highlight": 2}[name]
     return shape.singular(order).reshape(-1, order + 1)
 
 
@@ -100,6 +106,7 @@ class Scene:
         self.plotter = plotter
         self.plotter.theme.allow_empty_mesh = True
         self.plotter.set_background(BACKGROUND)
+        self.plotter.renderer.SetTwoSidedLighting(True)  # singular triangles face either way
         self._render = render or plotter.render
         self.layers: dict[str, Layer] = {}
         self.styles: dict[str, LayerStyle] = {}
@@ -137,6 +144,8 @@ class Scene:
             lighting=layer.kind in ("tris", "tets") and self.dim == 3,
             **DRAW_OPTIONS.get(name, {}),
         )
+        if name == "singular_highlight":  # drawn over the surface's own triangles
+            actor.mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(-2.0, -2.0)
         actor.SetVisibility(style.visible)
         return actor
 

@@ -56,7 +56,8 @@ def run_screenshot(args: argparse.Namespace) -> int:
         if not out.parent.is_dir():
             raise AlphaScoopError(f"{out.parent}: no such folder for the screenshot")
         dataset = load_dataset(source, quiet_progress)
-        alpha = dataset.optimal_alpha if args.alpha is None else args.alpha
+        alpha = dataset.optimal_alpha if args.optimal else args.alpha
+        alpha = dataset.default_alpha if alpha is None else alpha
         render_png(dataset, alpha, out, args.size or DEFAULT_SIZE)
     except (AlphaScoopError, OSError) as error:
         print(f"alphascoop: {error}", file=sys.stderr)

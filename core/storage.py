@@ -13,7 +13,8 @@ Weighted tables (tables without it are classic, so older files load unchanged) a
 
 Optional, written once computed, so re-opening skips the topology pass: `sig_alphas` (s,)
 float64 (the spectrum), `sig_betti` (s, dim) int32, `sig_solid` (s,) int32, `sig_measure`,
-`sig_boundary` (s,) float64; `topo_vertex_forest`, `topo_dual_forest` (float64),
+`sig_boundary` (s,) float64, `sig_opening` () float64 (the opening alpha; recomputed when
+absent); `topo_vertex_forest`, `topo_dual_forest` (float64),
 `topo_dual_edges` (fd, 2) int64, `topo_solid_forest` (float64).
 
 Optional, for a table built in a mode (core/modes.py; absent = classic): `mode_density` (int,
@@ -74,12 +75,14 @@ def _derived_arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
     sig, topo = ac.signatures(), ac._topology
     return {"sig_alphas": sig.alphas, "sig_betti": sig.betti, "sig_solid": sig.solid_components,
             "sig_measure": sig.measure, "sig_boundary": sig.boundary_measure,
+            "sig_opening": np.array(sig.opening_alpha),
             "topo_vertex_forest": topo.vertex_forest, "topo_dual_forest": topo.dual_forest,
             "topo_dual_edges": topo.dual_edges, "topo_solid_forest": topo.solid_forest}
 
 
 def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], path: Path) -> None:
     """Hand saved signatures and topology to `ac` after checking their shapes."""
+    from .opening import opening_alpha_of
     from .signatures import Signatures
     from .topology import Topology, ascending
 
@@ -91,6 +94,7 @@ def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], path: Path) -> No
     for name, shape in (("sig_betti", (s, dim)), ("sig_solid", (s,)), ("sig_measure", (s,)),
                         ("sig_boundary", (s,))):
         _check(a[name].shape == shape, path, name)
+    _check(a.get("sig_opening", np.zeros(())).shape == (), path, "sig_opening")
     edges = a["topo_dual_edges"]
     _check(edges.shape == (len(a["topo_dual_forest"]), 2), path, "topo_dual_edges")
     levels = ac._table.levels
@@ -101,6 +105,8 @@ def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], path: Path) -> No
     signatures = Signatures(dim=dim, alphas=alphas, betti=a["sig_betti"],
                             solid_components=a["sig_solid"], measure=a["sig_measure"],
                             boundary_measure=a["sig_boundary"],
+                            opening_alpha=(float(a["sig_opening"]) if "sig_opening" in a
+                                           else opening_alpha_of(ac)),
                             intervals=tuple(ac.intervals(k) for k in range(dim + 1)))
     for arr in (*topology.__dict__.values(), *signatures.__dict__.values()):
         if isinstance(arr, np.ndarray):

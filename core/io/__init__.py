@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import os
 import warnings
 from collections.abc import Callable, Sequence
@@ -11,7 +12,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.georef import Georef
-from core.io.columns import parse_columns
+from core.io.columns import clean_name, parse_columns
 from core.io.geographic import geographic_points
 from core.io.las import read_las
 from core.io.mesh import read_mesh
@@ -23,6 +24,7 @@ from core.io.problems import plain_line, unreadable
 from core.io.report import LoadReport, PointSet, finish
 from core.io.subsample import SUBSAMPLE_METHODS
 from core.io.text import read_text, read_text_columns
+from core.io.weighting import choose_weights
 
 __all__ = ["READ_FORMATS", "SUBSAMPLE_METHODS", "LoadReport", "PointSet", "read_points"]
 
@@ -80,24 +82,33 @@ def read_points(
     subsample: int | None = None,
     seed: int = 0,
     subsample_method: str = "voxel",
+    weights: str | None = None,
+    radius: str | None = None,
+    radius_add: float | None = None,
 ) -> PointSet:
     """Read a point file by extension; non-finite rows dropped, duplicates merged, reported.
 
     `columns` picks coordinate columns ('lon,lat' or [0, 1, 2]) in text and NumPy files;
     `subsample` thins to at most that many points ('voxel' grid or 'random', seeded).
+    Weights (squared radii, `PointSet.weights`) come from a weight column (weight, w) or a
+    radius column (radius, r: squared), found by name or named by `weights` / `radius`;
+    `radius_add` adds a probe radius to every radius first.
     Every failure is a FileFormatError whose message names the file and the problem.
     """
     path = Path(path)
     ext = _check_file(path)
+    extra = tuple(clean_name(c) for c in (weights, radius) if c is not None)
     with np.errstate(all="ignore"), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        points, attrs, notes, georef = _read(path, ext, columns)
+        points, attrs, notes, georef = _read(path, ext, columns, extra)
         if points.ndim != 2 or points.shape[1] not in (2, 3):
             raise FileFormatError(f"{path}: points must have 2 or 3 coordinates, "
                                   f"got shape {points.shape}")
+        attrs, source = choose_weights(attrs, path, weights=weights, radius=radius,
+                                       radius_add=radius_add)
         ps = finish(path, _format_name(ext), points, attrs, subsample=subsample,
                     method=subsample_method, seed=seed, georef=georef,
-                    notes=tuple(notes) + _warning_notes(caught))
+                    notes=tuple(notes) + _warning_notes(caught), weights_from=source)
     if len(ps.points) == 0:
         raise FileFormatError(f"{path}: no finite points ({ps.report.n_read:,} rows read)")
     return ps
@@ -110,18 +121,21 @@ def _warning_notes(caught: list[warnings.WarningMessage]) -> tuple[str, ...]:
     return tuple(f"reader warning: {m}" for m in list(seen)[:3])
 
 
-def _read(path: Path, ext: str, columns) -> tuple[np.ndarray, dict[str, np.ndarray], tuple,
-                                                  Georef | None]:
+def _read(path: Path, ext: str, columns, extra: tuple[str, ...] = ()
+          ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, Georef | None]:
     """(points, attributes, notes, georef): named longitude/latitude columns of text files
-    projected to metres (core.io.geographic), the other formats' points as they are."""
+    projected to metres (core.io.geographic), the other formats' points as they are.
+    `extra` names columns (text) or arrays (.npz) to read as attributes too."""
     if READERS[ext] is read_text:
-        points, attrs, notes, names = _reported(path, ext, read_text_columns, columns)
+        reader = functools.partial(read_text_columns, extra=extra)
+        points, attrs, notes, names = _reported(path, ext, reader, columns)
         if names is None or _by_index(columns):
             return points, attrs, notes, None
         points, attrs, more, georef = geographic_points(points, attrs, names,
                                                         explicit=columns is not None)
         return points, attrs, tuple(notes) + more, georef
-    return (*_reported(path, ext, READERS[ext], columns), None)
+    reader = functools.partial(read_npy, extra=extra) if READERS[ext] is read_npy else READERS[ext]
+    return (*_reported(path, ext, reader, columns), None)
 
 
 def _by_index(columns) -> bool:

@@ -220,11 +220,18 @@ def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarra
     return read_text_columns(path, columns)[:3]
 
 
-def read_text_columns(path: Path, columns=None
+def read_text_columns(path: Path, columns=None, extra: tuple[str, ...] = ()
                       ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, list[str] | None]:
-    """read_text's result and the coordinate columns' header names (None without a header)."""
+    """read_text's result and the coordinate columns' header names (None without a header).
+
+    `extra` names header columns to read too, each as an attribute of its (cleaned) name.
+    """
     layout = sniff(path)
     coords, attrs = choose_columns(layout, columns, path)
+    for name in extra:
+        if name not in attrs:
+            attrs[name] = explicit_columns([name, name], layout.names, layout.n_cols,
+                                           str(path))[:1]
     usecols = coords + [c for cols in attrs.values() for c in cols]
     try:
         table, counts = _read_fast(path, layout, usecols)
