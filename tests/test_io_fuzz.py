@@ -87,8 +87,9 @@ import time  # noqa: E402
 import tracemalloc  # noqa: E402
 import warnings  # noqa: E402
 
-from app.cli import main  # noqa: E402
 from fuzz_inputs import MAKERS, cases, original, write_case  # noqa: E402
+
+from app.cli import main  # noqa: E402
 
 SEED = 17
 READ_CASES_PER_KIND = 35  # 7 mutations five times over, for each of the 20 kinds
