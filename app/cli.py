@@ -43,11 +43,20 @@ def count(text: str) -> int:
     return int(text)
 
 
+def index(text: str) -> int:
+    """A whole number from 0."""
+    if not text.isdigit():
+        raise argparse.ArgumentTypeError(f"expected a whole number from 0, not {text!r}")
+    return int(text)
+
+
 def _common(sub: argparse.ArgumentParser) -> None:
     """Options shared by info and export."""
     sub.add_argument("file", help="point file (see README: Formats)")
     sub.add_argument("--columns", metavar="A,B[,C]", help="coordinate columns (names or 0-based)")
     sub.add_argument("--subsample", type=count, metavar="N", help="thin to at most N points")
+    sub.add_argument("--scan", type=index, metavar="N",
+                     help="E57: read only scan N (0-based; default all scans, poses applied)")
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
     sizes = sub.add_mutually_exclusive_group()
     sizes.add_argument("--weights", metavar="COLUMN",
@@ -109,7 +118,8 @@ def load(args) -> tuple:
     from core.io import read_points
 
     ps = read_points(args.file, columns=args.columns, subsample=args.subsample,
-                     weights=args.weights, radius=args.radius, radius_add=args.radius_add)
+                     weights=args.weights, radius=args.radius, radius_add=args.radius_add,
+                     scan=args.scan)
     cached = not args.no_cache and is_cached(ps)
     update, close = _progress()
     start = time.perf_counter()

@@ -13,6 +13,7 @@ import numpy as np
 from core.errors import FileFormatError
 from core.georef import Georef
 from core.io.columns import clean_name, parse_columns
+from core.io.e57 import read_e57
 from core.io.geographic import geographic_points
 from core.io.las import read_las
 from core.io.mesh import read_mesh
@@ -46,6 +47,7 @@ READ_FORMATS: dict[str, str] = {
     ".gltf": "glTF mesh (vertices)",
     ".vtk": "Legacy VTK (vertices)",
     ".vtu": "VTK unstructured grid (vertices)",
+    ".e57": "E57 terrestrial scans (ASTM E2807), every scan with its pose",
 }
 
 Reader = Callable[[Path, object], tuple[np.ndarray, dict[str, np.ndarray], tuple]]
@@ -54,6 +56,7 @@ READERS: dict[str, Reader] = {
     ".npy": read_npy, ".npz": read_npy,
     **dict.fromkeys((".xyz", ".pts", ".txt", ".csv"), read_text),
     **dict.fromkeys((".obj", ".stl", ".off", ".glb", ".gltf", ".vtk", ".vtu"), read_mesh),
+    ".e57": read_e57,
 }
 
 
@@ -85,6 +88,7 @@ def read_points(
     weights: str | None = None,
     radius: str | None = None,
     radius_add: float | None = None,
+    scan: int | None = None,
 ) -> PointSet:
     """Read a point file by extension; non-finite rows dropped, duplicates merged, reported.
 
@@ -92,15 +96,18 @@ def read_points(
     `subsample` thins to at most that many points ('voxel' grid or 'random', seeded).
     Weights (squared radii, `PointSet.weights`) come from a weight column (weight, w) or a
     radius column (radius, r: squared), found by name or named by `weights` / `radius`;
-    `radius_add` adds a probe radius to every radius first.
+    `radius_add` adds a probe radius to every radius first. `scan` reads only that scan
+    (0-based) of an E57 file instead of all of them.
     Every failure is a FileFormatError whose message names the file and the problem.
     """
     path = Path(path)
     ext = _check_file(path)
+    if scan is not None and ext != ".e57":
+        raise FileFormatError(f"{path}: choosing a scan applies to E57 files only")
     extra = tuple(clean_name(c) for c in (weights, radius) if c is not None)
     with np.errstate(all="ignore"), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        points, attrs, notes, georef = _read(path, ext, columns, extra)
+        points, attrs, notes, georef = _read(path, ext, columns, extra, scan)
         if points.ndim != 2 or points.shape[1] not in (2, 3):
             raise FileFormatError(f"{path}: points must have 2 or 3 coordinates, "
                                   f"got shape {points.shape}")
@@ -121,11 +128,12 @@ def _warning_notes(caught: list[warnings.WarningMessage]) -> tuple[str, ...]:
     return tuple(f"reader warning: {m}" for m in list(seen)[:3])
 
 
-def _read(path: Path, ext: str, columns, extra: tuple[str, ...] = ()
+def _read(path: Path, ext: str, columns, extra: tuple[str, ...] = (), scan: int | None = None
           ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, Georef | None]:
     """(points, attributes, notes, georef): named longitude/latitude columns of text files
     projected to metres (core.io.geographic), the other formats' points as they are.
-    `extra` names columns (text) or arrays (.npz) to read as attributes too."""
+    `extra` names columns (text) or arrays (.npz) to read as attributes too; `scan` picks one
+    scan of an E57 file."""
     if READERS[ext] is read_text:
         reader = functools.partial(read_text_columns, extra=extra)
         points, attrs, notes, names = _reported(path, ext, reader, columns)
@@ -134,7 +142,12 @@ def _read(path: Path, ext: str, columns, extra: tuple[str, ...] = ()
         points, attrs, more, georef = geographic_points(points, attrs, names,
                                                         explicit=columns is not None)
         return points, attrs, tuple(notes) + more, georef
-    reader = functools.partial(read_npy, extra=extra) if READERS[ext] is read_npy else READERS[ext]
+    if ext == ".e57":
+        reader = functools.partial(read_e57, scan=scan)
+    elif READERS[ext] is read_npy:
+        reader = functools.partial(read_npy, extra=extra)
+    else:
+        reader = READERS[ext]
     return (*_reported(path, ext, reader, columns), None)
 
 
