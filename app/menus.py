@@ -133,6 +133,9 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
                                     lambda: model.set_index(model.optimal_index()), "Ctrl+1")
     actions["hull"] = add_action(shape, "Convex &hull",
                                  lambda: model.set_index(model.hull_index()), "Ctrl+H")
+    shape.addSeparator()
+    actions["back"] = add_action(shape, "&Back to the previous alpha", model.go_back, "Alt+Left")
+    actions["forward"] = add_action(shape, "&Forward", model.go_forward, "Alt+Right")
     help_menu = bar.addMenu("&Help")
     add_action(help_menu, "&About Alpha Scoop", lambda: QMessageBox.about(window, "About", ABOUT))
     return actions

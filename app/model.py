@@ -10,11 +10,10 @@ import numpy as np
 from PySide6.QtCore import QObject, Signal
 
 from app.dataset import Dataset
+from app.history import AlphaHistory
+from app.log_travel import snap_index
 
-
-def snap_index(spectrum: np.ndarray, alpha: float) -> int:
-    """Index of the largest critical alpha <= alpha (the shape at alpha is the shape there)."""
-    return max(int(np.searchsorted(spectrum, alpha, side="right")) - 1, 0)
+__all__ = ["ExplorerModel", "snap_index"]
 
 
 class ExplorerModel(QObject):
@@ -30,6 +29,7 @@ class ExplorerModel(QObject):
         self.index = -1
         self._shape = None
         self._cursor = None
+        self.history = AlphaHistory()
 
     @property
     def spectrum(self) -> np.ndarray:
@@ -54,20 +54,38 @@ class ExplorerModel(QObject):
         self.dataset = dataset
         self._cursor = dataset.cursor or dataset.ac.cursor()
         self.index = self.default_index()
+        self.history.reset(self.index)
         self._shape = None
         self.datasetChanged.emit()
         self.alphaChanged.emit()
 
-    def set_index(self, index: int) -> None:
-        """Move to spectrum[index] (clamped); emits alphaChanged only when it changes."""
+    def set_index(self, index: int, record: bool = True) -> None:
+        """Move to spectrum[index] (clamped); emits alphaChanged only when it changes.
+
+        The move is recorded in `history` (Back/Forward) unless `record` is False.
+        """
         if self.dataset is None:
             return
         index = int(np.clip(index, 0, len(self.spectrum) - 1))
         if index == self.index:
             return
+        if record:
+            self.history.visit(index)
         self.index = index
         self._shape = None
         self.alphaChanged.emit()
+
+    def go_back(self) -> None:
+        """Return to the alpha visited before (undo for the slider)."""
+        index = self.history.back() if self.dataset is not None else None
+        if index is not None:
+            self.set_index(index, record=False)
+
+    def go_forward(self) -> None:
+        """Redo a go_back."""
+        index = self.history.forward() if self.dataset is not None else None
+        if index is not None:
+            self.set_index(index, record=False)
 
     def set_alpha(self, alpha: float) -> None:
         """Move to the shape at alpha (snapped to the critical value at or below it)."""

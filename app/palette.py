@@ -14,6 +14,9 @@ CLASS_COLOURS = {
     "interior": "#59b86a",
 }
 
+#: Tick marks on the alpha slider.
+MARK_COLOURS = {"suggested": "#c9d1d9", "opening": "#4c9be8", "optimal": "#59b86a"}
+
 
 @dataclass(frozen=True)
 class LayerStyle:

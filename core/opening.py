@@ -67,9 +67,10 @@ def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndar
 
 
 def opening_alpha_of(ac) -> float:
-    """`opening_alpha` of an AlphaComplex, from its public table (inf when never reached)."""
-    n_edges = len(ac.simplices(1))
-    if ac.dim < 2 or len(ac.simplices(2)) == 0:
-        return float("inf")
-    edge_first = first_cofaces(ac.face_ids(2), ac.intervals(2)[:, 0], n_edges)
-    return opening_alpha(len(ac.points), ac.simplices(1), edge_first)
+    """`opening_alpha` of an AlphaComplex, from its public table; the largest critical alpha
+    (the whole triangulation) when no alpha reaches the share."""
+    last = float(ac.spectrum()[-1])
+    if len(ac.simplices(2)) == 0:
+        return last
+    edge_first = first_cofaces(ac.face_ids(2), ac.intervals(2)[:, 0], len(ac.simplices(1)))
+    return min(opening_alpha(len(ac.points), ac.simplices(1), edge_first), last)

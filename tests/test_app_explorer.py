@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from conftest import BUILD_TIMEOUT_MS, image_contrast, open_and_wait
 from PySide6.QtCore import Qt
+from reference import data_dir
 
 MIN_CONTRAST = 10.0
 SINGULAR, REGULAR = 1, 2
@@ -145,7 +146,7 @@ def test_opens_at_default_alpha_with_matching_layers(window, qtbot, points_file)
     model = window.model
     assert model.alpha == model.dataset.ac.default_alpha()
     assert 0 < model.index < model.hull_index()
-    assert window.alpha_panel.slider.value() == model.index
+    assert window.alpha_panel.slider.value() == window.alpha_panel.travel.position(model.index)
     assert len(model.shape.cells) > 0
     show_all_layers(window, window.layers_panel.styles)
     assert_layers_match(window)
@@ -162,15 +163,21 @@ def test_arrow_keys_step_one_critical_value(opened, qtbot, key, direction) -> No
 
 
 def test_page_keys_take_bigger_steps_and_layers_follow(opened, qtbot) -> None:
-    """PageDown/PageUp move a page of critical values; the meshes change and still match."""
-    model, page = opened.model, opened.alpha_panel.slider.pageStep()
-    assert page > 1
+    """PageDown divides alpha by PAGE_FACTOR (snapped to the critical value at or below),
+    PageUp multiplies it; the meshes change and still match."""
+    from app.log_travel import PAGE_FACTOR
+
+    model = opened.model
     start = model.index
     before = layer_cells(opened.scene.layers["interior"]).copy()
-    press(qtbot, opened, Qt.Key.Key_PageDown, times=3)
-    assert model.index == max(start - 3 * page, 0)
+    press(qtbot, opened, Qt.Key.Key_PageDown)
+    assert model.index < start - 1
+    assert model.alpha <= model.spectrum[start] / PAGE_FACTOR < model.spectrum[model.index + 1]
     assert len(layer_cells(opened.scene.layers["interior"])) < len(before)
     assert_layers_match(opened)
+    down = model.index
+    press(qtbot, opened, Qt.Key.Key_PageUp)
+    assert model.alpha <= model.spectrum[down] * PAGE_FACTOR < model.spectrum[model.index + 1]
 
 
 def test_slider_steps_keep_the_same_actors(opened, qtbot) -> None:
@@ -522,7 +529,8 @@ def test_mouse_drag_moves_alpha_and_layers_follow(opened, qtbot) -> None:
     model.alphaChanged.connect(lambda: shown.append(model.index))
     drag_slider(qtbot, opened.alpha_panel.slider, -60)
     qtbot.waitUntil(lambda: model.index < start, timeout=5000)
-    assert model.index == opened.alpha_panel.slider.value()
+    panel = opened.alpha_panel
+    assert model.index == panel.travel.index_at(panel.slider.value())
     assert len(shown) == 1
     assert_layers_match(opened)
 
@@ -544,3 +552,43 @@ def test_3d_surface_is_one_surface_with_an_optional_highlight(window, qtbot, poi
     assert len(expected["singular_highlight"]) > 0
     for name in ("surface", "singular_highlight"):
         assert as_set(layer_cells(window.scene.layers[name])) == as_set(expected[name])
+
+
+def test_back_and_forward_return_to_the_alphas_visited(opened, qtbot) -> None:
+    """Alt+Left goes back to the alpha before a jump, Alt+Right redoes it; so do the buttons."""
+    model, panel = opened.model, opened.alpha_panel
+    model.history.merge_seconds = 0.0
+    start = model.index
+    qtbot.mouseClick(panel.hull, Qt.MouseButton.LeftButton)
+    assert model.index == model.hull_index()
+    qtbot.keyClick(panel.slider, Qt.Key.Key_Left, Qt.KeyboardModifier.AltModifier)
+    assert model.index == start
+    qtbot.keyClick(panel.slider, Qt.Key.Key_Right, Qt.KeyboardModifier.AltModifier)
+    assert model.index == model.hull_index()
+    qtbot.mouseClick(panel.back, Qt.MouseButton.LeftButton)
+    assert model.index == start and panel.forward.isEnabled()
+
+
+def test_slider_marks_the_suggested_opening_and_optimal_alphas(opened) -> None:
+    """Ticks sit at the slider positions of the suggested alphas, the opening and the optimal."""
+    from app.log_travel import snap_index
+
+    panel, ds = opened.alpha_panel, opened.model.dataset
+    positions = {mark.position for mark in panel.slider.marks}
+    suggested = ds.ac.suggest_alphas(5)
+    assert suggested
+    for r in suggested:
+        assert panel.travel.position(snap_index(ds.spectrum, r.alpha)) in positions
+    assert panel.travel.position(opened.model.optimal_index()) in positions
+    assert panel.travel.position(opened.model.default_index()) in positions
+
+
+@pytest.mark.skipif(data_dir() is None, reason="shared real scans absent")
+def test_page_up_from_the_opening_stays_below_the_hull_on_a_real_scan(window, qtbot) -> None:
+    """milk.pcd (an RGB-D scan): PageUp from where it opens moves up, far from the hull."""
+    open_and_wait(qtbot, window, data_dir() / "milk.pcd")
+    model = window.model
+    assert model.index == model.default_index()
+    press(qtbot, window, Qt.Key.Key_PageUp)
+    assert model.default_index() < model.index < model.hull_index()
+    assert model.alpha < 2 * model.dataset.default_alpha
