@@ -168,6 +168,10 @@ class AlphaPanel(QWidget):
             self.step.clear()
             return
         alpha = self.model.alpha
-        self.radius.setText(format_alpha(alpha))
-        self.squared.setText(f"{alpha * alpha:.6g}")
+        self.radius.setText(format_alpha(alpha) if alpha >= 0 else "")
+        self.radius.setPlaceholderText("below zero radius: see r²" if alpha < 0 else "")
+        self.squared.setText(f"{self.model.alpha2:.6g}")
+        self.squared.setToolTip("alpha squared: the value CGAL and gudhi use"
+                                + ("; weighted points enter at minus their squared radius"
+                                   if self.model.weighted else ""))
         self.step.setText(f"critical value {self.model.index + 1:,} of {count:,}")

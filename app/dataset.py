@@ -16,13 +16,15 @@ from core.io import LoadReport, read_points
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-Build = Callable[[np.ndarray, Progress], AlphaComplex]
+Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=w])
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 
 
-def build_here(points: np.ndarray, progress: Progress) -> AlphaComplex:
-    """The complex and its signatures, built in this thread (cached)."""
-    return build_cached(points, progress=progress, signatures=True)
+def build_here(points: np.ndarray, progress: Progress,
+               weights: np.ndarray | None = None) -> AlphaComplex:
+    """The complex and its signatures, built in this thread (cached); weighted when
+    `weights` (squared radii) are given."""
+    return build_cached(points, progress=progress, signatures=True, weights=weights)
 
 
 @dataclass(frozen=True)
@@ -52,7 +54,8 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     """Read and build path, reporting progress(fraction, stage); Cancelled stops it.
 
     `build(points, progress)` makes the complex with its signatures (the window passes
-    app.build_process.build, which can be cancelled mid-triangulation).
+    app.build_process.build, which can be cancelled mid-triangulation); weighted files
+    (core.io: weight or radius columns) call it with the keyword `weights` too.
     """
     path = Path(path)
     started = time.perf_counter()
@@ -64,13 +67,15 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
     cached = is_cached(pointset)
-    ac = build(pointset.points, build_progress)
+    weights = pointset.weights
+    ac = (build(pointset.points, build_progress) if weights is None
+          else build(pointset.points, build_progress, weights=weights))
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     optimal, alpha = float(ac.optimal_alpha()), float(ac.default_alpha())
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
-    cursor.move(alpha)
+    cursor.move(alpha2=alpha * abs(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
     progress(1.0, "done")
     return Dataset(

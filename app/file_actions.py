@@ -56,7 +56,11 @@ def export_shape(ac, alpha: float, path: Path, progress=None, source: Path | Non
                  georef=None) -> str:
     """Write the shape at alpha to path with core.export (never over `source`, the points'
     file; back in longitude/latitude when the points were read from them: `georef`);
-    returns what was written."""
+    returns what was written. `alpha` is the table's value (a signed radius for weighted
+    points: written as its signed square, alpha2)."""
+    if ac.weights is not None:
+        return write_shape(ac, None, path, alpha2=alpha * abs(alpha), progress=progress,
+                           source=source, georef=georef).line()
     return write_shape(ac, alpha, path, progress=progress, source=source, georef=georef).line()
 
 

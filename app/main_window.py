@@ -11,6 +11,7 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
+import numpy as np
 from PySide6.QtCore import QSettings, Qt
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
@@ -152,8 +153,11 @@ class MainWindow(QMainWindow):
         """New dataset: new layers and camera (the only time actors are added)."""
         ds = self.model.dataset
         ac = ds.ac
-        styles = self.prefs.styles(ac.dim)
-        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles)
+        weighted = ac.weights is not None
+        styles = self.prefs.styles(ac.dim, weighted)
+        radii = np.sqrt(np.maximum(ac.weights, 0.0)) if weighted else None
+        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
+                               radii)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
@@ -165,7 +169,8 @@ class MainWindow(QMainWindow):
         ds = self.model.dataset
         self.status.setText(
             f"{len(ds.ac.points):,} points · {len(self.model.shape.cells):,} cells · "
-            f"alpha {self.model.alpha:.6g} · {ds.build_line()}"
+            + (f"alpha² {self.model.alpha2:.6g}" if self.model.weighted
+               else f"alpha {self.model.alpha:.6g}") + f" · {ds.build_line()}"
         )
 
     def _set_style(self, name: str, style) -> None:

@@ -38,15 +38,27 @@ class ExplorerModel(QObject):
 
     @property
     def alpha(self) -> float:
-        """The current alpha radius (nan without a dataset)."""
+        """The current alpha radius (nan without a dataset; for weighted points the signed
+        radius sign(alpha2) * sqrt(|alpha2|), negative below zero radius)."""
         return float(self.spectrum[self.index]) if self.dataset else float("nan")
+
+    @property
+    def alpha2(self) -> float:
+        """The current alpha squared, signed: negative values exist for weighted points."""
+        alpha = self.alpha
+        return alpha * abs(alpha)
+
+    @property
+    def weighted(self) -> bool:
+        """True when the dataset's points carry weights (squared radii)."""
+        return self.dataset is not None and self.dataset.ac.weights is not None
 
     @property
     def shape(self):
         """AlphaShape at the current alpha (queried once per index, by the dataset's cursor:
         a step costs what changed since the last shape)."""
         if self._shape is None and self.dataset is not None:
-            self._shape = self._cursor.move(self.alpha)
+            self._shape = self._cursor.move(alpha2=self.alpha2)
         return self._shape
 
     def set_dataset(self, dataset: Dataset) -> None:
@@ -91,6 +103,10 @@ class ExplorerModel(QObject):
         """Move to the shape at alpha (snapped to the critical value at or below it)."""
         if self.dataset is not None:
             self.set_index(snap_index(self.spectrum, alpha))
+
+    def set_alpha2(self, alpha2: float) -> None:
+        """Move to the shape at a squared alpha (any sign), snapped like set_alpha."""
+        self.set_alpha(float(np.copysign(np.sqrt(abs(alpha2)), alpha2)))
 
     def default_index(self) -> int:
         """Index of the dataset's opening alpha (where a new dataset starts)."""

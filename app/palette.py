@@ -36,7 +36,12 @@ LAYER_TITLES = {
     "singular_points": "Singular points",
     "points": "Points",
     "delaunay": "Delaunay edges",
+    "balls": "Points as balls (own radius; at most 20,000 drawn)",
 }
+
+#: Weighted points drawn as balls of their own radius: at most this many (evenly picked).
+MAX_BALLS = 20_000
+BALL_STYLE = LayerStyle(False, "#8fb8de", 0.5)
 
 #: 3D: the shape reads as one object. Its lower-dimensional parts (dangling edges, lone
 #: points) take the surface's colour; singular triangles are a highlight to switch on.
@@ -62,6 +67,10 @@ DEFAULT_STYLES_2D = {
 }
 
 
-def default_styles(dim: int) -> dict[str, LayerStyle]:
-    """Layer styles a new dataset of dimension dim (2 or 3) starts with: one per drawn layer."""
-    return dict(DEFAULT_STYLES_2D if dim == 2 else DEFAULT_STYLES)
+def default_styles(dim: int, weighted: bool = False) -> dict[str, LayerStyle]:
+    """Layer styles a new dataset of dimension dim (2 or 3) starts with: one per drawn layer
+    (weighted points add the balls layer)."""
+    styles = dict(DEFAULT_STYLES_2D if dim == 2 else DEFAULT_STYLES)
+    if weighted:
+        styles["balls"] = BALL_STYLE
+    return styles

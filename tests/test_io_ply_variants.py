@@ -99,3 +99,18 @@ def test_truncated_binary_list_vertex(tmp_path):
     path.write_bytes(path.read_bytes()[:-5])
     with pytest.raises(FileFormatError, match="truncated PLY"):
         read_points(path)
+
+
+@pytest.mark.parametrize("text", [True, False])
+def test_range_grid_of_mostly_empty_lists(tmp_path, text):
+    """Stanford's range scans: a grid element after the vertices, most cells an empty list."""
+    grid = np.empty(2000, dtype=[("vertex_indices", "O")])
+    for i in range(len(grid)):
+        grid["vertex_indices"][i] = np.array([i // 400], dtype=np.int32) if i % 400 == 0 \
+            else np.zeros(0, dtype=np.int32)
+    path = tmp_path / "grid.ply"
+    plyfile.PlyData([plyfile.PlyElement.describe(_vertex(None, False), "vertex"),
+                     plyfile.PlyElement.describe(grid, "range_grid",
+                                                 len_types={"vertex_indices": "u1"})],
+                    text=text).write(str(path))
+    np.testing.assert_array_equal(read_points(path).points, XYZ.astype(np.float64))

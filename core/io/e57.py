@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
+from core.io.sizes import check_memory
 
 CARTESIAN = ("cartesianX", "cartesianY", "cartesianZ")
 SPHERICAL = ("sphericalRange", "sphericalAzimuth", "sphericalElevation")
@@ -37,12 +38,13 @@ def spherical_to_cartesian(rae: np.ndarray) -> np.ndarray:
 FLAG_FIELDS = ("cartesianInvalidState", "sphericalInvalidState")  # 0 valid, 1-2 invalid
 
 
-def _read_fields(e57, header, names: list[str]) -> dict[str, np.ndarray]:
+def _read_fields(e57, header, names: list[str], path: Path) -> dict[str, np.ndarray]:
     """The named point fields of a scan, scaled, as float64 (flags as int8, as pye57 does:
     64-bit integer buffers gave wrong flags for half the points of a real file)."""
     from pye57 import libe57
 
     n = header.point_count
+    check_memory(path, n * 8 * len(names), f"a scan of {n:,} points")  # bit-packed data
     arrays, buffers = {}, libe57.VectorSourceDestBuffer()
     for name in names:
         arrays[name] = np.empty(n, dtype=np.int8 if name in FLAG_FIELDS else np.float64)
@@ -88,7 +90,7 @@ def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray
                               f"coordinates ({', '.join(sorted(fields))})")
     state = "cartesianInvalidState" if system == CARTESIAN else "sphericalInvalidState"
     extra = [f for f in (state, "intensity", *COLOURS) if f in fields]
-    raw = _read_fields(e57, header, [*system, *extra])
+    raw = _read_fields(e57, header, [*system, *extra], path)
     local = np.column_stack([raw[f] for f in system])
     if system == SPHERICAL:
         local = spherical_to_cartesian(local)

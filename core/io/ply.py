@@ -26,7 +26,7 @@ def _check_size(header: Header, body: int, path: Path) -> None:
         if header.text:
             row = sum(1 if p.count is not None else 2 for p in el.properties)
         else:
-            row = sum((p.count or p.dtype).itemsize for p in el.properties)
+            row = sum((p.count or p.dtype).itemsize for p in el.properties)  # lists may be empty
         need += el.n * max(row, 1)
     if need > body:
         raise FileFormatError(f"{path}: truncated PLY (header promises more data than the "
@@ -42,6 +42,10 @@ def _vertex_table(fh, header: Header, path: Path) -> np.ndarray:
     before, vertex = header.elements[:pos], header.elements[pos]
     if header.text:
         return _read_ascii(fh, vertex, sum(e.n for e in before), path)
+    if not any(e.has_lists for e in before):  # seek past fixed-size rows, read only the vertices
+        fh.seek(sum(e.n * e.row_dtype().itemsize for e in before), os.SEEK_CUR)
+        size = -1 if vertex.has_lists else vertex.n * vertex.row_dtype().itemsize
+        return read_binary(memoryview(fh.read(size)), 0, vertex, str(path))[0]
     buf, at = memoryview(fh.read()), 0
     for element in before:
         _, at = read_binary(buf, at, element, str(path))
