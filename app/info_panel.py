@@ -70,8 +70,8 @@ def shape_lines(model: ExplorerModel) -> list[str]:
     """Lines describing the shape at the current alpha: classes, topology, measures."""
     sig, dim, unit = model.dataset.signatures, model.dataset.ac.dim, model.dataset.unit
     cells, facets, singular = class_counts(model)
-    radius = with_unit(quantity(model.alpha), unit)
-    at = (f"alpha² {with_unit(quantity(model.alpha2), unit, 2)}"
+    radius = with_unit(quantity(model.alpha, 6), unit)
+    at = (f"alpha² {with_unit(quantity(model.alpha2, 6), unit, 2)}"
           + (f" (alpha {radius})" if model.alpha >= 0 else "")
           if model.weighted else f"alpha {radius}")
     lines = [f"<b>{at}</b>",
@@ -83,8 +83,9 @@ def shape_lines(model: ExplorerModel) -> list[str]:
                                                               strict=True)))
     boundary, measure = (float(v[model.index]) for v in (sig.boundary_measure, sig.measure))
     lines.append(f"{'perimeter' if dim == 2 else 'area'} "
-                 f"{with_unit(quantity(boundary), unit, dim - 1)}")
-    lines.append(f"{'area' if dim == 2 else 'volume'} {with_unit(quantity(measure), unit, dim)}")
+                 f"{with_unit(quantity(boundary, 6), unit, dim - 1)}")
+    lines.append(f"{'area' if dim == 2 else 'volume'} "
+                 f"{with_unit(quantity(measure, 6), unit, dim)}")
     return lines
 
 
