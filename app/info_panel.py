@@ -35,6 +35,8 @@ def data_lines(model: ExplorerModel) -> list[str]:
         lines.extend(box_lines(report.bbox, ds.unit))
     if report is not None and getattr(report, "spacing", 0):
         lines.append(f"spacing {with_unit(quantity(report.spacing), ds.unit)}")
+    if report is not None and report.georef is not None:  # read from longitude/latitude
+        lines.append(f"lengths in metres: {html.escape(report.georef.name)}")
     flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
     lines.append(f"{ac.dim}D complex{flat}, {plural(len(ac.simplices(ac.dim)), 'cell')}")
     if ac.weights is not None:
