@@ -164,6 +164,15 @@ def _read(args):
     return read_molecule_pointset(args.file, probe=args.probe, keep_water=args.keep_water)[0]
 
 
+def _molecule_point_data(args, ac) -> dict | None:
+    """A molecule's per-atom exposed area as export point data ("atom_area"), else None."""
+    if not is_molecule(args) or not args.output.lower().endswith(".vtu"):
+        return None
+    from core.molecule.analysis import measure_molecule
+
+    return {"atom_area": measure_molecule(ac, args.probe).point_area}
+
+
 def molecule_summary(ac, probe: float) -> dict:
     """The `molecule` object of `info`: exact area and volume, per-atom area, cavities."""
     from core.molecule.analysis import measure_molecule
@@ -198,8 +207,10 @@ def chosen_alpha(args) -> dict | None:
 def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
     """Everything `info` reports, as a JSON-ready dict (`at`: chosen_alpha's result; None:
     the opening alpha)."""
+    from core.complex import at_value
+
     optimal, opening = float(ac.optimal_alpha()), float(ac.default_alpha())
-    shape = ac.shape(**(at or {"alpha2": opening * abs(opening)}))
+    shape = ac.shape(**(at or at_value(opening)))
     alpha = shape.alpha
     spectrum = np.asarray(ac.spectrum())
     weighted = ac.weights is not None
@@ -324,10 +335,12 @@ def cmd_export(args) -> int:
     if args.table:
         print(write_table(ac, args.output, source=args.file).line())
         return 0
-    at = chosen_alpha(args) or {"alpha2": ac.optimal_alpha2(args.optimal or 1)}
+    from core.complex import at_value
+
+    at = chosen_alpha(args) or at_value(ac.optimal_alpha(args.optimal or 1))
     report = write_shape(ac, at.get("alpha"), args.output, alpha2=at.get("alpha2"),
                          manifold=args.manifold, sidecar=args.sidecar, source=args.file,
-                         georef=ps.report.georef)
+                         georef=ps.report.georef, point_data=_molecule_point_data(args, ac))
     print(report.line())
     return 0
 
