@@ -10,7 +10,7 @@ import os
 import sys
 from collections.abc import Sequence
 
-from app.args import radius
+from app.args import add_mode_options, mode_of, radius
 
 SUBCOMMANDS = ("info", "export")
 NO_DISPLAY_MESSAGE = (
@@ -46,6 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
     choice.add_argument("--optimal", action="store_true", help="show the optimal alpha (default)")
     parser.add_argument("--screenshot", metavar="OUT.png", help="render, save an image, exit")
     parser.add_argument("--size", type=parse_size, metavar="WxH", help="window/image size")
+    add_mode_options(parser)
     return parser
 
 
@@ -71,8 +72,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     if args_list and args_list[0] in SUBCOMMANDS:
         return run_subcommand(args_list)
+    parser = build_parser()
     try:
-        args = build_parser().parse_args(args_list)
+        args = parser.parse_args(args_list)
+        try:
+            args.mode = mode_of(args)
+        except ValueError as exc:
+            parser.error(str(exc))
     except SystemExit as exit_:
         return int(exit_.code or 0)
     os.environ["QT_API"] = "pyside6"

@@ -18,7 +18,7 @@ from collections.abc import Iterator, Sequence
 
 import numpy as np
 
-from app.args import radius
+from app.args import add_mode_options, mode_of, radius
 from core.errors import AlphaScoopError, InputError
 
 CLASS_NAMES = ("exterior", "singular", "regular", "interior")
@@ -49,6 +49,7 @@ def _common(sub: argparse.ArgumentParser) -> None:
     sub.add_argument("--columns", metavar="A,B[,C]", help="coordinate columns (names or 0-based)")
     sub.add_argument("--subsample", type=count, metavar="N", help="thin to at most N points")
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
+    add_mode_options(sub)
 
 
 def build_parser() -> Parser:
@@ -95,19 +96,31 @@ def load(args) -> tuple:
     """(PointSet, AlphaComplex, seconds, from cache?) for the file and options."""
     from core.cache import build_cached, is_cached
     from core.io import read_points
+    from core.modes import file_normals
 
+    mode = _mode(args)
     ps = read_points(args.file, columns=args.columns, subsample=args.subsample)
-    cached = not args.no_cache and is_cached(ps)
+    normals = file_normals(mode, ps.attributes, args.file)
+    cached = not args.no_cache and is_cached(ps, mode, normals)
     update, close = _progress()
     start = time.perf_counter()
     try:
         # Where the optimal alpha is needed, the topology is cached with the table too.
         needs_topology = args.command == "info" or getattr(args, "alpha", None) is None
         ac = build_cached(ps, use_cache=not args.no_cache, progress=update,
-                          signatures=needs_topology and not getattr(args, "table", False))
+                          signatures=needs_topology and not getattr(args, "table", False),
+                          mode=mode, normals=normals)
     finally:
         close()
     return ps, ac, time.perf_counter() - start, cached
+
+
+def _mode(args):
+    """The alpha mode of the options (a UsageError for options that need another)."""
+    try:
+        return mode_of(args)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
 
 
 def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
@@ -120,6 +133,7 @@ def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
         ac.classify(alpha, k), minlength=4).tolist(), strict=True)) for k in range(ac.dim + 1)}
     return {
         "load": ps.report.to_dict(),
+        "mode": ac.mode.to_dict(),
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
                     "from_cache": cached,
                     **{SIMPLEX_NAMES[k]: len(ac.simplices(k)) for k in range(ac.dim + 1)}},
@@ -138,6 +152,7 @@ def _text(info: dict, lines: list[str]) -> str:
     cx, sp = info["complex"], info["spectrum"]
     measure = "volume" if "volume" in info else "area"
     lines = [*lines,
+        f"mode        {info['mode_text']}",
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
@@ -157,7 +172,8 @@ def cmd_info(args) -> int:
     """Print the load report and the shape summary."""
     ps, ac, seconds, cached = load(args)
     info = summary(ps, ac, seconds, cached, args.alpha)
-    print(json.dumps(info, indent=2) if args.json else _text(info, ps.report.lines()))
+    text = _text({**info, "mode_text": ac.mode.describe()}, ps.report.lines())
+    print(json.dumps(info, indent=2) if args.json else text)
     return 0
 
 

@@ -13,16 +13,19 @@ from core import AlphaComplex
 from core.cache import build_cached, is_cached
 from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
+from core.modes import Mode, file_normals
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-Build = Callable[[np.ndarray, Progress], AlphaComplex]
+Build = Callable[[np.ndarray, Progress, Mode, "np.ndarray | None"], AlphaComplex]
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 
 
-def build_here(points: np.ndarray, progress: Progress) -> AlphaComplex:
-    """The complex and its signatures, built in this thread (cached)."""
-    return build_cached(points, progress=progress, signatures=True)
+def build_here(points: np.ndarray, progress: Progress, mode: Mode | None = None,
+               normals: np.ndarray | None = None) -> AlphaComplex:
+    """The complex (in `mode`, with `normals` if it takes given ones) and its signatures,
+    built in this thread (cached)."""
+    return build_cached(points, progress=progress, signatures=True, mode=mode, normals=normals)
 
 
 @dataclass(frozen=True)
@@ -47,12 +50,15 @@ class Dataset:
         return f"{how} in {self.build_seconds:.2f} s"
 
 
-def load_dataset(path: str | Path, progress: Progress, build: Build = build_here) -> Dataset:
-    """Read and build path, reporting progress(fraction, stage); Cancelled stops it.
+def load_dataset(path: str | Path, progress: Progress, build: Build = build_here,
+                 mode: Mode | None = None) -> Dataset:
+    """Read and build path in the alpha `mode` (default classic), reporting
+    progress(fraction, stage); Cancelled stops it.
 
-    `build(points, progress)` makes the complex with its signatures (the window passes
-    app.build_process.build, which can be cancelled mid-triangulation).
+    `build(points, progress, mode, normals)` makes the complex with its signatures (the
+    window passes app.build_process.build, which can be cancelled mid-triangulation).
     """
+    mode = mode or Mode()
     path = Path(path)
     started = time.perf_counter()
     progress(0.0, "reading")
@@ -62,8 +68,9 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     def build_progress(fraction: float, stage: str) -> None:
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
-    cached = is_cached(pointset)
-    ac = build(pointset.points, build_progress)
+    normals = file_normals(mode, pointset.attributes, path.name)
+    cached = is_cached(pointset, mode, normals)
+    ac = build(pointset.points, build_progress, mode, normals)
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     alpha = float(ac.optimal_alpha())

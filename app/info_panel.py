@@ -28,6 +28,7 @@ def data_lines(model: ExplorerModel) -> list[str]:
         lines.append(f"spacing {report.spacing:.4g}")
     flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
     lines.append(f"{ac.dim}D complex{flat}, {len(ac.simplices(ac.dim)):,} cells")
+    lines.append(f"alpha mode: {html.escape(ac.mode.describe())}")
     lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}")
     return lines
 

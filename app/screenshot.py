@@ -55,7 +55,7 @@ def run_screenshot(args: argparse.Namespace) -> int:
     try:
         if not out.parent.is_dir():
             raise AlphaScoopError(f"{out.parent}: no such folder for the screenshot")
-        dataset = load_dataset(source, quiet_progress)
+        dataset = load_dataset(source, quiet_progress, mode=getattr(args, "mode", None))
         alpha = dataset.optimal_alpha if args.alpha is None else args.alpha
         render_png(dataset, alpha, out, args.size or DEFAULT_SIZE)
     except (AlphaScoopError, OSError) as error:

@@ -227,6 +227,17 @@ def scaled_table(table: Table, points: np.ndarray, mode: Mode, normals: np.ndarr
     return _resorted(table, _repair(table, own))
 
 
+def file_normals(mode: Mode, attributes: dict, source: str) -> np.ndarray | None:
+    """The point file's normals when `mode` wants given normals (None otherwise); an
+    InputError naming `source` when the file has none."""
+    if mode.normals != "given":
+        return None
+    normals = attributes.get("normals")
+    if normals is None:
+        raise InputError(f"{source}: the file has no normals; estimate them instead")
+    return np.asarray(normals, dtype=np.float64)
+
+
 def check_normals(normals: object, n: int, dim: int) -> np.ndarray:
     """(n, dim) float64 normals (any length; 0 = no direction); InputError otherwise."""
     try:
