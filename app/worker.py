@@ -75,7 +75,7 @@ class Loader(QObject):
                 path, progress,
                 lambda points, report, mode_, normals: build_process.build(
                     points, report, cancel, mode=mode_, normals=normals),
-                mode)
+                mode=mode)
         except Cancelled:
             self.cancelled.emit(request)
         except AlphaScoopError as error:

@@ -173,10 +173,8 @@ def _repair(table: Table, own: list[np.ndarray]) -> list[tuple[np.ndarray, ...]]
     return out[::-1]
 
 
-def _renumber(ids: np.ndarray, inverse: np.ndarray | None) -> np.ndarray:
-    """Apply a new numbering to ids (-1 = none kept); None: unchanged."""
-    if inverse is None:
-        return ids
+def _renumber(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
+    """Apply a new numbering to ids (-1 = none kept)."""
     return np.where(ids >= 0, inverse[np.maximum(ids, 0)], -1).astype(np.int32)
 
 
