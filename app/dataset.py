@@ -17,15 +17,17 @@ from core.modes import Mode, file_normals
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-Build = Callable[[np.ndarray, Progress, Mode, "np.ndarray | None"], AlphaComplex]
+Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=, mode=, normals=])
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 
 
-def build_here(points: np.ndarray, progress: Progress, mode: Mode | None = None,
-               normals: np.ndarray | None = None) -> AlphaComplex:
-    """The complex (in `mode`, with `normals` if it takes given ones) and its signatures,
-    built in this thread (cached)."""
-    return build_cached(points, progress=progress, signatures=True, mode=mode, normals=normals)
+def build_here(points: np.ndarray, progress: Progress, weights: np.ndarray | None = None,
+               mode: Mode | None = None, normals: np.ndarray | None = None) -> AlphaComplex:
+    """The complex and its signatures, built in this thread (cached); weighted when
+    `weights` (squared radii) are given, in the alpha `mode` (with `normals` if it takes
+    given ones)."""
+    return build_cached(points, progress=progress, signatures=True, weights=weights,
+                        mode=mode, normals=normals)
 
 
 @dataclass(frozen=True)
@@ -36,6 +38,7 @@ class Dataset:
     ac: AlphaComplex
     spectrum: np.ndarray
     optimal_alpha: float
+    default_alpha: float  # where the view opens (ac.default_alpha())
     signatures: Signatures
     n_input: int
     report: LoadReport | None
@@ -55,8 +58,10 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     """Read and build path in the alpha `mode` (default classic), reporting
     progress(fraction, stage); Cancelled stops it.
 
-    `build(points, progress, mode, normals)` makes the complex with its signatures (the
-    window passes app.build_process.build, which can be cancelled mid-triangulation).
+    `build(points, progress)` makes the complex with its signatures (the window passes
+    app.build_process.build, which can be cancelled mid-triangulation); weighted files
+    (core.io: weight or radius columns) call it with the keyword `weights` too, a mode with
+    `mode` and its given `normals`.
     """
     mode = mode or Mode()
     path = Path(path)
@@ -69,18 +74,23 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
     normals = file_normals(mode, pointset.attributes, path.name)
+    weights = pointset.weights
     cached = is_cached(pointset, mode, normals)
-    ac = build(pointset.points, build_progress, mode, normals)
+    options = {} if weights is None else {"weights": weights}
+    if mode.active:
+        options.update(mode=mode, normals=normals)
+    ac = build(pointset.points, build_progress, **options)
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
-    alpha = float(ac.optimal_alpha())
+    optimal, alpha = float(ac.optimal_alpha()), float(ac.default_alpha())
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
-    cursor.move(alpha)
+    cursor.move(alpha2=alpha * abs(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
     progress(1.0, "done")
     return Dataset(
-        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=alpha,
+        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=optimal,
+        default_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
         from_cache=cached,

@@ -29,6 +29,10 @@ def data_lines(model: ExplorerModel) -> list[str]:
     flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
     lines.append(f"{ac.dim}D complex{flat}, {len(ac.simplices(ac.dim)):,} cells")
     lines.append(f"alpha mode: {html.escape(ac.mode.describe())}")
+    if ac.weights is not None:
+        source = getattr(report, "weights_from", None) or "given weights"
+        hidden = int((np.asarray(ac.input_index) < 0).sum())
+        lines.append(f"weighted: {html.escape(source)}; {hidden:,} hidden points")
     lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}")
     return lines
 
@@ -48,7 +52,10 @@ def shape_lines(model: ExplorerModel) -> list[str]:
     """Lines describing the shape at the current alpha: classes, topology, measures."""
     sig, dim = model.dataset.signatures, model.dataset.ac.dim
     cells, facets, singular = class_counts(model)
-    lines = [f"<b>alpha {model.alpha:.6g}</b>", f"{cells:,} cells, {facets:,} boundary facets",
+    at = (f"alpha² {model.alpha2:.6g}" + (f" (alpha {model.alpha:.6g})" if model.alpha >= 0
+                                          else "")
+          if model.weighted else f"alpha {model.alpha:.6g}")
+    lines = [f"<b>{at}</b>", f"{cells:,} cells, {facets:,} boundary facets",
              f"singular (points, edges{', triangles' if dim == 3 else ''}): "
              + ", ".join(f"{n:,}" for n in singular)]
     betti = sig.betti[model.index]

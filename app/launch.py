@@ -29,6 +29,7 @@ def run_window(args: argparse.Namespace) -> int:
         window.start_alpha = args.alpha
     if getattr(args, "mode", None) is not None:
         window.set_mode(args.mode, rebuild=False)
+    window.start_optimal = bool(args.optimal)
     window.show()
     window.open_path(args.file or SAMPLE_PATH)
     return app.exec()

@@ -11,6 +11,7 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
+import numpy as np
 from PySide6.QtCore import QSettings, Qt
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
@@ -47,6 +48,7 @@ class MainWindow(QMainWindow):
         self.prefs = Preferences(settings)
         self.start_alpha: float | None = None
         self.mode = Mode()  # the alpha mode of the next open or rebuild
+        self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
         self.model = ExplorerModel()
         self.loader = Loader(self)
         self.jobs = JobRunner(self)
@@ -151,6 +153,9 @@ class MainWindow(QMainWindow):
         if self.start_alpha is not None:
             self.model.set_alpha(self.start_alpha)
             self.start_alpha = None
+        elif self.start_optimal:
+            self.model.set_index(self.model.optimal_index())
+        self.start_optimal = False
 
     def _on_failed(self, request: int, message: str) -> None:
         """Show why the current request failed; the previous dataset stays."""
@@ -173,8 +178,11 @@ class MainWindow(QMainWindow):
         """New dataset: new layers and camera (the only time actors are added)."""
         ds = self.model.dataset
         ac = ds.ac
-        styles = self.prefs.styles(ac.dim)
-        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles)
+        weighted = ac.weights is not None
+        styles = self.prefs.styles(ac.dim, weighted)
+        radii = np.sqrt(np.maximum(ac.weights, 0.0)) if weighted else None
+        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
+                               radii)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
@@ -186,8 +194,9 @@ class MainWindow(QMainWindow):
         ds = self.model.dataset
         self.status.setText(
             f"{len(ds.ac.points):,} points · {len(self.model.shape.cells):,} cells · "
-            f"alpha {self.model.alpha:.6g}"
-            f"{f' ({ds.ac.mode.name})' if ds.ac.mode.active else ''} · {ds.build_line()}"
+            + (f"alpha² {self.model.alpha2:.6g}" if self.model.weighted
+               else f"alpha {self.model.alpha:.6g}")
+            + (f" ({ds.ac.mode.name})" if ds.ac.mode.active else "") + f" · {ds.build_line()}"
         )
 
     def _set_style(self, name: str, style) -> None:

@@ -80,9 +80,10 @@ def export_shape(window) -> None:
     path = file_actions.ask_save_path(window, window.prefs, "Export shape", SHAPE_FORMATS,
                                       f"{stem}_alpha")
     if path and not is_the_source(window, "Export shape", path):
-        ac, alpha, source = window.model.dataset.ac, window.model.alpha, window.model.dataset.path
+        ds, alpha = window.model.dataset, window.model.alpha
+        georef = None if ds.report is None else ds.report.georef  # longitude/latitude input
         run_in_background(window, "Export shape", lambda progress: file_actions.export_shape(
-            ac, alpha, path, progress, source=source))
+            ds.ac, alpha, path, progress, source=ds.path, georef=georef))
 
 
 def export_table(window) -> None:
@@ -132,6 +133,9 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
                                     lambda: model.set_index(model.optimal_index()), "Ctrl+1")
     actions["hull"] = add_action(shape, "Convex &hull",
                                  lambda: model.set_index(model.hull_index()), "Ctrl+H")
+    shape.addSeparator()
+    actions["back"] = add_action(shape, "&Back to the previous alpha", model.go_back, "Alt+Left")
+    actions["forward"] = add_action(shape, "&Forward", model.go_forward, "Alt+Right")
     help_menu = bar.addMenu("&Help")
     add_action(help_menu, "&About Alpha Scoop", lambda: QMessageBox.about(window, "About", ABOUT))
     return actions

@@ -14,21 +14,22 @@ import numpy as np
 import pyvista as pv
 from vtkmodules.vtkFiltersGeneral import vtkShrinkFilter
 
-from app.palette import BACKGROUND, LayerStyle
+from app.palette import BACKGROUND, MAX_BALLS, LayerStyle
 
 SHRINK_FACTOR = 0.8
 KINDS_3D = {
-    "delaunay": "lines", "points": "verts", "interior": "tets", "boundary": "tris",
-    "singular_faces": "tris", "singular_edges": "lines", "singular_points": "verts",
+    "delaunay": "lines", "points": "verts", "interior": "tets", "surface": "tris",
+    "singular_highlight": "tris", "singular_edges": "lines", "singular_points": "verts",
 }
 KINDS_2D = {
     "delaunay": "lines", "points": "verts", "interior": "tris", "boundary": "lines",
     "singular_edges": "lines", "singular_points": "verts",
 }
-STATIC_LAYERS = ("points", "delaunay")
+STATIC_LAYERS = ("points", "delaunay", "balls")
+BALL_RESOLUTION = 10  # sphere glyph: 10 x 10 facets, about 160 triangles per ball
 DRAW_OPTIONS = {
     "points": {"point_size": 3.0},
-    "singular_points": {"point_size": 7.0, "render_points_as_spheres": True},
+    "singular_points": {"point_size": 5.0, "render_points_as_spheres": True},
     "singular_edges": {"line_width": 3.0},
     "boundary": {"line_width": 2.0},
     "delaunay": {"line_width": 1.0},
@@ -50,12 +51,18 @@ def cell_array(cells: np.ndarray) -> pv.CellArray:
 
 
 def shape_cells(shape, name: str) -> np.ndarray:
-    """(k, s) int32 simplices an AlphaShape gives the named layer."""
+    """(k, s) int32 simplices an AlphaShape gives the named layer.
+
+    The 3D surface is what a scan looks like: regular and singular triangles as one surface
+    (at small alphas much of a thin scan is singular); `singular_highlight` marks the latter.
+    """
     if name == "interior":
         return shape.cells
     if name == "boundary":
         return shape.regular_facets
-    order = {"singular_points": 0, "singular_edges": 1, "singular_faces": 2}[name]
+    if name == "surface":
+        return np.concatenate([shape.regular_facets, shape.singular(2)])
+    order = {"singular_points": 0, "singular_edges": 1, "singular_highlight": 2}[name]
     return shape.singular(order).reshape(-1, order + 1)
 
 
@@ -85,6 +92,17 @@ class Layer:
         self.dirty = False
 
 
+def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS) -> pv.PolyData:
+    """Spheres of the given (m,) radii around at most `limit` of the (m, 3) points (evenly
+    picked, so a big set still shows its spread)."""
+    pick = np.unique(np.linspace(0, len(xyz) - 1, min(limit, len(xyz))).round().astype(np.int64))
+    centres = pv.PolyData(np.ascontiguousarray(xyz[pick]))
+    centres["radius"] = np.asarray(radii, dtype=np.float64)[pick]
+    sphere = pv.Sphere(radius=1.0, theta_resolution=BALL_RESOLUTION,
+                       phi_resolution=BALL_RESOLUTION)
+    return centres.glyph(scale="radius", geom=sphere, orient=False)
+
+
 def new_mesh(kind: str, xyz: np.ndarray) -> pv.DataSet:
     """An empty mesh of the kind's type on the shared (m, 3) points."""
     mesh = pv.UnstructuredGrid() if kind == "tets" else pv.PolyData()
@@ -100,6 +118,7 @@ class Scene:
         self.plotter = plotter
         self.plotter.theme.allow_empty_mesh = True
         self.plotter.set_background(BACKGROUND)
+        self.plotter.renderer.SetTwoSidedLighting(True)  # singular triangles face either way
         self._render = render or plotter.render
         self.layers: dict[str, Layer] = {}
         self.styles: dict[str, LayerStyle] = {}
@@ -112,14 +131,19 @@ class Scene:
         return {name: layer.mesh for name, layer in self.layers.items()}
 
     def set_dataset(self, xyz: np.ndarray, dim: int, edges: np.ndarray,
-                    styles: dict[str, LayerStyle]) -> None:
-        """New data: (m, 3) points, complex dimension, (e, 2) Delaunay edges, layer styles."""
+                    styles: dict[str, LayerStyle], radii: np.ndarray | None = None) -> None:
+        """New data: (m, 3) points, complex dimension, (e, 2) Delaunay edges, layer styles,
+        and for weighted points their (m,) radii (the balls layer, when styles has it)."""
         self.clear()
         self.dim, self.shape = dim, None
         for name, kind in (KINDS_2D if dim == 2 else KINDS_3D).items():
             self.layers[name] = Layer(kind, new_mesh(kind, xyz))
             self.layers[name].actor = self._add_actor(name, styles[name])
             self.styles[name] = styles[name]
+        if radii is not None and "balls" in styles:
+            self.layers["balls"] = Layer("balls", ball_mesh(xyz, radii))
+            self.layers["balls"].actor = self._add_actor("balls", styles["balls"])
+            self.styles["balls"] = styles["balls"]
         self.layers["points"].set_cells(np.arange(len(xyz), dtype=np.int32)[:, None])
         self.layers["delaunay"].set_cells(edges)
         self.fit_view()
@@ -134,9 +158,12 @@ class Scene:
             source.SetShrinkFactor(SHRINK_FACTOR)
         actor = self.plotter.add_mesh(
             source, color=style.colour, opacity=style.opacity, name=name, reset_camera=False,
-            lighting=layer.kind in ("tris", "tets") and self.dim == 3,
+            lighting=layer.kind in ("tris", "tets", "balls") and (self.dim == 3
+                                                                   or layer.kind == "balls"),
             **DRAW_OPTIONS.get(name, {}),
         )
+        if name == "singular_highlight":  # drawn over the surface's own triangles
+            actor.mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(-2.0, -2.0)
         actor.SetVisibility(style.visible)
         return actor
 

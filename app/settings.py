@@ -37,9 +37,10 @@ class Preferences:
         files = [path, *(f for f in self.recent_files() if f != path)]
         self.store.setValue("recent_files", files[:MAX_RECENT])
 
-    def styles(self, dim: int) -> dict[str, LayerStyle]:
-        """Layer styles for a dim-D dataset: defaults overridden by saved ones."""
-        styles = default_styles(dim)
+    def styles(self, dim: int, weighted: bool = False) -> dict[str, LayerStyle]:
+        """Layer styles for a dim-D dataset (weighted: with the balls layer): defaults
+        overridden by saved ones."""
+        styles = default_styles(dim, weighted)
         for name, default in styles.items():
             key = f"layers/{dim}d/{name}"
             styles[name] = LayerStyle(

@@ -1,6 +1,8 @@
 """Signature plots (Edelsbrunner's viewer): Betti numbers and measures against log alpha.
 
-A vertical cursor marks the current alpha; clicking a plot moves the alpha there.
+Weighted points have negative squared alphas: their plots use alpha² on a symmetric-log axis
+(linear around zero). A vertical cursor marks the current alpha; clicking a plot moves the
+alpha there.
 """
 
 from __future__ import annotations
@@ -27,6 +29,19 @@ def log_samples(alphas: np.ndarray, count: int = MAX_SAMPLES) -> np.ndarray:
     return np.unique(np.clip(picks, positive[0], len(alphas) - 1))
 
 
+def rank_samples(count_all: int, count: int = MAX_SAMPLES) -> np.ndarray:
+    """Indexes of at most ~count entries evenly spread over all count_all spectrum entries."""
+    if count_all <= count:
+        return np.arange(count_all)
+    return np.unique(np.linspace(0, count_all - 1, count).round().astype(np.int64))
+
+
+def symlog_threshold(values: np.ndarray) -> float:
+    """Width of the linear part of a symmetric-log axis: a low quantile of the non-zero |x|."""
+    size = np.abs(values[values != 0])
+    return float(np.quantile(size, 0.05)) if len(size) else 1.0
+
+
 class SignaturesPanel(QWidget):
     """Three stacked plots sharing a log-alpha axis, with a cursor at the model's alpha."""
 
@@ -50,8 +65,10 @@ class SignaturesPanel(QWidget):
         if sig is None:
             self.canvas.draw_idle()
             return
-        rows = log_samples(np.asarray(sig.alphas))
-        x = sig.alphas[rows]
+        weighted = self.model.weighted
+        alphas = np.asarray(sig.alphas)
+        rows = rank_samples(len(alphas)) if weighted else log_samples(alphas)
+        x = alphas[rows] * np.abs(alphas[rows]) if weighted else alphas[rows]
         axes = self.figure.subplots(1, 3, sharex=True)
         names = ("b0", "b1", "b2")
         for k in range(sig.betti.shape[1]):
@@ -64,7 +81,11 @@ class SignaturesPanel(QWidget):
         titles = ("Betti numbers", "area" if sig.dim == 2 else "volume",
                   "perimeter" if sig.dim == 2 else "boundary area")
         for ax, title in zip(axes, titles, strict=True):
-            ax.set_xscale("log")
+            if weighted:
+                ax.set_xscale("symlog", linthresh=symlog_threshold(x))
+                ax.set_xlabel("alpha² (symmetric log)", fontsize="x-small")
+            else:
+                ax.set_xscale("log")
             ax.set_title(title, fontsize="small")
             ax.tick_params(labelsize="x-small")
             self.cursors.append(ax.axvline(x[0], color="#444444", linewidth=1))
@@ -72,8 +93,8 @@ class SignaturesPanel(QWidget):
 
     def move_cursor(self) -> None:
         """Put the cursor at the current alpha (redraw is coalesced by matplotlib)."""
-        alpha = self.model.alpha
-        if not self.cursors or not alpha > 0:
+        alpha = self.model.alpha2 if self.model.weighted else self.model.alpha
+        if not self.cursors or not (alpha > 0 or self.model.weighted):
             return
         for cursor in self.cursors:
             cursor.set_xdata([alpha, alpha])
@@ -82,4 +103,7 @@ class SignaturesPanel(QWidget):
     def _clicked(self, event) -> None:
         """Clicking inside a plot moves the alpha to the clicked value."""
         if event.inaxes is not None and event.xdata is not None and event.button == 1:
-            self.model.set_alpha(float(event.xdata))
+            if self.model.weighted:
+                self.model.set_alpha2(float(event.xdata))
+            else:
+                self.model.set_alpha(float(event.xdata))

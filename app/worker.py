@@ -73,8 +73,8 @@ class Loader(QObject):
         try:
             dataset = load_dataset(
                 path, progress,
-                lambda points, report, mode_, normals: build_process.build(
-                    points, report, cancel, mode=mode_, normals=normals),
+                lambda points, report, **options: build_process.build(points, report, cancel,
+                                                                      **options),
                 mode=mode)
         except Cancelled:
             self.cancelled.emit(request)

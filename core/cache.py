@@ -39,9 +39,9 @@ def cache_dir() -> Path:
 
 
 def points_key(points: np.ndarray, mode: Mode | None = None,
-               normals: np.ndarray | None = None) -> str:
-    """Hex digest of the points' shape and float64 bytes, the cache version, and for a mode
-    (core/modes.py) its parameters and any given normals."""
+               normals: np.ndarray | None = None, weights: np.ndarray | None = None) -> str:
+    """Hex digest of the points' shape and float64 bytes, the cache version, for a mode
+    (core/modes.py) its parameters and any given normals, and the weights of a weighted set."""
     arr = np.ascontiguousarray(points, dtype=np.float64)
     digest = hashlib.blake2b(digest_size=20)
     digest.update(f"alphascoop-table-v{CACHE_VERSION}:{arr.shape}".encode())
@@ -50,20 +50,31 @@ def points_key(points: np.ndarray, mode: Mode | None = None,
         digest.update(f"mode:{mode.key()}".encode())
         if mode.normals == "given" and normals is not None:
             digest.update(memoryview(np.ascontiguousarray(normals, dtype=np.float64)).cast("B"))
+    if weights is not None:
+        w = np.ascontiguousarray(weights, dtype=np.float64)
+        digest.update(f":weights{w.shape}".encode())
+        digest.update(memoryview(w).cast("B"))
     return digest.hexdigest()
 
 
 def entry_path(points: np.ndarray, mode: Mode | None = None,
-               normals: np.ndarray | None = None) -> Path:
-    """Where the table of these (n, d) points (in `mode`) is (or would be) cached."""
-    return cache_dir() / f"{points_key(points, mode, normals)}.npz"
+               normals: np.ndarray | None = None, weights: np.ndarray | None = None) -> Path:
+    """Where the table of these (n, d) points (in `mode`, with `weights`) is (or would be)
+    cached."""
+    return cache_dir() / f"{points_key(points, mode, normals, weights)}.npz"
+
+
+def pointset_weights(pointset) -> np.ndarray | None:
+    """The (n,) weights a point set carries (its `weights` attribute), None for arrays."""
+    weights = getattr(pointset, "weights", None)
+    return None if weights is None else np.asarray(weights, dtype=np.float64)
 
 
 def is_cached(pointset, mode: Mode | None = None, normals: np.ndarray | None = None) -> bool:
     """True when a cache entry exists for these points (it may still prove unreadable)."""
     try:
         return entry_path(np.asarray(getattr(pointset, "points", pointset)), mode,
-                          normals).is_file()
+                          normals, pointset_weights(pointset)).is_file()
     except OSError:  # a cache folder we may not read is no cache
         return False
 
@@ -87,10 +98,11 @@ def _load(path: Path, n_points: int, mode: Mode) -> AlphaComplex | None:
         return None
 
 
-def store(ac: AlphaComplex, points: np.ndarray, normals: np.ndarray | None = None) -> Path | None:
-    """Save ac as the entry of these points in ac's mode (with its signatures, if computed);
-    None when the cache folder cannot be written."""
-    path = entry_path(np.asarray(points, dtype=np.float64), ac.mode, normals)
+def store(ac: AlphaComplex, points: np.ndarray, normals: np.ndarray | None = None,
+          weights: np.ndarray | None = None) -> Path | None:
+    """Save ac as the entry of these points (and input weights) in ac's mode (with its
+    signatures, if computed); None when the cache folder cannot be written."""
+    path = entry_path(np.asarray(points, dtype=np.float64), ac.mode, normals, weights)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         ac.save(path)
@@ -101,13 +113,15 @@ def store(ac: AlphaComplex, points: np.ndarray, normals: np.ndarray | None = Non
 
 
 def load_cached(points: np.ndarray, mode: Mode | None = None,
-                normals: np.ndarray | None = None) -> AlphaComplex | None:
-    """The cached complex of these (n, d) points in `mode`, or None (a bad entry is removed).
+                normals: np.ndarray | None = None,
+                weights: np.ndarray | None = None) -> AlphaComplex | None:
+    """The cached complex of these (n, d) points in `mode` (with input `weights`), or None (a
+    bad entry is removed).
 
     Stale temporaries of killed stores are cleaned from the cache folder first.
     """
     points = np.asarray(points, dtype=np.float64)
-    path = entry_path(points, mode, normals)
+    path = entry_path(points, mode, normals, weights)
     remove_stale_temporaries(path.parent)
     ac = _load(path, len(points), mode or Mode())
     if ac is not None:
@@ -146,32 +160,36 @@ def _stat(path: Path) -> os.stat_result | None:
 
 def build_cached(pointset, *, use_cache: bool = True, progress: Progress | None = None,
                  signatures: bool = False, mode: Mode | None = None,
-                 normals: np.ndarray | None = None) -> AlphaComplex:
+                 normals: np.ndarray | None = None,
+                 weights: np.ndarray | None = None) -> AlphaComplex:
     """AlphaComplex of pointset.points (or an (n, d) array), from the cache when possible.
 
     With `signatures`, they are computed too and cached with the table, so that re-opening
     needs no topology pass either. `mode` (default classic) and, for its "given" normals,
-    `normals` ((n, d) like the points) choose the alpha mode (core/modes.py).
+    `normals` ((n, d) like the points) choose the alpha mode (core/modes.py). `weights` (or
+    the point set's own `weights`) build a weighted complex.
     """
     points = np.asarray(getattr(pointset, "points", pointset), dtype=np.float64)
     mode = mode or Mode()
+    weights = pointset_weights(pointset) if weights is None else weights
+    build = mode.build_kwargs(normals) | ({} if weights is None else {"weights": weights})
     if not use_cache:
-        ac = AlphaComplex.from_points(points, progress=progress, **mode.build_kwargs(normals))
+        ac = AlphaComplex.from_points(points, progress=progress, **build)
         if signatures:
             ac.signatures()
         return ac
-    ac = load_cached(points, mode, normals)
+    ac = load_cached(points, mode, normals, weights)
     if ac is not None:
         if progress is not None:
             progress(1.0, "loaded from cache")
         if signatures and "_signatures" not in ac.__dict__:
             ac.signatures()
-            store(ac, points, normals)
+            store(ac, points, normals, weights)
         return ac
-    ac = AlphaComplex.from_points(points, progress=progress, **mode.build_kwargs(normals))
+    ac = AlphaComplex.from_points(points, progress=progress, **build)
     if signatures:
         if progress is not None:
             progress(1.0, "topology")
         ac.signatures()
-    store(ac, points, normals)
+    store(ac, points, normals, weights)
     return ac

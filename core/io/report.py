@@ -10,6 +10,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from core.errors import FileFormatError
+from core.georef import Georef
 from core.io.subsample import first_unique, subsample_indices
 from core.points import first_too_large, flatness, too_large_message
 from core.tolerances import FLAT_RTOL
@@ -35,6 +36,8 @@ class LoadReport:
     subsampled_from: int | None = None
     subsample_method: str | None = None
     notes: tuple[str, ...] = ()
+    georef: Georef | None = None
+    weights_from: str | None = None  # where the weights (squared radii) came from; None: none
 
     def to_dict(self) -> dict:
         """Plain JSON-ready dict (lists instead of tuples)."""
@@ -42,6 +45,7 @@ class LoadReport:
         out["bbox"] = [list(c) for c in self.bbox]
         out["attributes"] = list(self.attributes)
         out["notes"] = list(self.notes)
+        out["georef"] = None if self.georef is None else self.georef.to_dict()
         return out
 
     def lines(self) -> list[str]:
@@ -57,8 +61,12 @@ class LoadReport:
             f"spacing     {self.spacing:.6g} (median nearest-neighbour distance)",
             f"attributes  {', '.join(self.attributes) or 'none'}",
         ]
+        if self.weights_from is not None:
+            out.append(f"weights     {self.weights_from}")
         if self.subsampled_from is not None:
             out.append(f"subsampled  {self.subsample_method} from {self.subsampled_from:,}")
+        if self.georef is not None:
+            out.append(f"projection  {self.georef.line()}")
         out.extend(f"note        {n}" for n in self.notes)
         return out
 
@@ -70,6 +78,13 @@ class PointSet:
     points: np.ndarray
     attributes: dict[str, np.ndarray] = field(default_factory=dict)
     report: LoadReport | None = None
+
+    @property
+    def weights(self) -> np.ndarray | None:
+        """(n,) float64 squared radii of a weighted point set, else None."""
+        if self.report is None or self.report.weights_from is None:
+            return None
+        return self.attributes.get("weights")
 
 
 def _readonly(a: np.ndarray) -> np.ndarray:
@@ -100,6 +115,28 @@ def median_spacing(points: np.ndarray, seed: int = 0) -> float:
     return float(np.median(dist[:, 1]))
 
 
+def nonfinite_attributes(attributes: dict[str, np.ndarray]) -> tuple[str, ...]:
+    """Warnings for float attributes holding NaN or infinite values (kept as they are)."""
+    out = []
+    for name, values in sorted(attributes.items()):
+        if np.issubdtype(values.dtype, np.floating) and values.size:
+            bad = int(np.count_nonzero(~np.isfinite(values).reshape(len(values), -1).all(axis=1)))
+            if bad:
+                out.append(f"warning: attribute {name!r} has {bad:,} non-finite values")
+    return tuple(out)
+
+
+def _heaviest_unique(points: np.ndarray, weights: np.ndarray | None) -> np.ndarray:
+    """(n,) bool mask keeping one of each group of duplicate rows: the first, or for weighted
+    points the first of the heaviest (a lighter ball at the same place is hidden anyway)."""
+    if weights is None:
+        return first_unique(points)
+    order = np.argsort(-np.nan_to_num(weights, nan=-np.inf), kind="stable")
+    keep = np.empty(len(points), dtype=bool)
+    keep[order] = first_unique(points[order])
+    return keep
+
+
 def finish(
     path: Path,
     fmt: str,
@@ -110,6 +147,8 @@ def finish(
     method: str = "voxel",
     seed: int = 0,
     notes: tuple[str, ...] = (),
+    georef: Georef | None = None,
+    weights_from: str | None = None,
 ) -> PointSet:
     """Drop non-finite rows, merge duplicates, subsample, and measure: the common reader tail."""
     points = np.asarray(points, dtype=np.float64)
@@ -121,7 +160,8 @@ def finish(
     finite = np.all(np.isfinite(points), axis=1)
     points = points[finite]
     attributes = {k: np.asarray(v)[finite] for k, v in attributes.items()}
-    keep = first_unique(points)
+    notes = tuple(notes) + nonfinite_attributes(attributes)
+    keep = _heaviest_unique(points, attributes.get("weights") if weights_from else None)
     n_dup = int(len(points) - keep.sum())
     points = points[keep]
     attributes = {k: v[keep] for k, v in attributes.items()}
@@ -147,6 +187,8 @@ def finish(
         subsampled_from=before if len(points) < before else None,
         subsample_method=method if len(points) < before else None,
         notes=notes,
+        georef=georef,
+        weights_from=weights_from,
     )
     return PointSet(
         points=_readonly(points),

@@ -2,19 +2,18 @@
 
 from __future__ import annotations
 
-import csv
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns, named_attributes, named_coordinates
+from core.io.numbers import NumberStyle, number_style
+from core.io.text_rows import COMMENTS, is_number, pts_note, read_rows, split, uncomment
 
 SNIFF_BYTES = 1 << 16
 DELIMITERS = (",", ";", "\t", "|")
-MISSING = {"", "na", "nan", "null", "none", "n/a"}
-COMMENTS = ("#", "//", "%")
 
 
 @dataclass(frozen=True)
@@ -26,22 +25,8 @@ class Layout:
     skiprows: int
     n_cols: int
     first_row: list[str]
-
-
-def _split(line: str, delimiter: str | None) -> list[str]:
-    """Split one line like the csv module (quotes respected) or on runs of whitespace."""
-    if delimiter is None:
-        return line.split()
-    return next(csv.reader([line], delimiter=delimiter, skipinitialspace=True), [])
-
-
-def _is_number(token: str) -> bool:
-    """True when `token` parses as a float."""
-    try:
-        float(token)
-    except ValueError:
-        return False
-    return True
+    style: NumberStyle = field(default_factory=NumberStyle)
+    pts: bool = False
 
 
 def _head_lines(path: Path) -> list[str]:
@@ -50,6 +35,7 @@ def _head_lines(path: Path) -> list[str]:
         head = fh.read(SNIFF_BYTES)
     if b"\0" in head:
         raise FileFormatError(f"{path}: binary content in a text point file")
+    head = head.removeprefix(b"\xef\xbb\xbf")  # a UTF-8 byte order mark is no data
     try:
         text = head.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -65,32 +51,45 @@ def _delimiter(lines: list[str]) -> str | None:
     """The delimiter present with the same count on every sampled line, else whitespace."""
     sample = lines[:20]
     for d in DELIMITERS:
-        counts = {len(_split(ln, d)) for ln in sample}
+        counts = {len(split(ln, d)) for ln in sample}
         if len(counts) == 1 and counts.pop() > 1:
             return d
     return None
 
 
+def _cells(line: str, delim: str | None) -> list[str]:
+    """Cells of one line, without trailing empty cells (a trailing delimiter or tab)."""
+    row = split(line, delim)
+    while row and not row[-1].strip():
+        row.pop()
+    return row
+
+
 def sniff(path: Path) -> Layout:
-    """Find delimiter, header and first data row from the head of the file."""
+    """Find delimiter, header, number style and first data row from the head of the file."""
     raw = _head_lines(path)
     numbered = [(i, ln) for i, ln in enumerate(raw) if ln.strip()]
-    data = [(i, ln) for i, ln in numbered if not ln.lstrip().startswith(COMMENTS)]
+    data = [(i, uncomment(ln)) for i, ln in numbered if not ln.lstrip().startswith(COMMENTS)]
+    data = [(i, ln) for i, ln in data if ln.strip()]
     if not data:
         raise FileFormatError(f"{path}: empty file (no data lines)")
+    style = number_style([ln for _, ln in data[:21]], str(path))
+    if not style.plain:
+        data = [(i, style.fix()(ln)) for i, ln in data]
     delim = _delimiter([ln for _, ln in data[1:21]] or [data[0][1]])
-    rows = [(i, _split(ln, delim)) for i, ln in data[:3]]
+    rows = [(i, _cells(ln, delim)) for i, ln in data[:3]]
     names, start = None, 0
     if len(rows) > 1 and len(rows[0][1]) == 1 and rows[0][1][0].strip().isdigit():
         start = 1  # PTS: a point count line before the data
-    elif not all(_is_number(t) for t in rows[0][1]):
+    elif not all(is_number(t) for t in rows[0][1]):
         names, start = [clean_name(t) for t in rows[0][1]], 1
     else:
         names = _comment_header(numbered, data[0][0], delim, len(rows[0][1]))
     if start >= len(rows):
         raise FileFormatError(f"{path}: header but no data rows")
     first_index, first_row = rows[start]
-    return Layout(delim, names, first_index, len(first_row), first_row)
+    return Layout(delim, names, first_index, len(first_row), first_row, style, start == 1
+                  and names is None)
 
 
 def _comment_header(numbered, first_data, delim, n_cols) -> list[str] | None:
@@ -98,7 +97,7 @@ def _comment_header(numbered, first_data, delim, n_cols) -> list[str] | None:
     before = [ln for i, ln in numbered if i < first_data]
     if not before:
         return None
-    names = [clean_name(t) for t in _split(before[-1].lstrip("#/% "), delim)]
+    names = [clean_name(t) for t in split(before[-1].lstrip("#/% "), delim)]
     return names if len(names) == n_cols and named_coordinates(names) else None
 
 
@@ -110,62 +109,31 @@ def choose_columns(layout: Layout, columns, path: Path) -> tuple[list[int], dict
         coords = named_coordinates(layout.names)
         if coords is not None:
             return coords, named_attributes(layout.names)
-    numeric = [i for i, t in enumerate(layout.first_row) if _is_number(t)]
+    numeric = [i for i, t in enumerate(layout.first_row) if is_number(t)]
     if len(numeric) < 2:
         raise FileFormatError(f"{path}: fewer than 2 numeric columns in the first data row")
     return numeric[:3], {}
 
 
-def _read_fast(path: Path, layout: Layout, usecols: list[int]) -> np.ndarray:
-    """numpy's C parser; raises ValueError on anything unusual (missing values, ragged rows)."""
-    quoted = layout.delimiter is not None  # numpy allows quotes with one comment marker only
-    return np.loadtxt(
-        path, delimiter=layout.delimiter, quotechar='"' if quoted else None,
-        skiprows=layout.skiprows, usecols=usecols, comments="#" if quoted else COMMENTS, ndmin=2,
-        dtype=np.float64, encoding="utf-8",
-    )
-
-
-def _read_careful(path: Path, layout: Layout, usecols: list[int]) -> np.ndarray:
-    """Line by line: missing values become NaN; a bad value is reported with its line."""
-    out = []
-    with open(path, encoding="utf-8", errors="replace") as fh:
-        for lineno, line in enumerate(fh, 1):
-            if lineno <= layout.skiprows or not line.strip():
-                continue
-            if line.lstrip().startswith(COMMENTS):
-                continue
-            out.append(_parse_row(_split(line, layout.delimiter), usecols, path, lineno))
-    return np.array(out, dtype=np.float64).reshape(-1, len(usecols))
-
-
-def _parse_row(row: list[str], usecols: list[int], path: Path, lineno: int) -> list[float]:
-    """Floats of the chosen cells of one row; missing cells are NaN."""
-    if len(row) <= max(usecols):
-        raise FileFormatError(f"{path}: line {lineno} has {len(row)} columns, "
-                              f"column {max(usecols) + 1} needed")
-    vals = []
-    for c in usecols:
-        cell = row[c].strip()
-        if cell.lower() in MISSING:
-            vals.append(np.nan)
-        elif _is_number(cell):
-            vals.append(float(cell))
-        else:
-            raise FileFormatError(f"{path}: non-numeric value {cell[:40]!r} at line {lineno}, "
-                                  f"column {c + 1}")
-    return vals
-
-
 def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, d) coordinates, attributes and notes from a delimited text file."""
+    return read_text_columns(path, columns)[:3]
+
+
+def read_text_columns(path: Path, columns=None, extra: tuple[str, ...] = ()
+                      ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, list[str] | None]:
+    """read_text's result and the coordinate columns' header names (None without a header).
+
+    `extra` names header columns to read too, each as an attribute of its (cleaned) name.
+    """
     layout = sniff(path)
     coords, attrs = choose_columns(layout, columns, path)
+    for name in extra:
+        if name not in attrs:
+            attrs[name] = explicit_columns([name, name], layout.names, layout.n_cols,
+                                           str(path))[:1]
     usecols = coords + [c for cols in attrs.values() for c in cols]
-    try:
-        table = _read_fast(path, layout, usecols)
-    except ValueError:
-        table = _read_careful(path, layout, usecols)
+    table, counts = read_rows(path, layout, usecols)
     if len(table) == 0:
         raise FileFormatError(f"{path}: no data rows")
     points, pos = table[:, : len(coords)], len(coords)
@@ -176,7 +144,9 @@ def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarra
         attributes[name] = _attribute(name, block)
     names = layout.names or [str(i + 1) for i in range(layout.n_cols)]
     note = f"coordinates from columns {', '.join(names[c] for c in coords)}"
-    return points, attributes, (note,)
+    coord_names = [layout.names[c] for c in coords] if layout.names else None
+    notes = (note, *layout.style.notes(), *pts_note(counts, len(table)))
+    return points, attributes, notes, coord_names
 
 
 def _attribute(name: str, block: np.ndarray) -> np.ndarray:
