@@ -25,6 +25,7 @@ from app.alpha_slider import AlphaSlider, Mark
 from app.log_travel import LogTravel, snap_index
 from app.model import ExplorerModel
 from app.palette import MARK_COLOURS
+from app.signed_travel import SignedTravel
 
 N_SUGGESTED = 5
 
@@ -50,7 +51,7 @@ class AlphaPanel(QWidget):
         super().__init__(parent)
         self.model = model
         self.slider = AlphaSlider()
-        self.travel: LogTravel | None = None
+        self.travel: LogTravel | SignedTravel | None = None
         self.radius = QLineEdit()
         self.radius.setValidator(radius_validator())
         self.radius.setToolTip("alpha as a radius; Enter snaps to the shape at that value")
@@ -128,7 +129,8 @@ class AlphaPanel(QWidget):
     def _new_travel(self) -> None:
         """A new dataset: its log-alpha travel and tick marks (suggested, opening, optimal)."""
         ds = self.model.dataset
-        self.travel = LogTravel(ds.spectrum, reach=ds.optimal_alpha)
+        travel = SignedTravel if self.model.weighted else LogTravel  # alpha² < 0: no log
+        self.travel = travel(ds.spectrum, reach=ds.optimal_alpha)
         self.slider.set_marks(tuple(self.marks()))
 
     def marks(self) -> list[Mark]:

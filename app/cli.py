@@ -15,6 +15,7 @@ import sys
 import time
 import warnings
 from collections.abc import Iterator, Sequence
+from pathlib import Path
 
 import numpy as np
 
@@ -65,6 +66,10 @@ def _common(sub: argparse.ArgumentParser) -> None:
                        help="weighted points: radii from this column (squared)")
     sub.add_argument("--radius-add", type=probe_radius, metavar="R",
                      help="add R to every point's radius before squaring (a probe radius)")
+    sub.add_argument("--probe", type=probe_radius, default=1.4, metavar="R",
+                     help="molecules: solvent probe radius in Å added to every atom "
+                     "(default 1.4; 0 = van der Waals surface)")
+    sub.add_argument("--keep-water", action="store_true", help="molecules: keep water atoms")
     add_mode_options(sub)
 
 
@@ -116,13 +121,10 @@ def _progress():
 def load(args) -> tuple:
     """(PointSet, AlphaComplex, seconds, from cache?) for the file and options."""
     from core.cache import build_cached, is_cached
-    from core.io import read_points
     from core.modes import file_normals
 
     mode = _mode(args)
-    ps = read_points(args.file, columns=args.columns, subsample=args.subsample,
-                     weights=args.weights, radius=args.radius, radius_add=args.radius_add,
-                     scan=args.scan)
+    ps = _read(args)
     normals = file_normals(mode, ps.attributes, args.file)
     cached = not args.no_cache and is_cached(ps, mode, normals)
     update, close = _progress()
@@ -144,6 +146,51 @@ def _mode(args):
         return mode_of(args)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
+
+
+def is_molecule(args) -> bool:
+    """The file is a PDB/mmCIF molecule (read as balls: atoms with radii plus the probe)."""
+    from core.io.molecule import molecule_extension
+
+    return molecule_extension(Path(args.file)) is not None
+
+
+def _read(args):
+    """The PointSet of the file; a molecule's atoms weighted by (radius + probe)²."""
+    from core.io import read_points
+
+    if not is_molecule(args):
+        return read_points(args.file, columns=args.columns, subsample=args.subsample,
+                           weights=args.weights, radius=args.radius,
+                           radius_add=args.radius_add, scan=args.scan)
+    from core.io.molecule import read_molecule_pointset
+
+    for option in ("columns", "subsample", "weights", "radius", "radius_add", "scan"):
+        if getattr(args, option) is not None:
+            raise UsageError(f"--{option.replace('_', '-')} does not apply to molecule files "
+                             "(use --probe)")
+    return read_molecule_pointset(args.file, probe=args.probe, keep_water=args.keep_water)[0]
+
+
+def molecule_summary(ac, probe: float) -> dict:
+    """The `molecule` object of `info`: exact area and volume, per-atom area, cavities."""
+    from core.molecule.analysis import measure_molecule
+
+    return {**measure_molecule(ac, probe).to_dict(), "pockets": None}
+
+
+def _molecule_text(mol: dict) -> list[str]:
+    """Text lines of the `molecule` object."""
+    kind = "solvent-accessible" if mol["probe"] > 0 else "van der Waals"
+    cavities = ", ".join(f"{v:.4g} ± {e:.2g}" for v, e in
+                         zip(mol["cavities"], mol["cavity_errors"], strict=True))
+    return [
+        f"atoms       {mol['atoms']:,} balls, probe {mol['probe']:g} Å ({kind} surface)",
+        f"surface     {mol['surface_area']:,.2f} Å² (exact)",
+        f"volume      {mol['volume']:,.2f} Å³ (exact, union of balls)",
+        f"cavities    {len(mol['cavities'])}" + (f": {cavities} Å³" if cavities else ""),
+        "pockets     not computed (see README: Molecules)",
+    ]
 
 
 def chosen_alpha(args) -> dict | None:
@@ -255,10 +302,15 @@ def _text(info: dict, lines: list[str]) -> str:
 
 
 def cmd_info(args) -> int:
-    """Print the load report and the shape summary."""
+    """Print the load report and the shape summary (and a molecule's measures)."""
     ps, ac, seconds, cached = load(args)
     info = summary(ps, ac, seconds, cached, chosen_alpha(args))
-    text = _text({**info, "mode_text": ac.mode.describe()}, ps.report.lines())
+    if is_molecule(args):
+        info["molecule"] = molecule_summary(ac, args.probe)
+    text = None if args.json else _text({**info, "mode_text": ac.mode.describe()},
+                                        ps.report.lines())
+    if text is not None and "molecule" in info:
+        text += "\n" + "\n".join(_molecule_text(info["molecule"]))
     print(json.dumps(info, indent=2) if args.json else text)
     return 0
 

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from app.camera import Z_UP, ViewFrame, frame_for
 from core import AlphaComplex
 from core.cache import build_cached, is_cached
 from core.cursor import ShapeCursor
@@ -46,6 +47,7 @@ class Dataset:
     build_seconds: float
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
     from_cache: bool = False  # the table was loaded from the cache, not built
+    frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
 
     def build_line(self) -> str:
         """How the table came: 'built in 12.3 s' or 'loaded from cache in 0.4 s'."""
@@ -93,5 +95,5 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         default_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
-        from_cache=cached,
+        from_cache=cached, frame=frame_for(path, pointset.report),
     )

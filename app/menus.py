@@ -108,6 +108,15 @@ def save_screenshot(window) -> None:
                    lambda: file_actions.save_screenshot(window.plotter, path))
 
 
+VIEW_KEYS = {"top": "T", "front": "F", "side": "S", "iso": "I"}
+
+
+def show_view(window, preset: str) -> None:
+    """View → a preset camera (app.camera.PRESETS), fitted to the data."""
+    window.scene.view_preset(preset)
+    window.scene.render()
+
+
 def build_menus(window: QMainWindow) -> dict[str, QAction]:
     """Create File, View, Shape and Help menus on window; returns the main actions by name."""
     bar = window.menuBar()
@@ -126,7 +135,13 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
     view = bar.addMenu("&View")
     for dock in window.findChildren(QDockWidget):
         view.addAction(dock.toggleViewAction())
-    add_action(view, "&Reset camera", lambda: (window.scene.fit_view(), window.scene.render()))
+    view.addSeparator()
+    for preset, key in VIEW_KEYS.items():
+        actions[f"view_{preset}"] = add_action(view, f"&{preset.capitalize()} view",
+                                               partial(show_view, window, preset), key)
+    actions["reset_view"] = add_action(view, "&Reset view",
+                                       lambda: (window.scene.fit_view(), window.scene.render()),
+                                       "R")
     shape = bar.addMenu("&Shape")
     model = window.model
     actions["optimal"] = add_action(shape, "&Optimal alpha",

@@ -14,6 +14,7 @@ import numpy as np
 import pyvista as pv
 from vtkmodules.vtkFiltersGeneral import vtkShrinkFilter
 
+from app.camera import Z_UP, ViewFrame
 from app.palette import BACKGROUND, MAX_BALLS, LayerStyle
 
 SHRINK_FACTOR = 0.8
@@ -124,6 +125,7 @@ class Scene:
         self.styles: dict[str, LayerStyle] = {}
         self.shape = None
         self.dim = 3
+        self.frame = Z_UP
 
     @property
     def meshes(self) -> dict[str, pv.DataSet]:
@@ -131,11 +133,13 @@ class Scene:
         return {name: layer.mesh for name, layer in self.layers.items()}
 
     def set_dataset(self, xyz: np.ndarray, dim: int, edges: np.ndarray,
-                    styles: dict[str, LayerStyle], radii: np.ndarray | None = None) -> None:
+                    styles: dict[str, LayerStyle], radii: np.ndarray | None = None,
+                    frame: ViewFrame = Z_UP) -> None:
         """New data: (m, 3) points, complex dimension, (e, 2) Delaunay edges, layer styles,
-        and for weighted points their (m,) radii (the balls layer, when styles has it)."""
+        for weighted points their (m,) radii (the balls layer, when styles has it), and the
+        view frame (which way is up, app.camera)."""
         self.clear()
-        self.dim, self.shape = dim, None
+        self.dim, self.shape, self.frame = dim, None, frame
         for name, kind in (KINDS_2D if dim == 2 else KINDS_3D).items():
             self.layers[name] = Layer(kind, new_mesh(kind, xyz))
             self.layers[name].actor = self._add_actor(name, styles[name])
@@ -199,7 +203,8 @@ class Scene:
         layer.actor.SetVisibility(style.visible)
 
     def fit_view(self) -> None:
-        """Fit the camera to all points: 3D isometric perspective, or 2D top-down parallel."""
+        """Fit the camera to all points: the frame's opening preset in perspective (3D), or
+        top-down parallel (2D)."""
         renderer = self.plotter.renderer
         bounds = self.layers["points"].mesh.bounds if self.layers else None
         interactive = getattr(self.plotter, "iren", None) is not None
@@ -208,12 +213,27 @@ class Scene:
             renderer.view_xy(render=False, bounds=bounds)
             if interactive:
                 self.plotter.enable_2d_style()
-        else:
-            renderer.disable_parallel_projection()
-            renderer.view_isometric(render=False, bounds=bounds)
-            if interactive:
-                self.plotter.enable_trackball_style()
-        renderer.reset_camera(render=False, bounds=bounds)
+            renderer.reset_camera(render=False, bounds=bounds)
+            return
+        renderer.disable_parallel_projection()
+        if interactive:
+            self.plotter.enable_trackball_style()
+        self.view_preset(self.frame.start)
+
+    def view_preset(self, preset: str) -> None:
+        """Look at all points from a preset of app.camera.PRESETS (top, front, side, iso),
+        centred and fitted; a 2D dataset keeps its top-down view."""
+        if not self.layers or (self.dim == 2 and self.is_flat()):
+            return
+        bounds = self.layers["points"].mesh.bounds
+        look, up = self.frame.direction(preset)
+        centre = np.array([(bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+                           (bounds[4] + bounds[5]) / 2])
+        camera = self.plotter.renderer.camera
+        camera.focal_point = tuple(centre)
+        camera.position = tuple(centre - look)
+        camera.up = tuple(up)
+        self.plotter.renderer.reset_camera(render=False, bounds=bounds)
 
     def is_flat(self) -> bool:
         """True when all points lie in the z = 0 plane (2D input)."""

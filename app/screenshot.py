@@ -33,7 +33,7 @@ def render_png(dataset: Dataset, alpha: float, out: Path, size: tuple[int, int])
     try:
         scene = Scene(plotter)
         scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1),
-                          default_styles(ac.dim))
+                          default_styles(ac.dim), frame=dataset.frame)
         scene.set_shape(ac.shape(alpha2=alpha * abs(alpha)))  # weighted: may be below zero
         with atomic_path(out) as tmp:
             save_png(plotter, tmp)

@@ -141,3 +141,17 @@ def test_bench_modes_end_to_end(tmp_path, capsys):
     assert all(r["wall"] > 0 and r["cpu"] > 0 for r in result["ratios"].values())
     assert "neighbours" in result["builds"]["density k=8"]["stages"]
     assert "ratio" in capsys.readouterr().out
+
+
+def test_weighted_packing_radii_span_one_to_two_spacings() -> None:
+    from scipy.spatial import cKDTree
+
+    from benchmarks.bench_weighted import packing
+
+    points, weights = packing(2000, seed=3)
+    dist, _ = cKDTree(points).query(points, k=2)
+    spacing = np.median(dist[:, 1])
+    radii = np.sqrt(weights)
+    assert points.shape == (2000, 3) and weights.shape == (2000,)
+    assert radii.min() >= 0.9 * spacing and radii.max() <= 2.1 * spacing
+    assert radii.max() / radii.min() > 1.8

@@ -592,3 +592,26 @@ def test_page_up_from_the_opening_stays_below_the_hull_on_a_real_scan(window, qt
     press(qtbot, window, Qt.Key.Key_PageUp)
     assert model.default_index() < model.index < model.hull_index()
     assert model.alpha < 2 * model.dataset.default_alpha
+
+
+def test_view_presets_and_reset_follow_the_data_frame(window, qtbot, points_file) -> None:
+    """T/F/S/I show the top, front, side and iso views of the data's frame (z up for a .npy),
+    centred on the data; R resets to the opening view."""
+    from app.camera import Z_UP
+
+    open_and_wait(qtbot, window, points_file(blobs_3d(), "frame.npy"))
+    camera = window.plotter.camera
+    opening = np.array(camera.direction)
+    bounds = np.array(window.scene.layers["points"].mesh.bounds).reshape(3, 2)
+    for key, preset in (("T", "top"), ("F", "front"), ("S", "side"), ("I", "iso")):
+        action = window.menus[f"view_{preset}"]
+        assert action.shortcut().toString() == key
+        action.trigger()
+        look, up = Z_UP.direction(preset)
+        assert np.allclose(camera.direction, look, atol=1e-6), preset
+        assert np.allclose(camera.up, up, atol=1e-6), preset
+        assert np.allclose(camera.focal_point, bounds.mean(axis=1)), preset
+    window.menus["view_top"].trigger()
+    assert window.menus["reset_view"].shortcut().toString() == "R"
+    window.menus["reset_view"].trigger()
+    assert np.allclose(camera.direction, opening, atol=1e-6)

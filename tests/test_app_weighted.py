@@ -85,3 +85,31 @@ def test_export_at_a_negative_alpha2(window, qtbot, balls_csv, tmp_path) -> None
     line = file_actions.export_shape(model.dataset.ac, model.alpha, tmp_path / "low.vtu")
     assert f"alpha² {model.alpha2:.6g}" in line
     assert (tmp_path / "low.vtu").is_file()
+
+
+def test_signed_travel_spreads_negative_values_over_the_slider() -> None:
+    from app.log_travel import TRAVEL
+    from app.signed_travel import SignedTravel
+
+    squares = np.concatenate([-np.geomspace(1e-2, 1e-5, 300), [0.0], np.geomspace(1e-5, 1e2,
+                                                                                  700)])
+    spectrum = np.sign(squares) * np.sqrt(np.abs(squares))
+    travel = SignedTravel(spectrum)
+    positions = np.array([travel.position(i) for i in range(len(spectrum))])
+    assert positions[0] == 0 and positions[-1] == TRAVEL
+    assert (np.diff(positions) >= 0).all()
+    assert 0.05 * TRAVEL < positions[300] < 0.95 * TRAVEL  # zero sits inside, not at an end
+    assert len(np.unique(positions[:300])) > 100  # the negative values are spread out
+    for i in (10, 150, 300, 650, 990):
+        assert abs(travel.index_at(positions[i]) - i) <= 3
+    assert travel.page(150, up=True) > 150 and travel.page(150, up=False) < 150
+
+
+def test_weighted_slider_uses_the_signed_travel(window, qtbot, balls_csv) -> None:
+    from app.signed_travel import SignedTravel
+
+    open_and_wait(qtbot, window, balls_csv[0])
+    panel = window.alpha_panel
+    assert isinstance(panel.travel, SignedTravel)
+    window.model.set_index(3)
+    assert window.model.alpha2 < 0 and panel.slider.value() == panel.travel.position(3)

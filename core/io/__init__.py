@@ -17,6 +17,7 @@ from core.io.e57 import read_e57
 from core.io.geographic import geographic_points
 from core.io.las import read_las
 from core.io.mesh import read_mesh
+from core.io.molecule import molecule_extension, read_molecule_points
 from core.io.npy import read_npy
 from core.io.pcd import read_pcd
 from core.io.ply import read_ply
@@ -45,6 +46,8 @@ READ_FORMATS: dict[str, str] = {
     ".gltf": "glTF mesh (vertices)",
     ".vtk": "Legacy VTK (vertices)",
     ".vtu": "VTK unstructured grid (vertices)",
+    ".pdb": "PDB molecule (atoms; also .ent and .gz)",
+    ".cif": "mmCIF molecule (atoms; also .mmcif and .gz)",
     ".e57": "E57 terrestrial scans (ASTM E2807), every scan with its pose",
 }
 
@@ -54,6 +57,7 @@ READERS: dict[str, Reader] = {
     ".npy": read_npy, ".npz": read_npy,
     **dict.fromkeys((".xyz", ".pts", ".txt", ".csv"), read_text),
     **dict.fromkeys((".obj", ".stl", ".off", ".glb", ".gltf", ".vtk", ".vtu"), read_mesh),
+    **dict.fromkeys((".pdb", ".ent", ".cif", ".mmcif"), read_molecule_points),
     ".e57": read_e57,
 }
 
@@ -65,7 +69,7 @@ def _format_name(ext: str) -> str:
 
 def _check_file(path: Path) -> str:
     """The lower-case extension of a readable, non-empty file, or a clear error."""
-    ext = path.suffix.lower()
+    ext = molecule_extension(path) or path.suffix.lower()
     if ext not in READERS:
         known = " ".join(sorted(READERS))
         raise FileFormatError(f"{path}: unknown extension {ext or '(none)'!r}; known: {known}")
