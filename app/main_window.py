@@ -68,11 +68,11 @@ class MainWindow(QMainWindow):
         self.statusBar().addPermanentWidget(self.progress)
         self.statusBar().addPermanentWidget(self.job_progress)
         self._add_dock("Alpha", self.alpha_panel, Qt.DockWidgetArea.RightDockWidgetArea)
-        layers = self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
-        mode = self._add_dock("Mode", self.mode_panel, Qt.DockWidgetArea.RightDockWidgetArea)
-        self.tabifyDockWidget(layers, mode)  # a tab beside Layers: the view keeps its room
-        layers.raise_()
-        self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
+        self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
+        info = self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
+        mode = self._add_dock("Mode", self.mode_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
+        self.tabifyDockWidget(info, mode)  # a tab beside Info: the view keeps its room
+        info.raise_()
         self._add_dock("Signatures", self.signatures_panel, Qt.DockWidgetArea.BottomDockWidgetArea)
         self.menus = build_menus(self)
         self._connect()
