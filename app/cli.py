@@ -93,7 +93,12 @@ def build_parser() -> Parser:
                         help="squared alpha (may be negative for weighted points)")
     choice.add_argument("--optimal", type=count, nargs="?", const=1, metavar="K",
                         help="optimal alpha for at most K solid components (default)")
-    export.add_argument("--manifold", action="store_true", help="split where the shape touches")
+    split = export.add_mutually_exclusive_group()
+    split.add_argument("--no-manifold", dest="manifold", action="store_false",
+                       help="keep the raw boundary (3D surfaces are split where the shape "
+                       "touches itself by default, to a closed 2-manifold)")
+    split.add_argument("--manifold", dest="manifold", action="store_true",
+                       help="the default; accepted for compatibility")
     export.add_argument("--sidecar", action="store_true", help="also write OUT.json metadata")
     export.add_argument("--table", action="store_true", help="write the interval table "
                         "(.npz or .csv) instead of the shape")

@@ -9,8 +9,9 @@ from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QMessageBox
 
 from app import file_actions
+from app.export_dialog import ask_export_shape
 from core.errors import InputError
-from core.export import SHAPE_FORMATS, TABLE_FORMATS
+from core.export import TABLE_FORMATS
 from core.export.targets import refuse_source
 
 ABOUT = (
@@ -76,14 +77,13 @@ def export_shape(window) -> None:
     if window.model.dataset is None:
         QMessageBox.information(window, "Export shape", "Open a point set first.")
         return
-    stem = window.model.dataset.path.stem
-    path = file_actions.ask_save_path(window, window.prefs, "Export shape", SHAPE_FORMATS,
-                                      f"{stem}_alpha")
-    if path and not is_the_source(window, "Export shape", path):
-        ds, alpha = window.model.dataset, window.model.alpha
+    ds, alpha = window.model.dataset, window.model.alpha
+    chosen = ask_export_shape(window, window.prefs, ds.path.stem, alpha)
+    if chosen and not is_the_source(window, "Export shape", chosen[0]):
+        path, manifold = chosen
         georef = None if ds.report is None else ds.report.georef  # longitude/latitude input
         run_in_background(window, "Export shape", lambda progress: file_actions.export_shape(
-            ds.ac, alpha, path, progress, source=ds.path, georef=georef))
+            ds.ac, alpha, path, progress, source=ds.path, georef=georef, manifold=manifold))
 
 
 def export_table(window) -> None:

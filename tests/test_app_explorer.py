@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import BUILD_TIMEOUT_MS, image_contrast, open_and_wait
+from conftest import BUILD_TIMEOUT_MS, fake_export_dialog, image_contrast, open_and_wait
 from PySide6.QtCore import Qt
 from reference import data_dir
 
@@ -363,6 +363,7 @@ def test_file_menu_writes_and_reports(opened, qtbot, tmp_path, monkeypatch, acti
     target = tmp_path / name
     monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
                         lambda *args, **kwargs: (str(target), ""))
+    monkeypatch.setattr("app.export_dialog.run_dialog", fake_export_dialog(target))
     warnings: list[str] = []
     monkeypatch.setattr("app.menus.QMessageBox.warning", lambda *args: warnings.append(args[-1]))
     run_file_action(qtbot, opened, action)
@@ -379,6 +380,7 @@ def test_file_menu_shows_any_writer_error_in_a_dialog(opened, qtbot, tmp_path, m
     """A writer failing with any exception gives one dialog naming it; nothing escapes."""
     monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
                         lambda *args, **kwargs: (str(tmp_path / "out"), ""))
+    monkeypatch.setattr("app.export_dialog.run_dialog", fake_export_dialog(tmp_path / "out"))
 
     def broken(*args, **kwargs):
         raise RuntimeError("renderer fell over")

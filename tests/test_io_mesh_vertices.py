@@ -140,3 +140,9 @@ def _meshio_bytes(tmp_path, mesh, ext: str) -> bytes:
     out = tmp_path / f"m{ext}"
     meshio.write(out, meshio.Mesh(mesh.vertices, [("triangle", mesh.faces)]))
     return out.read_bytes()
+
+
+@pytest.mark.skipif(not DATA_DIR.is_dir(), reason="shared/data is absent")
+def test_bunny_ply_report_counts_the_1113_unused_vertices():
+    ps = read_points(DATA_DIR / "bunny.ply")  # 1,113: shared/data/SOURCES.md (plyfile)
+    assert ps.report.n_points == 35_947 and "1,113 used by no face" in _note(ps)

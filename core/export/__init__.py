@@ -141,15 +141,16 @@ def _step(progress: Progress | None, fraction: float, stage: str) -> None:
         progress(fraction, stage)
 
 
-def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: bool = False,
+def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: bool = True,
                 sidecar: bool = False, source: str | os.PathLike | None = None,
                 progress: Progress | None = None, georef: Georef | None = None,
                 alpha2: float | None = None) -> ExportReport:
     """Write ac.shape(alpha) (or, with alpha None, ac.shape(alpha2=alpha2): a squared value,
     negative ones for weighted points) in the format of `path`'s extension (SHAPE_FORMATS).
 
-    3D: surfaces are the outward REGULAR facets (`manifold=True` splits where the shape
-    touches itself); 2D: polygon formats, or the filled triangles for surface formats.
+    3D: surfaces are the outward REGULAR facets, split where the shape touches itself so
+    that they form a closed 2-manifold (`manifold=False`: the raw boundary, which slicers and
+    CAD tools may reject); 2D: polygon formats, or the filled triangles for surface formats.
     `sidecar=True` also writes PATH.json with the metadata. A target (or sidecar) that is
     the `source` file itself is refused with an InputError before anything is written.
     `georef` (the load report's, for points read from longitude/latitude) puts GeoJSON, WKT

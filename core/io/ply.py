@@ -11,6 +11,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.ply_body import read_ascii_rows, read_binary
+from core.io.ply_faces import face_note
 from core.io.ply_header import Element, Header, parse_header
 
 NORMAL_NAMES = ("nx", "ny", "nz")
@@ -104,12 +105,14 @@ def read_ply(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
     """(n, 3) or (n, 2) vertex coordinates, vertex attributes, and header comments as notes."""
     with open(path, "rb") as fh:
         header = parse_header(fh, str(path))
-        _check_size(header, os.fstat(fh.fileno()).st_size - fh.tell(), path)
+        body_start = fh.tell()
+        _check_size(header, os.fstat(fh.fileno()).st_size - body_start, path)
         table = _vertex_table(fh, header, path)
+        faces = face_note(fh, body_start, header, len(table), str(path))
     names = table.dtype.names or ()
     axes = [a for a in ("x", "y", "z") if a in names]
     if axes[:2] != ["x", "y"]:
         raise FileFormatError(f"{path}: PLY vertices have no x/y properties ({', '.join(names)})")
     points = np.column_stack([table[a] for a in axes]).astype(np.float64)
-    notes = (*header.notes, *(f"comment {c}" for c in header.comments[:5]))
+    notes = (*faces, *header.notes, *(f"comment {c}" for c in header.comments[:5]))
     return points, _attributes(table), notes

@@ -8,7 +8,9 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-SAMPLES = 40_000  # Monte Carlo points per void for its volume
+SAMPLES = 8_000  # Monte Carlo points per void at most, for its volume
+CELL_SAMPLES = 1_000  # Monte Carlo points per cell of a void (up to SAMPLES)
+NEIGHBOURS = 24  # nearest centres tested per sample (all balls in reach, or more asked)
 
 
 def void_cells(cell_empty: np.ndarray, facet_cells: np.ndarray,
@@ -35,22 +37,29 @@ def void_cells(cell_empty: np.ndarray, facet_cells: np.ndarray,
     return out
 
 
-def _sample_cells(corners: np.ndarray, volumes: np.ndarray, n: int,
-                  rng: np.random.Generator) -> np.ndarray:
-    """(n, 3) points uniform in the union of the tetrahedra (t, 4, 3) of the given volumes."""
-    cell = rng.choice(len(corners), size=n, p=volumes / volumes.sum())
-    lam = rng.dirichlet(np.ones(4), size=n)  # uniform barycentric coordinates
+def _sample_cells(corners: np.ndarray, volumes: np.ndarray, group: np.ndarray,
+                  per_group: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """(Σ per_group, 3) points, per_group[g] of them uniform in the union of the tetrahedra
+    (t, 4, 3) of group g (cells sorted by group), in group order."""
+    totals = np.bincount(group, weights=volumes)
+    cum = np.cumsum(volumes)
+    before = np.concatenate(([0.0], np.cumsum(totals)))[:-1]
+    owner = np.repeat(np.arange(len(per_group)), per_group)
+    u = before[owner] + rng.random(len(owner)) * totals[owner]
+    cell = np.minimum(np.searchsorted(cum, u, side="right"), len(volumes) - 1)
+    lam = rng.dirichlet(np.ones(4), size=len(owner))  # uniform barycentric coordinates
     return np.einsum("pi,pij->pj", lam, corners[cell])
 
 
-def _covered(x: np.ndarray, centres: np.ndarray, radii: np.ndarray) -> np.ndarray:
-    """(p,) bool: the points x (p, 3) lie in some ball."""
-    lo, hi = x.min(0), x.max(0)
-    near = np.linalg.norm(np.clip(centres, lo, hi) - centres, axis=1) < radii
-    covered = np.zeros(len(x), bool)
-    hits = cKDTree(x).query_ball_point(centres[near], radii[near], return_sorted=False)
-    if len(hits):
-        covered[np.concatenate([np.asarray(h, np.int64) for h in hits])] = True
+def _covered(x: np.ndarray, tree: cKDTree, radii: np.ndarray) -> np.ndarray:
+    """(p,) bool: the points x (p, 3) lie in some ball (centres in `tree`)."""
+    reach = float(radii.max())
+    dist, idx = tree.query(x, k=NEIGHBOURS, distance_upper_bound=reach)
+    found = np.isfinite(dist)
+    covered = (found & (dist <= radii[np.where(found, idx, 0)])).any(1)
+    for i in np.flatnonzero(found[:, -1] & ~covered):  # more balls in reach than asked for
+        near = np.asarray(tree.query_ball_point(x[i], reach), np.int64)
+        covered[i] = bool((np.linalg.norm(tree.data[near] - x[i], axis=1) <= radii[near]).any())
     return covered
 
 
@@ -60,16 +69,20 @@ def void_volumes(labels: np.ndarray, cells: np.ndarray, centres: np.ndarray,
     """((n_voids,), (n_voids,)) float64 empty volume of each void (its cells minus the balls)
     and the standard error of that estimate.
 
-    Monte Carlo with `samples` points uniform in the void's cells (volumes `cell_volumes`
-    (n_cells,)), seeded: the same input gives the same figures.
+    Monte Carlo with CELL_SAMPLES points per cell, at most `samples` per void, uniform in the
+    void's cells (volumes `cell_volumes` (n_cells,)), seeded: the same input gives the same
+    figures. One vectorized pass for all voids.
     """
-    rng = np.random.default_rng(seed)
     n_voids = int(labels.max()) + 1 if len(labels) else 0
-    volume, error = np.zeros(n_voids), np.zeros(n_voids)
-    for v in range(n_voids):
-        mine = labels == v
-        total = float(cell_volumes[mine].sum())
-        x = _sample_cells(centres[cells[mine]], cell_volumes[mine], samples, rng)
-        p = 1.0 - _covered(x, centres, radii).mean()
-        volume[v], error[v] = p * total, total * np.sqrt(max(p * (1 - p), 1 / samples) / samples)
-    return volume, error
+    if n_voids == 0:
+        return np.zeros(0), np.zeros(0)
+    mine = np.flatnonzero(labels >= 0)
+    mine = mine[np.argsort(labels[mine], kind="stable")]
+    group, vols = labels[mine], cell_volumes[mine]
+    per_group = np.minimum(CELL_SAMPLES * np.bincount(group, minlength=n_voids), samples)
+    x = _sample_cells(centres[cells[mine]], vols, group, per_group, np.random.default_rng(seed))
+    empty = ~_covered(x, cKDTree(centres), radii)
+    p = np.bincount(np.repeat(np.arange(n_voids), per_group), weights=empty,
+                    minlength=n_voids) / per_group
+    total = np.bincount(group, weights=vols, minlength=n_voids)
+    return p * total, total * np.sqrt(np.maximum(p * (1 - p), 1 / per_group) / per_group)
