@@ -47,6 +47,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "(default: the opening alpha, where the shape looks like the object)")
     parser.add_argument("--screenshot", metavar="OUT.png", help="render, save an image, exit")
     parser.add_argument("--size", type=parse_size, metavar="WxH", help="window/image size")
+    parser.add_argument("--no-legend", action="store_true",
+                        help="screenshot without legend, alpha, scale bar and axes")
     add_mode_options(parser)
     return parser
 

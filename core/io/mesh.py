@@ -13,7 +13,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.obj import read_obj, vertex_note
-from core.io.vtk_legacy import dataset_kind, read_polydata
+from core.io.vtk_legacy import POINT_DATASETS, dataset_kind, read_points_section
 
 TRIMESH_EXTS = {".stl", ".off", ".glb", ".gltf"}
 MESHIO_READERS = {".vtk": "vtk", ".vtu": "vtu"}  # meshio reads no VTP
@@ -104,10 +104,19 @@ def _meshio_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tup
 
 
 def _vtk_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
-    """Legacy VTK: POLYDATA read here, the grid datasets by meshio."""
-    if dataset_kind(path) == "POLYDATA":
-        return read_polydata(path), {}, ("VTK POLYDATA points; polygons and point data ignored",)
-    return _meshio_vertices(path)
+    """Legacy VTK: POLYDATA read here; grids by meshio (with their point data), and here too
+    when meshio refuses their cells: the points never depend on the cells."""
+    kind = dataset_kind(path)
+    if kind == "POLYDATA":
+        return (read_points_section(path), {},
+                ("VTK POLYDATA points; polygons and point data ignored",))
+    try:
+        return _meshio_vertices(path)
+    except FileFormatError:
+        if kind not in POINT_DATASETS:
+            raise
+    return (read_points_section(path), {},
+            (f"VTK {kind} points; cells and point data ignored (meshio cannot read its cells)",))
 
 
 def read_mesh(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
