@@ -3,7 +3,7 @@
     python docs/modes/make_pictures.py
 
 Writes two small data sets beside this script (disks.npz: a dense and a sparse disk;
-sheets.npz: two noisy parallel strips 0.5 apart, sampled at spacing 1) and renders each with
+sheets.npz: two noisy parallel walls 0.5 apart, sampled at spacing 1) and renders each with
 `alphascoop FILE --alpha R --screenshot OUT.png`, classic and in its mode, at the alphas named
 below (the smallest ones where the mode closes both parts while keeping them apart, and
 classic alphas where its parts are just closed).
@@ -41,11 +41,15 @@ def disks() -> np.ndarray:
 
 
 def sheets() -> np.ndarray:
-    """Two 12 x 4 sheets at spacing 1, 0.5 apart, with z noise 0.02."""
+    """Two upright 6 x 3 walls at spacing 1, 0.5 apart along y, with noise 0.02 across them
+    (upright so that the default camera, from above, looks into the gap)."""
     rng = np.random.default_rng(0)
-    lower, upper = jittered_grid(1.0, 12, rng, 4), jittered_grid(1.0, 12, rng, 4)
-    return np.vstack([np.column_stack([lower, rng.normal(0, 0.02, len(lower))]),
-                      np.column_stack([upper, 0.5 + rng.normal(0, 0.02, len(upper))])])
+    walls = []
+    for offset in (0.0, 0.5):
+        grid = jittered_grid(1.0, 6, rng, 3)
+        walls.append(np.column_stack([grid[:, 0], offset + rng.normal(0, 0.02, len(grid)),
+                                      grid[:, 1]]))
+    return np.vstack(walls)
 
 
 def shoot(data: Path, alpha: float, out: str, *mode: str) -> None:
