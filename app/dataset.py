@@ -15,6 +15,7 @@ from core.cache import build_cached, is_cached
 from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
 from core.modes import Mode, file_normals
+from core.molecule.analysis import MoleculeMeasures, measure_molecule
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
@@ -48,6 +49,10 @@ class Dataset:
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
     from_cache: bool = False  # the table was loaded from the cache, not built
     frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
+    #: Molecules: the measures of the atoms' union at alpha² = 0, and (m,) int16 atomic
+    #: numbers aligned with ac.points (None for other point sets).
+    molecule: MoleculeMeasures | None = None
+    atomic_numbers: np.ndarray | None = None
 
     @property
     def unit(self) -> str | None:
@@ -95,11 +100,27 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     cursor = ac.cursor()
     cursor.move(alpha2=alpha * abs(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
+    molecule, numbers = _molecule(ac, pointset)
     progress(1.0, "done")
     return Dataset(
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=optimal,
         default_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
-        from_cache=cached, frame=frame_for(path, pointset.report),
+        from_cache=cached, frame=frame_for(path, pointset.report), molecule=molecule,
+        atomic_numbers=numbers,
     )
+
+
+def _molecule(ac: AlphaComplex, pointset) -> tuple[MoleculeMeasures | None, np.ndarray | None]:
+    """For a molecule (atoms with atomic numbers, weighted): its measures at alpha² = 0 and
+    the atomic numbers of ac's points; (None, None) otherwise."""
+    numbers = pointset.attributes.get("atomic_number")
+    if numbers is None or ac.weights is None or ac.dim != 3:
+        return None, None
+    rows = np.zeros(len(ac.points), dtype=np.int16)
+    shown = ac.input_index >= 0
+    rows[ac.input_index[shown]] = np.asarray(numbers)[shown]
+    probe = float(np.sqrt(pointset.attributes["weights"][0])
+                  - pointset.attributes["vdw_radius"][0])
+    return measure_molecule(ac, round(probe, 6)), rows

@@ -34,7 +34,20 @@ def data_lines(model: ExplorerModel) -> list[str]:
         hidden = int((np.asarray(ac.input_index) < 0).sum())
         lines.append(f"weighted: {html.escape(source)}; {hidden:,} hidden points")
     lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}")
-    return lines
+    return lines + molecule_lines(model)
+
+
+def molecule_lines(model: ExplorerModel) -> list[str]:
+    """A molecule's measures (union of its balls at alpha² = 0), or nothing."""
+    m = model.dataset.molecule
+    if m is None:
+        return []
+    cavities = ", ".join(f"{v:.3g}" for v in m.cavities[:5]) + (" ..." if len(m.cavities) > 5
+                                                                else "")
+    return [f"<b>molecule</b>, probe {m.probe:g} Å (at alpha² 0)",
+            f"surface area {m.surface_area:,.2f} Å² (exact)",
+            f"volume {m.volume:,.2f} Å³ (exact)",
+            f"{len(m.cavities)} cavities" + (f": {cavities} Å³" if cavities else "")]
 
 
 def class_counts(model: ExplorerModel) -> tuple[int, int, list[int]]:

@@ -25,6 +25,7 @@ from app.layers_panel import LayersPanel
 from app.menus import build_menus
 from app.mode_panel import ModePanel
 from app.model import ExplorerModel
+from app.palette import ATOM_STYLE, CAVITY_STYLE, cpk_rgb
 from app.progress_widget import ProgressWidget
 from app.resources import ICON_PATH
 from app.scene import Scene, as_xyz
@@ -181,8 +182,12 @@ class MainWindow(QMainWindow):
         weighted = ac.weights is not None
         styles = self.prefs.styles(ac.dim, weighted)
         radii = np.sqrt(np.maximum(ac.weights, 0.0)) if weighted else None
+        rgb = None
+        if ds.atomic_numbers is not None:  # a molecule: atoms in CPK colours, its cavities
+            styles["balls"], styles["cavities"] = ATOM_STYLE, CAVITY_STYLE
+            rgb = cpk_rgb(ds.atomic_numbers)
         self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                               radii, ds.frame, ds.unit)
+                               radii, ds.frame, ds.unit, rgb)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
@@ -190,6 +195,8 @@ class MainWindow(QMainWindow):
     def _show_shape(self) -> None:
         """New alpha: swap layer connectivity, one render, status line."""
         self.scene.set_shape(self.model.shape)
+        if self.model.dataset.atomic_numbers is not None:
+            self.scene.set_cells("cavities", self.model.cavities())
         self.scene.render()
         ds = self.model.dataset
         self.status.setText(

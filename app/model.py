@@ -12,6 +12,7 @@ from PySide6.QtCore import QObject, Signal
 from app.dataset import Dataset
 from app.history import AlphaHistory
 from app.log_travel import snap_index
+from core.molecule.cavities import cavity_cells
 
 __all__ = ["ExplorerModel", "snap_index"]
 
@@ -60,6 +61,11 @@ class ExplorerModel(QObject):
         if self._shape is None and self.dataset is not None:
             self._shape = self._cursor.move(alpha2=self.alpha2)
         return self._shape
+
+    def cavities(self) -> np.ndarray:
+        """(k, 4) int32 cells of the voids at the current alpha (a molecule's cavities)."""
+        ac = self.dataset.ac
+        return ac.simplices(3)[cavity_cells(ac, self.alpha2)]
 
     def set_dataset(self, dataset: Dataset) -> None:
         """Replace the dataset and move to its opening (default) alpha."""

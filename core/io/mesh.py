@@ -13,6 +13,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.obj import read_obj, vertex_note
+from core.io.problems import unreadable
 from core.io.vtk_legacy import POINT_DATASETS, dataset_kind, read_points_section
 
 TRIMESH_EXTS = {".stl", ".off", ".glb", ".gltf"}
@@ -33,7 +34,7 @@ def _trimesh_scene(path: Path):
     except OSError:
         raise
     except Exception as exc:  # trimesh raises anything from its many parsers
-        raise FileFormatError(f"{path}: unreadable mesh ({type(exc).__name__}: {exc})") from None
+        raise unreadable(path, ext.lstrip(".").upper(), exc) from exc
 
 
 def _geometry_part(geom) -> tuple[np.ndarray, np.ndarray | None, int, int]:
@@ -93,7 +94,7 @@ def _meshio_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tup
     except OSError:
         raise
     except Exception as exc:  # meshio raises ReadError, ValueError, KeyError...
-        raise FileFormatError(f"{path}: unreadable mesh ({type(exc).__name__}: {exc})") from None
+        raise unreadable(path, path.suffix.lstrip(".").upper(), exc) from exc
     vertices = np.asarray(mesh.points, dtype=np.float64)
     attrs = {}
     for name, values in mesh.point_data.items():

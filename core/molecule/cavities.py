@@ -86,3 +86,11 @@ def void_volumes(labels: np.ndarray, cells: np.ndarray, centres: np.ndarray,
                     minlength=n_voids) / per_group
     total = np.bincount(group, weights=vols, minlength=n_voids)
     return p * total, total * np.sqrt(np.maximum(p * (1 - p), 1 / per_group) / per_group)
+
+
+def cavity_cells(ac, alpha2: float = 0.0) -> np.ndarray:
+    """(k,) int64 rows of ac.simplices(3) in the voids of a 3D complex at alpha² (the cells
+    the window highlights as cavities)."""
+    labels = void_cells(ac.intervals_sq(3)[:, 0] > alpha2, ac.facet_cells(),
+                        ac.intervals_sq(2)[:, 0] > alpha2)
+    return np.flatnonzero(labels >= 0)
