@@ -131,6 +131,18 @@ def test_slider_benchmark_end_to_end(tmp_path):
         assert f"{kind:10s} median" in done.stdout
 
 
+def test_bench_modes_end_to_end(tmp_path, capsys):
+    from bench_modes import main as modes_main
+
+    out = tmp_path / "modes.json"
+    assert modes_main(["--n", "2000", "--json", str(out)]) == 0
+    result = json.loads(out.read_text())
+    assert set(result["ratios"]) == {"density k=8", "anisotropic tau=0.5"}
+    assert all(r["wall"] > 0 and r["cpu"] > 0 for r in result["ratios"].values())
+    assert "neighbours" in result["builds"]["density k=8"]["stages"]
+    assert "ratio" in capsys.readouterr().out
+
+
 def test_weighted_packing_radii_span_one_to_two_spacings() -> None:
     from scipy.spatial import cKDTree
 
