@@ -121,7 +121,7 @@ def _reported(path: Path) -> Iterator[None]:
         raise
     except OSError as exc:
         raise FileFormatError(f"{path}: cannot write ({exc.strerror or exc})") from None
-    except Exception as exc:  # trimesh, shapely, plyfile... raise ValueError and others
+    except Exception as exc:  # trimesh, shapely... raise ValueError and others
         problem = next(iter(str(exc).strip().splitlines()), "") or type(exc).__name__
         raise FileFormatError(f"{path}: cannot write ({problem})") from exc
 

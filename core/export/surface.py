@@ -13,6 +13,7 @@ import numpy as np
 
 from core.export.manifold import ManifoldReport, split_nonmanifold
 from core.export.metadata import comment_lines
+from core.export.plywriter import write_ply_mesh
 from core.export.vtkxml import vtp_bytes
 
 
@@ -48,17 +49,8 @@ def surface_arrays(ac, shape, *, manifold: bool = False):
 
 
 def write_ply(path: Path, vertices: np.ndarray, faces: np.ndarray, meta: dict) -> None:
-    """Binary little-endian PLY via plyfile; metadata as header comments."""
-    import plyfile
-
-    vert = np.empty(len(vertices), dtype=[("x", "f8"), ("y", "f8"), ("z", "f8")])
-    vert["x"], vert["y"], vert["z"] = vertices.T
-    face = np.empty(len(faces), dtype=[("vertex_indices", "i4", (3,))])
-    face["vertex_indices"] = faces
-    ply = plyfile.PlyData([plyfile.PlyElement.describe(vert, "vertex"),
-                           plyfile.PlyElement.describe(face, "face")],
-                          text=False, byte_order="<", comments=comment_lines(meta))
-    ply.write(str(path))
+    """Binary little-endian PLY (own numpy writer); metadata as header comments."""
+    write_ply_mesh(path, vertices, faces, comment_lines(meta))
 
 
 def _trimesh(vertices: np.ndarray, faces: np.ndarray, meta: dict):
