@@ -19,6 +19,8 @@ from pyvistaqt import QtInteractor
 
 from app import file_actions
 from app.alpha_panel import AlphaPanel
+from app.dataset import ImportOptions
+from app.import_dialog import ask_import_options
 from app.info_panel import InfoPanel
 from app.jobs import JobRunner
 from app.layers_panel import LayersPanel
@@ -95,12 +97,19 @@ class MainWindow(QMainWindow):
         self.model.alphaChanged.connect(self._show_shape)
         self.layers_panel.styleChanged.connect(self._set_style)
 
-    def open_path(self, path: str | Path) -> int:
-        """Load and build path in the worker (cancels any older open); returns the request id."""
+    def open_path(self, path: str | Path, options: ImportOptions | None = None) -> int:
+        """Load and build path in the worker (cancels any older open), read with `options`
+        (columns, subsampling); returns the request id."""
         path = Path(path)
         self.prefs.set_last_dir(path)
         self.progress.start(f"opening {path.name}")
-        return self.loader.open(path)
+        return self.loader.open(path, options)
+
+    def open_asking(self, path: str | Path) -> int | None:
+        """Open path as a user does (File → Open, a drop): text and big files first show the
+        import dialog (columns, subsampling); None when the user cancels it."""
+        options = ask_import_options(self, Path(path), self.prefs)
+        return None if options is None else self.open_path(path, options)
 
     def _on_job_done(self, title: str, message: str) -> None:
         """An export finished: say what it wrote."""
@@ -189,7 +198,7 @@ class MainWindow(QMainWindow):
         """Open the first dropped local file."""
         files = [url.toLocalFile() for url in event.mimeData().urls() if url.isLocalFile()]
         if files:
-            self.open_path(files[0])
+            self.open_asking(files[0])
             event.acceptProposedAction()
 
     def _restore_layout(self) -> None:
@@ -227,4 +236,4 @@ class MainWindow(QMainWindow):
         """File → Open."""
         path = file_actions.ask_open_path(self, self.prefs)
         if path:
-            self.open_path(path)
+            self.open_asking(path)
