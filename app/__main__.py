@@ -51,6 +51,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--subsample", type=count, metavar="N", help="thin to at most N points")
     parser.add_argument("--screenshot", metavar="OUT.png", help="render, save an image, exit")
     parser.add_argument("--size", type=parse_size, metavar="WxH", help="window/image size")
+    parser.add_argument("--no-legend", action="store_true",
+                        help="screenshot without legend, alpha, scale bar and axes")
     return parser
 
 

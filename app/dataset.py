@@ -46,6 +46,12 @@ class Dataset:
     from_cache: bool = False  # the table was loaded from the cache, not built
     frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
 
+    @property
+    def unit(self) -> str | None:
+        """The length unit the file declares ('m' for geographic data projected to metres),
+        None when unknown."""
+        return "m" if self.report is not None and self.report.georef is not None else None
+
     def build_line(self) -> str:
         """How the table came: 'built in 12.3 s' or 'loaded from cache in 0.4 s'."""
         how = "loaded from cache" if self.from_cache else "built"

@@ -166,7 +166,7 @@ class MainWindow(QMainWindow):
         styles = self.prefs.styles(ac.dim, weighted)
         radii = np.sqrt(np.maximum(ac.weights, 0.0)) if weighted else None
         self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                               radii, ds.frame)
+                               radii, ds.frame, ds.unit)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()

@@ -15,6 +15,7 @@ import pyvista as pv
 from vtkmodules.vtkFiltersGeneral import vtkShrinkFilter
 
 from app.camera import Z_UP, ViewFrame
+from app.overlay import Overlay
 from app.palette import BACKGROUND, MAX_BALLS, LayerStyle
 
 SHRINK_FACTOR = 0.8
@@ -126,6 +127,7 @@ class Scene:
         self.shape = None
         self.dim = 3
         self.frame = Z_UP
+        self.overlay = Overlay(plotter)
 
     @property
     def meshes(self) -> dict[str, pv.DataSet]:
@@ -134,12 +136,13 @@ class Scene:
 
     def set_dataset(self, xyz: np.ndarray, dim: int, edges: np.ndarray,
                     styles: dict[str, LayerStyle], radii: np.ndarray | None = None,
-                    frame: ViewFrame = Z_UP) -> None:
+                    frame: ViewFrame = Z_UP, unit: str | None = None) -> None:
         """New data: (m, 3) points, complex dimension, (e, 2) Delaunay edges, layer styles,
-        for weighted points their (m,) radii (the balls layer, when styles has it), and the
-        view frame (which way is up, app.camera)."""
+        for weighted points their (m,) radii (the balls layer, when styles has it), the view
+        frame (which way is up, app.camera) and the length unit the file declares (or None)."""
         self.clear()
         self.dim, self.shape, self.frame = dim, None, frame
+        self.overlay.unit = unit
         for name, kind in (KINDS_2D if dim == 2 else KINDS_3D).items():
             self.layers[name] = Layer(kind, new_mesh(kind, xyz))
             self.layers[name].actor = self._add_actor(name, styles[name])
@@ -150,6 +153,7 @@ class Scene:
             self.styles["balls"] = styles["balls"]
         self.layers["points"].set_cells(np.arange(len(xyz), dtype=np.int32)[:, None])
         self.layers["delaunay"].set_cells(edges)
+        self.overlay.set_layers(self.styles)
         self.fit_view()
 
     def _add_actor(self, name: str, style: LayerStyle) -> pv.Actor:
@@ -181,6 +185,7 @@ class Scene:
     def set_shape(self, shape) -> None:
         """Show an AlphaShape: swap the connectivity of visible layers, mark hidden ones dirty."""
         self.shape = shape
+        self.overlay.set_alpha(shape.alpha)
         for name, layer in self.layers.items():
             if name in STATIC_LAYERS:
                 continue
@@ -201,6 +206,7 @@ class Scene:
         prop.color = style.colour
         prop.opacity = style.opacity
         layer.actor.SetVisibility(style.visible)
+        self.overlay.set_layers(self.styles)
 
     def fit_view(self) -> None:
         """Fit the camera to all points: the frame's opening preset in perspective (3D), or
