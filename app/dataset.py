@@ -12,20 +12,25 @@ import numpy as np
 from app.camera import Z_UP, ViewFrame, frame_for
 from core import AlphaComplex
 from core.cache import build_cached, is_cached
+from core.complex import at_value
 from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
+from core.modes import Mode, file_normals
+from core.molecule.analysis import MoleculeMeasures, measure_molecule
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=w])
+Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=, mode=, normals=])
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 
 
-def build_here(points: np.ndarray, progress: Progress,
-               weights: np.ndarray | None = None) -> AlphaComplex:
+def build_here(points: np.ndarray, progress: Progress, weights: np.ndarray | None = None,
+               mode: Mode | None = None, normals: np.ndarray | None = None) -> AlphaComplex:
     """The complex and its signatures, built in this thread (cached); weighted when
-    `weights` (squared radii) are given."""
-    return build_cached(points, progress=progress, signatures=True, weights=weights)
+    `weights` (squared radii) are given, in the alpha `mode` (with `normals` if it takes
+    given ones)."""
+    return build_cached(points, progress=progress, signatures=True, weights=weights,
+                        mode=mode, normals=normals)
 
 
 @dataclass(frozen=True)
@@ -45,6 +50,10 @@ class Dataset:
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
     from_cache: bool = False  # the table was loaded from the cache, not built
     frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
+    #: Molecules: the measures of the atoms' union at alpha² = 0, and (m,) int16 atomic
+    #: numbers aligned with ac.points (None for other point sets).
+    molecule: MoleculeMeasures | None = None
+    atomic_numbers: np.ndarray | None = None
 
     @property
     def unit(self) -> str | None:
@@ -74,14 +83,16 @@ class ImportOptions:
 
 
 def load_dataset(path: str | Path, progress: Progress, build: Build = build_here,
-                 options: ImportOptions | None = None) -> Dataset:
-    """Read (with `options`) and build path, reporting progress(fraction, stage); Cancelled
-    stops it.
+                 mode: Mode | None = None, options: ImportOptions | None = None) -> Dataset:
+    """Read (with `options`: columns, subsampling) and build path in the alpha `mode`
+    (default classic), reporting progress(fraction, stage); Cancelled stops it.
 
     `build(points, progress)` makes the complex with its signatures (the window passes
     app.build_process.build, which can be cancelled mid-triangulation); weighted files
-    (core.io: weight or radius columns) call it with the keyword `weights` too.
+    (core.io: weight or radius columns) call it with the keyword `weights` too, a mode with
+    `mode` and its given `normals`.
     """
+    mode = mode or Mode()
     path = Path(path)
     started = time.perf_counter()
     progress(0.0, "reading")
@@ -91,22 +102,41 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     def build_progress(fraction: float, stage: str) -> None:
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
-    cached = is_cached(pointset)
+    normals = file_normals(mode, pointset.attributes, path.name)
     weights = pointset.weights
-    ac = (build(pointset.points, build_progress) if weights is None
-          else build(pointset.points, build_progress, weights=weights))
+    cached = is_cached(pointset, mode, normals)
+    options = {} if weights is None else {"weights": weights}
+    if mode.active:
+        options.update(mode=mode, normals=normals)
+    ac = build(pointset.points, build_progress, **options)
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     optimal, alpha = float(ac.optimal_alpha()), float(ac.default_alpha())
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
-    cursor.move(alpha2=alpha * abs(alpha))  # the table value itself, negative ones included
+    cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
+    molecule, numbers = _molecule(ac, pointset)
     progress(1.0, "done")
     return Dataset(
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=optimal,
         default_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
-        from_cache=cached, frame=frame_for(path, pointset.report),
+        from_cache=cached, frame=frame_for(path, pointset.report), molecule=molecule,
+        atomic_numbers=numbers,
     )
+
+
+def _molecule(ac: AlphaComplex, pointset) -> tuple[MoleculeMeasures | None, np.ndarray | None]:
+    """For a molecule (atoms with atomic numbers, weighted): its measures at alpha² = 0 and
+    the atomic numbers of ac's points; (None, None) otherwise."""
+    numbers = pointset.attributes.get("atomic_number")
+    if numbers is None or ac.weights is None or ac.dim != 3:
+        return None, None
+    rows = np.zeros(len(ac.points), dtype=np.int16)
+    shown = ac.input_index >= 0
+    rows[ac.input_index[shown]] = np.asarray(numbers)[shown]
+    probe = float(np.sqrt(pointset.attributes["weights"][0])
+                  - pointset.attributes["vdw_radius"][0])
+    return measure_molecule(ac, round(probe, 6)), rows

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 BACKGROUND = "#1f2a36"
 TEXT = "#e8f1fb"
 
@@ -37,7 +39,26 @@ LAYER_TITLES = {
     "points": "Points",
     "delaunay": "Delaunay edges",
     "balls": "Points as balls (own radius; at most 20,000 drawn)",
+    "cavities": "Cavities (voids at this alpha)",
 }
+
+#: CPK colours of atoms by atomic number (Jmol's scheme); other elements are pink.
+CPK_COLOURS = {1: "#ffffff", 6: "#909090", 7: "#3050f8", 8: "#ff0d0d", 9: "#90e050",
+               11: "#ab5cf2", 12: "#8aff00", 15: "#ff8000", 16: "#ffff30", 17: "#1ff01f",
+               20: "#3dff00", 26: "#e06633", 30: "#7d80b0", 34: "#ffa100", 35: "#a62929"}
+CPK_OTHER = "#ff1493"
+#: Molecules: the cavities (voids of the complex) at the current alpha, and the atoms shown.
+CAVITY_STYLE = LayerStyle(True, "#f3a712", 0.9)
+ATOM_STYLE = LayerStyle(True, "#8fb8de", 1.0)
+
+
+def cpk_rgb(atomic_numbers: np.ndarray) -> np.ndarray:
+    """(n, 3) uint8 CPK colours of atoms given their (n,) atomic numbers."""
+    table = np.full((256, 3), [int(CPK_OTHER[i:i + 2], 16) for i in (1, 3, 5)], np.uint8)
+    for z, colour in CPK_COLOURS.items():
+        table[z] = [int(colour[i:i + 2], 16) for i in (1, 3, 5)]
+    return table[np.clip(np.asarray(atomic_numbers, np.int64), 0, 255)]
+
 
 #: Weighted points drawn as balls of their own radius: at most this many (evenly picked).
 MAX_BALLS = 20_000

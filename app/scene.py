@@ -27,7 +27,7 @@ KINDS_2D = {
     "delaunay": "lines", "points": "verts", "interior": "tris", "boundary": "lines",
     "singular_edges": "lines", "singular_points": "verts",
 }
-STATIC_LAYERS = ("points", "delaunay", "balls")
+STATIC_LAYERS = ("points", "delaunay", "balls", "cavities")
 BALL_RESOLUTION = 10  # sphere glyph: 10 x 10 facets, about 160 triangles per ball
 DRAW_OPTIONS = {
     "points": {"point_size": 3.0},
@@ -94,12 +94,16 @@ class Layer:
         self.dirty = False
 
 
-def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS) -> pv.PolyData:
+def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS,
+              rgb: np.ndarray | None = None) -> pv.PolyData:
     """Spheres of the given (m,) radii around at most `limit` of the (m, 3) points (evenly
-    picked, so a big set still shows its spread)."""
+    picked, so a big set still shows its spread); `rgb` (m, 3) uint8 colours them (point
+    data "rgb" of the glyphs)."""
     pick = np.unique(np.linspace(0, len(xyz) - 1, min(limit, len(xyz))).round().astype(np.int64))
     centres = pv.PolyData(np.ascontiguousarray(xyz[pick]))
     centres["radius"] = np.asarray(radii, dtype=np.float64)[pick]
+    if rgb is not None:
+        centres["rgb"] = np.ascontiguousarray(rgb[pick], dtype=np.uint8)
     sphere = pv.Sphere(radius=1.0, theta_resolution=BALL_RESOLUTION,
                        phi_resolution=BALL_RESOLUTION)
     return centres.glyph(scale="radius", geom=sphere, orient=False)
@@ -136,10 +140,13 @@ class Scene:
 
     def set_dataset(self, xyz: np.ndarray, dim: int, edges: np.ndarray,
                     styles: dict[str, LayerStyle], radii: np.ndarray | None = None,
-                    frame: ViewFrame = Z_UP, unit: str | None = None) -> None:
+                    frame: ViewFrame = Z_UP, unit: str | None = None,
+                    rgb: np.ndarray | None = None) -> None:
         """New data: (m, 3) points, complex dimension, (e, 2) Delaunay edges, layer styles,
-        for weighted points their (m,) radii (the balls layer, when styles has it), the view
-        frame (which way is up, app.camera) and the length unit the file declares (or None)."""
+        for weighted points their (m,) radii (the balls layer, when styles has it; `rgb`
+        (m, 3) uint8 colours the balls, e.g. atoms by element), the view frame (which way is
+        up, app.camera) and the length unit the file declares (or None). A "cavities" style
+        adds a layer of cells set by set_cells."""
         self.clear()
         self.dim, self.shape, self.frame = dim, None, frame
         self.overlay.unit = unit
@@ -148,9 +155,13 @@ class Scene:
             self.layers[name].actor = self._add_actor(name, styles[name])
             self.styles[name] = styles[name]
         if radii is not None and "balls" in styles:
-            self.layers["balls"] = Layer("balls", ball_mesh(xyz, radii))
+            self.layers["balls"] = Layer("balls", ball_mesh(xyz, radii, rgb=rgb))
             self.layers["balls"].actor = self._add_actor("balls", styles["balls"])
             self.styles["balls"] = styles["balls"]
+        if "cavities" in styles and dim == 3:
+            self.layers["cavities"] = Layer("tets", new_mesh("tets", xyz))
+            self.layers["cavities"].actor = self._add_actor("cavities", styles["cavities"])
+            self.styles["cavities"] = styles["cavities"]
         self.layers["points"].set_cells(np.arange(len(xyz), dtype=np.int32)[:, None])
         self.layers["delaunay"].set_cells(edges)
         self.overlay.set_layers(self.styles)
@@ -164,8 +175,10 @@ class Scene:
             source = vtkShrinkFilter()
             source.SetInputData(layer.mesh)
             source.SetShrinkFactor(SHRINK_FACTOR)
+        coloured = "rgb" in getattr(layer.mesh, "point_data", {})
         actor = self.plotter.add_mesh(
-            source, color=style.colour, opacity=style.opacity, name=name, reset_camera=False,
+            source, color=None if coloured else style.colour, opacity=style.opacity,
+            scalars="rgb" if coloured else None, rgb=coloured, name=name, reset_camera=False,
             lighting=layer.kind in ("tris", "tets", "balls") and (self.dim == 3
                                                                    or layer.kind == "balls"),
             **DRAW_OPTIONS.get(name, {}),
@@ -193,6 +206,11 @@ class Scene:
                 layer.set_cells(shape_cells(shape, name))
             else:
                 layer.dirty = True
+
+    def set_cells(self, name: str, cells: np.ndarray) -> None:
+        """Swap one static layer's cells (the cavities at a new alpha), if it exists."""
+        if name in self.layers:
+            self.layers[name].set_cells(cells)
 
     def set_style(self, name: str, style: LayerStyle) -> None:
         """Change one layer's visibility, colour or opacity (no geometry work unless dirty)."""

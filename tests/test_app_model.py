@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from app.dataset import Dataset
 from app.info_panel import class_counts, data_lines, shape_lines
 from app.model import ExplorerModel, snap_index
+from app.numbers import quantity
 from core import AlphaComplex
 
 finite = st.floats(0.0, 1e6, allow_nan=False)
@@ -86,7 +87,7 @@ def test_info_counts_match_the_shape(model, dataset, step) -> None:
     assert cells == len(shape.cells)
     assert facets == len(shape.regular_facets)
     assert singular == [len(shape.singular(k)) for k in range(dataset.ac.dim)]
-    assert shape_lines(model)[-1] == f"volume {shape.measure:.6g}"
+    assert shape_lines(model)[-1] == f"volume {quantity(shape.measure, 6)}"
 
 
 def test_file_name_is_escaped_in_the_info_text(dataset) -> None:
@@ -96,3 +97,18 @@ def test_file_name_is_escaped_in_the_info_text(dataset) -> None:
     model = ExplorerModel()
     model.set_dataset(replace(dataset, path=dataset.path.with_name("a<b>&c.npy")))
     assert data_lines(model)[0] == "<b>a&lt;b&gt;&amp;c.npy</b>"
+
+
+def test_projection_of_lonlat_input_is_shown(dataset, tmp_path) -> None:
+    """Points read from longitude/latitude say in which projection their metres are."""
+    from dataclasses import replace
+
+    from core.io import read_points
+
+    rng = np.random.default_rng(0)
+    path = tmp_path / "rome.csv"
+    path.write_text("lon,lat\n" + "".join(f"{12.5 + a},{41.9 + b}\n"
+                                          for a, b in rng.uniform(-0.2, 0.2, (20, 2))))
+    model = ExplorerModel()
+    model.set_dataset(replace(dataset, report=read_points(path).report))
+    assert "lengths in metres: UTM zone 33N (EPSG:32633)" in data_lines(model)

@@ -48,6 +48,16 @@ def test_surface_exports_read_back(tmp_path, ball, ext):
     assert {tuple(p) for p in ps.points.astype(np.float32).astype(np.float64)} <= ours
 
 
+@pytest.mark.parametrize("ext", SURFACES)
+def test_2d_surface_exports_read_back(tmp_path, disc, ext):
+    report = write_shape(disc, ALPHA, tmp_path / f"s{ext}")  # the filled triangles, z = 0
+    ps = read_points(tmp_path / f"s{ext}")
+    assert ps.report.n_points == report.n_vertices > 0
+    ours = {tuple(p) for p in np.asarray(disc.points, dtype=np.float32).astype(np.float64)}
+    got = ps.points.astype(np.float32).astype(np.float64)
+    assert np.all(got[:, 2:] == 0) and {tuple(p[:2]) for p in got} <= ours
+
+
 @pytest.mark.parametrize("fixture", ["ball", "disc"])
 def test_vtu_export_reads_back_every_point(tmp_path, request, fixture):
     ac = request.getfixturevalue(fixture)

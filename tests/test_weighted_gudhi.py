@@ -163,3 +163,20 @@ def test_planar_3d_weighted_input_equals_gudhi() -> None:
     ref = gudhi_weighted_table(pts, w)
     assert ref["dim"] == 2
     assert_matches_gudhi(ac, ref, len(pts))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_values_near_zero_keep_their_relative_accuracy(dim: int) -> None:
+    """Balls that barely overlap their nearest neighbour give edges whose power |c|² - w is
+    a millionth of the terms subtracted: still equal to gudhi's exact values (rel. 1e-9)."""
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(31 + dim)
+    pts = uniform(rng, 2000, dim)
+    dist, _ = cKDTree(pts).query(pts, k=2)
+    w = dist[:, 1] ** 2 / 4 * (1 - 1e-6 * rng.choice([-1.0, 1.0], len(pts)))
+    ac = AlphaComplex.from_points(pts, weights=w)
+    ref = gudhi_weighted_table(pts, w)
+    small = np.abs(ref[1][1]) < 1e-5 * np.median(np.abs(ref[1][1]))
+    assert small.sum() > 50  # many edges with values near zero
+    assert_matches_gudhi(ac, ref, len(pts))

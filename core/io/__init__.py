@@ -21,6 +21,8 @@ from core.io.molecule import molecule_extension, read_molecule_points
 from core.io.npy import read_npy
 from core.io.pcd import read_pcd
 from core.io.ply import read_ply
+from core.io.precheck import precheck
+from core.io.problems import plain_line, unreadable
 from core.io.report import LoadReport, PointSet, finish
 from core.io.subsample import SUBSAMPLE_METHODS
 from core.io.text import read_text, read_text_columns
@@ -161,15 +163,28 @@ def _by_index(columns) -> bool:
 def _reported(path: Path, ext: str, reader, columns) -> tuple:
     """reader(path, columns), with every failure as a FileFormatError naming the file."""
     try:
+        precheck(path, ext)
         return reader(path, columns)
     except MemoryError:
         raise FileFormatError(f"{path}: too large to read into memory") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise FileFormatError(f"{path}: cannot read ({exc})") from None
-    except FileFormatError:
-        raise
+    except OSError as exc:
+        if exc.errno is None:  # raised by a parser (trimesh: a 'file' its JSON names), not the OS
+            raise unreadable(path, _format_name(ext), exc) from exc
+        raise _os_problem(path, exc) from exc
+    except FileFormatError as exc:
+        raise FileFormatError(plain_line(str(exc))) from exc.__cause__
     except BaseException as exc:  # a third-party parser choking on a corrupt file
         if not isinstance(exc, Exception) and type(exc).__name__ != "PanicException":
             raise  # KeyboardInterrupt, SystemExit...; Rust panics (lazrs) are BaseExceptions
-        raise FileFormatError(f"{path}: unreadable {_format_name(ext)} file "
-                              f"({type(exc).__name__}: {exc})") from exc
+        raise unreadable(path, _format_name(ext), exc) from exc
+
+
+def _os_problem(path: Path, exc: OSError) -> FileFormatError:
+    """An OS error while reading `path` (or a file it refers to, as glTF buffers), in words."""
+    other = exc.filename is not None and Path(str(exc.filename)).name != path.name
+    reason = exc.strerror or "it cannot be opened"
+    if other:
+        return FileFormatError(plain_line(f"{path}: the file it refers to, "
+                                          f"{Path(str(exc.filename)).name!r}, cannot be read "
+                                          f"({reason.lower()})"))
+    return FileFormatError(f"{path}: cannot read the file ({reason.lower()})")

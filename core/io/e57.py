@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
+from core.io.problems import unreadable
 from core.io.sizes import check_memory
 
 CARTESIAN = ("cartesianX", "cartesianY", "cartesianZ")
@@ -25,7 +26,7 @@ def _open(path: Path):
     try:
         return pye57.E57(str(path))
     except Exception as exc:  # libE57Format raises its own exception types
-        raise FileFormatError(f"{path}: not a readable E57 file ({exc})") from None
+        raise unreadable(path, "E57", exc) from exc
 
 
 def spherical_to_cartesian(rae: np.ndarray) -> np.ndarray:
@@ -118,7 +119,7 @@ def read_e57(path: Path, columns=None, *, scan: int | None = None) -> tuple:
     except FileFormatError:
         raise
     except Exception as exc:  # libE57Format: corrupt pages, bad prototypes...
-        raise FileFormatError(f"{path}: unreadable E57 data ({exc})") from None
+        raise unreadable(path, "E57", exc) from exc
     finally:
         e57.close()
     points = np.concatenate([p[0] for p in parts])

@@ -9,6 +9,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns
+from core.io.problems import unreadable
 from core.io.sizes import check_npy, check_npz_member
 
 POINT_KEYS = ("points", "xyz", "coords", "coordinates", "positions", "vertices")
@@ -59,7 +60,7 @@ def read_npy(path: Path, columns=None, extra: tuple[str, ...] = ()
         except FileFormatError:  # already says what is wrong (it is also a ValueError)
             raise
         except (ValueError, OSError, EOFError, KeyError, zipfile.BadZipFile) as exc:
-            raise FileFormatError(f"{path}: not a readable NumPy file ({exc})") from None
+            raise unreadable(path, "NumPy", exc) from exc
 
 
 def _from_archive(data, path: Path, columns, extra: tuple[str, ...] = ()

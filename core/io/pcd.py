@@ -10,6 +10,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.pcd_checks import check_pcd_header
+from core.io.problems import unreadable
 
 NORMAL_FIELDS = ("normal_x", "normal_y", "normal_z")
 
@@ -47,7 +48,7 @@ def _load(path: Path, fields: dict[str, list[str]]):
         fixed = _normalized(path, fields)
         return PointCloud.from_path(path) if fixed is None else PointCloud.from_fileobj(fixed)
     except Exception as exc:  # pypcd4 raises many types (ValueError, struct.error, lzf...)
-        raise FileFormatError(f"{path}: unreadable PCD ({type(exc).__name__}: {exc})") from None
+        raise unreadable(path, "PCD", exc) from exc
 
 
 def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
@@ -70,7 +71,7 @@ def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
         if "intensity" in real:
             attrs["intensity"] = cloud.numpy((real["intensity"],))[:, 0].astype(np.float64)
     except (ValueError, KeyError) as exc:
-        raise FileFormatError(f"{path}: bad PCD fields ({exc})") from None
+        raise unreadable(path, "PCD", exc) from exc
     if len(points) != declared:
         raise FileFormatError(f"{path}: truncated PCD (header declares {declared:,} points, "
                               f"{len(points):,} read)")

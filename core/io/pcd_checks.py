@@ -8,6 +8,7 @@ import struct
 from pathlib import Path
 
 from core.errors import FileFormatError
+from core.io.precheck import check_text
 from core.io.sizes import check_memory
 
 MAX_HEADER_BYTES = 1 << 16  # a PCD header is a few hundred bytes: give up well before data
@@ -69,6 +70,8 @@ def check_pcd_header(path: Path) -> tuple[int, dict[str, list[str]]]:
                                   f"holds {body:,})")
         check_memory(path, unpacked, "the compressed PCD data")
         return n, fields
+    if kind == "ascii":
+        check_text(path, "PCD", start)
     need = n * (row if kind == "binary" else values * MIN_ASCII_VALUE_BYTES)
     if need > body:
         raise FileFormatError(f"{path}: truncated PCD (header declares {n:,} points, the "

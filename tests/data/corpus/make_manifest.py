@@ -1,5 +1,5 @@
 """Write MANIFEST.json: per corpus file, its point records, bounding box and attributes as
-INDEPENDENT readers see them (plyfile, laspy, pye57's own read_scan, pygltflib, and small
+INDEPENDENT readers see them (plyfile, laspy, pye57's own read_scan, pygltflib, VTK, and small
 numpy parsers written here from the format specifications); never the project's readers.
 
 Run once when the corpus changes: python tests/data/corpus/make_manifest.py
@@ -183,6 +183,13 @@ def e57(path: Path) -> dict:
     return _entry(xyz, attrs)
 
 
+def vtk(path: Path) -> dict:
+    """VTK's own legacy reader (through pyvista)."""
+    import pyvista
+
+    return _entry(np.asarray(pyvista.read(path).points), [])
+
+
 def text(path: Path) -> dict:
     options = dict(TEXT[path.name])
     attrs = options.pop("attributes", [])
@@ -190,8 +197,8 @@ def text(path: Path) -> dict:
 
 
 READERS = {".ply": ply, ".pcd": pcd, ".las": las, ".laz": las, ".obj": obj, ".stl": stl,
-           ".off": off, ".glb": gltf, ".gltf": gltf, ".e57": e57, ".pts": text, ".xyz": text,
-           ".txt": text}
+           ".off": off, ".glb": gltf, ".gltf": gltf, ".e57": e57, ".vtk": vtk, ".pts": text,
+           ".xyz": text, ".txt": text}
 
 
 def main() -> None:
