@@ -157,7 +157,7 @@ def test_load_dataset_honours_the_options(table_csv):
     from app.dataset import build_here, load_dataset
 
     ds = load_dataset(table_csv, lambda f, s: None, build_here,
-                      ImportOptions(columns="lon,lat,alt", subsample=120))
+                      options=ImportOptions(columns="lon,lat,alt", subsample=120))
     assert ds.ac.dim == 3 and ds.report.n_points <= 120
 
 
