@@ -207,8 +207,10 @@ def chosen_alpha(args) -> dict | None:
 def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
     """Everything `info` reports, as a JSON-ready dict (`at`: chosen_alpha's result; None:
     the opening alpha)."""
+    from core.complex import at_value
+
     optimal, opening = float(ac.optimal_alpha()), float(ac.default_alpha())
-    shape = ac.shape(**(at or {"alpha2": opening * abs(opening)}))
+    shape = ac.shape(**(at or at_value(opening)))
     alpha = shape.alpha
     spectrum = np.asarray(ac.spectrum())
     weighted = ac.weights is not None
@@ -333,7 +335,9 @@ def cmd_export(args) -> int:
     if args.table:
         print(write_table(ac, args.output, source=args.file).line())
         return 0
-    at = chosen_alpha(args) or {"alpha2": ac.optimal_alpha2(args.optimal or 1)}
+    from core.complex import at_value
+
+    at = chosen_alpha(args) or at_value(ac.optimal_alpha(args.optimal or 1))
     report = write_shape(ac, at.get("alpha"), args.output, alpha2=at.get("alpha2"),
                          manifold=args.manifold, sidecar=args.sidecar, source=args.file,
                          georef=ps.report.georef, point_data=_molecule_point_data(args, ac))

@@ -12,6 +12,7 @@ import numpy as np
 from app.camera import Z_UP, ViewFrame, frame_for
 from core import AlphaComplex
 from core.cache import build_cached, is_cached
+from core.complex import at_value
 from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
@@ -88,7 +89,7 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     optimal, alpha = float(ac.optimal_alpha()), float(ac.default_alpha())
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
-    cursor.move(alpha2=alpha * abs(alpha))  # the table value itself, negative ones included
+    cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
     molecule, numbers = _molecule(ac, pointset)
     progress(1.0, "done")

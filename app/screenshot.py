@@ -17,6 +17,7 @@ from app.palette import default_styles
 from app.resources import SAMPLE_PATH
 from app.scene import Scene, as_xyz
 from core.atomic import atomic_path
+from core.complex import at_value
 from core.errors import AlphaScoopError
 
 DEFAULT_SIZE = (1280, 800)
@@ -37,7 +38,7 @@ def render_png(dataset: Dataset, alpha: float, out: Path, size: tuple[int, int],
         scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1),
                           default_styles(ac.dim), frame=dataset.frame, unit=dataset.unit)
         scene.overlay.set_visible(legend)
-        scene.set_shape(ac.shape(alpha2=alpha * abs(alpha)))  # weighted: may be below zero
+        scene.set_shape(ac.shape(**at_value(alpha)))  # weighted: may be below zero
         with atomic_path(out) as tmp:
             save_png(plotter, tmp)
     finally:
