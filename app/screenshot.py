@@ -59,7 +59,7 @@ def run_screenshot(args: argparse.Namespace) -> int:
     try:
         if not out.parent.is_dir():
             raise AlphaScoopError(f"{out.parent}: no such folder for the screenshot")
-        dataset = load_dataset(source, quiet_progress)
+        dataset = load_dataset(source, quiet_progress, mode=getattr(args, "mode", None))
         alpha = dataset.optimal_alpha if args.optimal else args.alpha
         alpha = dataset.default_alpha if alpha is None else alpha
         render_png(dataset, alpha, out, args.size or DEFAULT_SIZE, legend=not args.no_legend)
