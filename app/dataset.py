@@ -71,6 +71,7 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     cursor = ac.cursor()
     cursor.move(alpha)
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
+    ac.persistence()  # for the signatures dock's diagram, computed here, not in the GUI thread
     progress(1.0, "done")
     return Dataset(
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=alpha,
