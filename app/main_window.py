@@ -18,7 +18,10 @@ from pyvistaqt import QtInteractor
 
 from app import file_actions
 from app.alpha_panel import AlphaPanel
+from app.help import ExplainPanel
 from app.info_panel import InfoPanel
+from app.inspect_panel import InspectPanel
+from app.inspector import Inspector
 from app.jobs import JobRunner
 from app.layers_panel import LayersPanel
 from app.menus import build_menus
@@ -65,6 +68,13 @@ class MainWindow(QMainWindow):
         self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
         self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
         self._add_dock("Signatures", self.signatures_panel, Qt.DockWidgetArea.BottomDockWidgetArea)
+        left = Qt.DockWidgetArea.LeftDockWidgetArea
+        self.inspect_panel = InspectPanel(self.model)
+        self.inspector = Inspector(self.model, self.plotter, self.scene, self.inspect_panel,
+                                   self._add_dock("Inspect", self.inspect_panel, left))
+        self.explain_dock = self._add_dock("Help", ExplainPanel(), left)
+        self.explain_dock.setWindowTitle("What am I looking at?")
+        self.explain_dock.hide()
         self.menus = build_menus(self)
         self._connect()
         self._restore_layout()

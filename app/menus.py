@@ -9,6 +9,7 @@ from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QMessageBox
 
 from app import file_actions
+from app.help import add_help_actions
 from core.export import SHAPE_FORMATS, TABLE_FORMATS
 
 ABOUT = (
@@ -121,5 +122,6 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
     actions["hull"] = add_action(shape, "Convex &hull",
                                  lambda: model.set_index(model.hull_index()), "Ctrl+H")
     help_menu = bar.addMenu("&Help")
+    actions.update(add_help_actions(window, help_menu))
     add_action(help_menu, "&About Alpha Scoop", lambda: QMessageBox.about(window, "About", ABOUT))
     return actions
