@@ -7,17 +7,19 @@ only when it is a terminal.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import shutil
 import sys
 import time
-from collections.abc import Sequence
+import warnings
+from collections.abc import Iterator, Sequence
 
 import numpy as np
 
 from app.args import radius
-from core.errors import AlphaScoopError
+from core.errors import AlphaScoopError, InputError
 
 CLASS_NAMES = ("exterior", "singular", "regular", "interior")
 SIMPLEX_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
@@ -162,15 +164,22 @@ def cmd_info(args) -> int:
 def cmd_export(args) -> int:
     """Write the shape (or the table) and print one line about it."""
     from core.export import SHAPE_FORMATS, TABLE_FORMATS, write_shape, write_table
+    from core.export.targets import refuse_source
 
     formats = TABLE_FORMATS if args.table else SHAPE_FORMATS
     ext = os.path.splitext(args.output)[1].lower()
     if ext not in formats:  # before the build, which may take a while
         raise AlphaScoopError(f"{args.output}: cannot export to {ext or 'no extension'!r}; "
                               f"choose one of {' '.join(formats)}")
+    try:  # never write over the input (same file on disk); a bad command line
+        refuse_source(args.output, args.file)
+        if args.sidecar and not args.table:
+            refuse_source(f"{args.output}.json", args.file)
+    except InputError as exc:
+        raise UsageError(str(exc)) from None
     ac = load(args)[1]
     if args.table:
-        print(write_table(ac, args.output).line())
+        print(write_table(ac, args.output, source=args.file).line())
         return 0
     alpha = args.alpha if args.alpha is not None else float(ac.optimal_alpha(args.optimal or 1))
     report = write_shape(ac, alpha, args.output, manifold=args.manifold, sidecar=args.sidecar,
@@ -179,9 +188,29 @@ def cmd_export(args) -> int:
     return 0
 
 
+@contextlib.contextmanager
+def quiet_numerics() -> Iterator[None]:
+    """No numpy floating-point warnings (overflow, invalid value...) and no RuntimeWarnings
+    printed: odd values in a user's file are the file's, and the load report or the one
+    error line says what matters. Warnings asked for with `python -W` are still shown."""
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        if not sys.warnoptions:
+            warnings.simplefilter("ignore", RuntimeWarning)
+        yield
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run `alphascoop info|export ...`; return the exit status (0 = success)."""
+    """Run `alphascoop info|export ...`; return the exit status (0 = success).
+
+    Whatever happens, an error is one line on stderr: never a traceback, never a warning.
+    """
     argv = list(sys.argv[1:] if argv is None else argv)
+    with quiet_numerics():
+        return _run(argv)
+
+
+def _run(argv: list[str]) -> int:
+    """main's body: the command, and every failure turned into one line and a status."""
     try:
         args = build_parser().parse_args(argv)
         return cmd_info(args) if args.command == "info" else cmd_export(args)
@@ -208,6 +237,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     except SystemExit as exc:  # --help
         return int(exc.code or 0)
+    except Exception as exc:  # a bug of ours: still one line, with what to report
+        problem = next(iter(str(exc).strip().splitlines()), "")
+        print(f"alphascoop: error: unexpected {type(exc).__name__}"
+              f"{f': {problem}' if problem else ''} (please report this)", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -8,8 +8,8 @@ from pathlib import Path
 from PySide6.QtWidgets import QFileDialog, QWidget
 
 from app.settings import Preferences
+from core.atomic import atomic_path
 from core.export import write_shape, write_table
-from core.export.atomic import atomic_path
 from core.io import READ_FORMATS
 
 
@@ -52,18 +52,20 @@ def ask_save_path(parent: QWidget, prefs: Preferences, title: str, formats: dict
     return path
 
 
-def export_shape(ac, alpha: float, path: Path, progress=None) -> str:
-    """Write the shape at alpha to path with core.export; returns what was written."""
-    return write_shape(ac, alpha, path, progress=progress).line()
+def export_shape(ac, alpha: float, path: Path, progress=None, source: Path | None = None) -> str:
+    """Write the shape at alpha to path with core.export (never over `source`, the points'
+    file); returns what was written."""
+    return write_shape(ac, alpha, path, progress=progress, source=source).line()
 
 
-def export_table(ac, path: Path, progress=None) -> str:
-    """Write the interval table to path with core.export; returns what was written."""
-    return write_table(ac, path, progress=progress).line()
+def export_table(ac, path: Path, progress=None, source: Path | None = None) -> str:
+    """Write the interval table to path with core.export (never over `source`); returns what
+    was written."""
+    return write_table(ac, path, progress=progress, source=source).line()
 
 
 def save_screenshot(plotter, path: Path) -> str:
-    """Save the view as an image, atomically (core.export.atomic); returns what was written."""
+    """Save the view as an image, atomically (core.atomic); returns what was written."""
     with atomic_path(path) as tmp:
         plotter.screenshot(tmp)
     return f"Wrote {path} ({path.stat().st_size:,} bytes)"

@@ -10,7 +10,9 @@ from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QMessageBox
 
 from app import file_actions
 from app.help import add_help_actions
+from core.errors import InputError
 from core.export import SHAPE_FORMATS, TABLE_FORMATS
+from core.export.targets import refuse_source
 
 ABOUT = (
     "<b>Alpha Scoop</b><br>Explore alpha shapes of 2D and 3D point sets: one Delaunay build, "
@@ -60,6 +62,16 @@ def run_in_background(window, title: str, job) -> None:
     window.job_progress.start(title)
 
 
+def is_the_source(window, title: str, path: Path) -> bool:
+    """True, after a dialog saying so, when path is the open dataset's own file on disk."""
+    try:
+        refuse_source(path, window.model.dataset.path)
+    except InputError as error:
+        QMessageBox.warning(window, title, f"{title}: {error}")
+        return True
+    return False
+
+
 def export_shape(window) -> None:
     """File → Export shape: formats from core.export, the oriented surface by default."""
     if window.model.dataset is None:
@@ -68,10 +80,10 @@ def export_shape(window) -> None:
     stem = window.model.dataset.path.stem
     path = file_actions.ask_save_path(window, window.prefs, "Export shape", SHAPE_FORMATS,
                                       f"{stem}_alpha")
-    if path:
-        ac, alpha = window.model.dataset.ac, window.model.alpha
-        run_in_background(window, "Export shape",
-                          lambda progress: file_actions.export_shape(ac, alpha, path, progress))
+    if path and not is_the_source(window, "Export shape", path):
+        ac, alpha, source = window.model.dataset.ac, window.model.alpha, window.model.dataset.path
+        run_in_background(window, "Export shape", lambda progress: file_actions.export_shape(
+            ac, alpha, path, progress, source=source))
 
 
 def export_table(window) -> None:
@@ -81,10 +93,10 @@ def export_table(window) -> None:
     stem = window.model.dataset.path.stem
     path = file_actions.ask_save_path(window, window.prefs, "Export table",
                                       TABLE_FORMATS, f"{stem}_table")
-    if path:
-        ac = window.model.dataset.ac
-        run_in_background(window, "Export table",
-                          lambda progress: file_actions.export_table(ac, path, progress))
+    if path and not is_the_source(window, "Export table", path):
+        ac, source = window.model.dataset.ac, window.model.dataset.path
+        run_in_background(window, "Export table", lambda progress: file_actions.export_table(
+            ac, path, progress, source=source))
 
 
 def save_screenshot(window) -> None:

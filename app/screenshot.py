@@ -16,8 +16,8 @@ from app.dataset import Dataset, load_dataset
 from app.palette import default_styles
 from app.resources import SAMPLE_PATH
 from app.scene import Scene, as_xyz
+from core.atomic import atomic_path
 from core.errors import AlphaScoopError
-from core.export.atomic import atomic_path
 
 DEFAULT_SIZE = (1280, 800)
 

@@ -2,7 +2,9 @@
 
 Entries live in platformdirs' user cache dir ("alphascoop/tables", or $ALPHASCOOP_CACHE_DIR)
 as the .npz files `AlphaComplex.save` writes. A corrupt or unreadable entry is deleted and
-rebuilt, never an error; a cache that cannot be written is simply skipped.
+rebuilt, never an error; a cache that cannot be written is simply skipped. Temporary files of
+stores that were killed (a cancelled build process) are removed on every lookup and prune;
+only finished entries (named by their key) ever count as results.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
+from core.atomic import remove_stale_temporaries
 from core.complex import AlphaComplex
 from core.errors import AlphaScoopError
 
@@ -87,9 +90,13 @@ def store(ac: AlphaComplex, points: np.ndarray) -> Path | None:
 
 
 def load_cached(points: np.ndarray) -> AlphaComplex | None:
-    """The cached complex of these (n, d) points, or None (a bad entry is removed)."""
+    """The cached complex of these (n, d) points, or None (a bad entry is removed).
+
+    Stale temporaries of killed stores are cleaned from the cache folder first.
+    """
     points = np.asarray(points, dtype=np.float64)
     path = entry_path(points)
+    remove_stale_temporaries(path.parent)
     ac = _load(path, len(points))
     if ac is not None:
         with contextlib.suppress(OSError):
@@ -101,9 +108,11 @@ def prune(folder: Path, max_bytes: int | None = None, *, keep: Path | None = Non
     """Delete the least recently used entries until the folder holds at most max_bytes.
 
     The newest entry (or `keep`, the one just written) always stays, even when it alone is
-    larger than max_bytes (default MAX_CACHE_BYTES); temporary files of writes are skipped.
+    larger than max_bytes (default MAX_CACHE_BYTES). Temporary files of running stores are
+    left alone and not counted; those of killed stores are deleted.
     """
     limit = MAX_CACHE_BYTES if max_bytes is None else max_bytes
+    remove_stale_temporaries(folder)
     entries = [(st.st_mtime, st.st_size, p) for p in folder.glob("*.npz")
                if not p.name.startswith(".") and (st := _stat(p)) is not None]
     entries.sort(key=lambda e: (e[2] == keep, e[0]), reverse=True)

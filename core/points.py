@@ -7,7 +7,28 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError
-from .tolerances import FLAT_RTOL
+from .tolerances import FLAT_RTOL, MAX_COORDINATE
+
+
+def first_too_large(points: np.ndarray) -> tuple[int, float] | None:
+    """(row, value) of the first finite coordinate beyond MAX_COORDINATE for the points'
+    dimension (squared distances and areas or volumes would overflow float64), or None."""
+    limit = MAX_COORDINATE[points.shape[1]]
+    with np.errstate(invalid="ignore"):
+        big = np.isfinite(points) & (np.abs(points) > limit)
+    rows = np.flatnonzero(big.any(axis=1))
+    if len(rows) == 0:
+        return None
+    row = int(rows[0])
+    return row, float(points[row][big[row]][0])
+
+
+def too_large_message(points: np.ndarray, row: int, value: float) -> str:
+    """Why a coordinate is refused, in words."""
+    d = points.shape[1]
+    return (f"coordinate {value:.3g} (point {row + 1}) is too large: beyond "
+            f"{MAX_COORDINATE[d]:.0e} the {'areas' if d == 2 else 'volumes'} of a {d}D alpha "
+            "shape overflow float64 (a corrupt value, or rescale the points)")
 
 
 def as_points(points: object) -> np.ndarray:
@@ -20,6 +41,9 @@ def as_points(points: object) -> np.ndarray:
         raise InputError(f"points must be an (n, 2) or (n, 3) array, got shape {arr.shape}")
     if arr.shape[0] == 0:
         raise InputError("no points: the input is empty")
+    extreme = first_too_large(arr)
+    if extreme is not None:
+        raise InputError(too_large_message(arr, *extreme))
     bad = ~np.isfinite(arr).all(axis=1)
     if bad.any():
         first = int(np.flatnonzero(bad)[0])

@@ -21,3 +21,7 @@ ILL_CONDITIONED_RTOL = 1e-5
 #: A point is strictly inside a sphere only if its power is below -ON_SPHERE_RTOL times the
 #: squared distances involved: cospherical points of lattices and scans count as on the sphere.
 ON_SPHERE_RTOL = 1e-13
+
+#: Largest |coordinate| accepted per dimension: squared distances of points this far apart,
+#: and areas (2D) or volumes (3D) of their cells, stay finite in float64 with room to spare.
+MAX_COORDINATE = {2: 1e150, 3: 1e100}

@@ -15,13 +15,14 @@ from pathlib import Path
 
 import numpy as np
 
+from core.atomic import atomic_path, atomic_write_text
 from core.errors import AlphaScoopError, FileFormatError
-from core.export.atomic import atomic_path, atomic_write_text
 from core.export.complex_vtu import write_vtu
 from core.export.metadata import shape_metadata, sidecar_text
 from core.export.polygons import POLYGON_WRITERS
 from core.export.surface import SURFACE_WRITERS, manifold_meta, surface_arrays
 from core.export.table import TABLE_WRITERS
+from core.export.targets import refuse_source
 
 Progress = Callable[[float, str], None]
 
@@ -134,10 +135,14 @@ def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = F
 
     3D: surfaces are the outward REGULAR facets (`manifold=True` splits where the shape
     touches itself); 2D: polygon formats, or the filled triangles for surface formats.
-    `sidecar=True` also writes PATH.json with the metadata.
+    `sidecar=True` also writes PATH.json with the metadata. A target (or sidecar) that is
+    the `source` file itself is refused with an InputError before anything is written.
     """
     path = Path(path)
     ext = _extension(path, SHAPE_FORMATS)
+    refuse_source(path, source)
+    if sidecar:
+        refuse_source(f"{path}.json", source)
     if ac.dim == 3 and ext in POLYGON_WRITERS:
         raise FileFormatError(f"{path}: {ext} holds 2D polygons, but this shape is 3D; "
                               f"use one of {' '.join(SURFACE_WRITERS)} .vtu")
@@ -163,14 +168,16 @@ def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = F
                         measure=float(shape.measure), sidecar=side, metadata=meta, **fields)
 
 
-def write_table(ac, path: str | os.PathLike, *,
-                progress: Progress | None = None) -> ExportReport:
+def write_table(ac, path: str | os.PathLike, *, progress: Progress | None = None,
+                source: str | os.PathLike | None = None) -> ExportReport:
     """Write the interval table as .npz (layout in core/export/table.py) or .csv, atomically.
 
-    The report's n_faces counts the simplices of every dimension; its alpha is None.
+    The report's n_faces counts the simplices of every dimension; its alpha is None. A target
+    that is the `source` file (the points' file) is refused with an InputError.
     """
     path = Path(path)
     ext = _extension(path, TABLE_FORMATS)
+    refuse_source(path, source)
     with _reported(path), atomic_path(path) as tmp:
         _step(progress, 0.0, f"writing {ext.lstrip('.').upper()}")
         TABLE_WRITERS[ext](tmp, ac)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 from importlib import metadata as importlib_metadata
 
@@ -29,12 +30,19 @@ def betti_numbers(ac, alpha: float) -> list[int] | None:
         return None
 
 
+def squared(alpha: float) -> float | None:
+    """alpha² as a float, or None where it overflows float64 (alpha above ~1.34e154: any
+    such alpha gives the convex hull, and JSON has no infinity)."""
+    value = float(alpha) * float(alpha)  # float multiplication gives inf, never OverflowError
+    return value if math.isfinite(value) else None
+
+
 def shape_metadata(ac, shape, source: str | os.PathLike | None = None) -> dict:
     """JSON-ready facts about `shape` (an AlphaShape of `ac`) for file headers and sidecars."""
     meta = {
         "software": software(),
         "alpha": float(shape.alpha),
-        "alpha_sq": float(shape.alpha) ** 2,
+        "alpha_sq": squared(shape.alpha),
         "source": None if source is None else os.fspath(source),
         "dim": int(ac.dim),
         "ambient_dim": int(ac.ambient_dim),

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
@@ -83,8 +84,31 @@ def read_points(
     """
     path = Path(path)
     ext = _check_file(path)
+    with np.errstate(all="ignore"), warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        points, attrs, notes = _read(path, ext, columns)
+        if points.ndim != 2 or points.shape[1] not in (2, 3):
+            raise FileFormatError(f"{path}: points must have 2 or 3 coordinates, "
+                                  f"got shape {points.shape}")
+        ps = finish(path, _format_name(ext), points, attrs, subsample=subsample,
+                    method=subsample_method, seed=seed,
+                    notes=tuple(notes) + _warning_notes(caught))
+    if len(ps.points) == 0:
+        raise FileFormatError(f"{path}: no finite points ({ps.report.n_read:,} rows read)")
+    return ps
+
+
+def _warning_notes(caught: list[warnings.WarningMessage]) -> tuple[str, ...]:
+    """Library warnings met while reading, as report notes (numeric ones are counted anyway)."""
+    seen = dict.fromkeys(str(w.message).splitlines()[0][:120] for w in caught
+                         if not issubclass(w.category, RuntimeWarning) and str(w.message))
+    return tuple(f"reader warning: {m}" for m in list(seen)[:3])
+
+
+def _read(path: Path, ext: str, columns) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
+    """The format's reader, with every failure as a FileFormatError naming the file."""
     try:
-        points, attrs, notes = READERS[ext](path, columns)
+        return READERS[ext](path, columns)
     except MemoryError:
         raise FileFormatError(f"{path}: too large to read into memory") from None
     except (OSError, UnicodeDecodeError) as exc:
@@ -96,11 +120,3 @@ def read_points(
             raise  # KeyboardInterrupt, SystemExit...; Rust panics (lazrs) are BaseExceptions
         raise FileFormatError(f"{path}: unreadable {_format_name(ext)} file "
                               f"({type(exc).__name__}: {exc})") from exc
-    if points.ndim != 2 or points.shape[1] not in (2, 3):
-        raise FileFormatError(f"{path}: points must have 2 or 3 coordinates, "
-                              f"got shape {points.shape}")
-    ps = finish(path, _format_name(ext), points, attrs, subsample=subsample,
-                method=subsample_method, seed=seed, notes=tuple(notes))
-    if len(ps.points) == 0:
-        raise FileFormatError(f"{path}: no finite points ({ps.report.n_read:,} rows read)")
-    return ps

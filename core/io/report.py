@@ -9,7 +9,9 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
+from core.errors import FileFormatError
 from core.io.subsample import first_unique, subsample_indices
+from core.points import first_too_large, flatness, too_large_message
 from core.tolerances import FLAT_RTOL
 
 SPACING_SAMPLE = 100_000  # query points used to estimate the median nearest-neighbour distance
@@ -81,8 +83,7 @@ def is_planar(points: np.ndarray) -> bool:
     """True for 2D points, or 3D points whose spread across some plane is negligible."""
     if points.shape[1] == 2 or len(points) < 4:
         return True
-    centred = points - points.mean(axis=0)
-    s = np.linalg.svd(centred, compute_uv=False)
+    s = flatness(points)[1]
     return bool(s[-1] <= FLAT_RTOL * s[0])
 
 
@@ -113,6 +114,10 @@ def finish(
     """Drop non-finite rows, merge duplicates, subsample, and measure: the common reader tail."""
     points = np.asarray(points, dtype=np.float64)
     n_read = len(points)
+    if points.ndim == 2 and points.shape[1] in (2, 3):
+        extreme = first_too_large(points)
+        if extreme is not None:
+            raise FileFormatError(f"{path}: {too_large_message(points, *extreme)}")
     finite = np.all(np.isfinite(points), axis=1)
     points = points[finite]
     attributes = {k: np.asarray(v)[finite] for k, v in attributes.items()}
