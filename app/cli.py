@@ -130,7 +130,19 @@ def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
         "betti": [int(b) for b in ac.betti(alpha)],
         "volume" if ac.dim == 3 else "area": shape.measure,
         "classes": classes,
+        **_geographic(ps, ac, shape),
     }
+
+
+def _geographic(ps, ac, shape) -> dict:
+    """For points read from longitude/latitude: units, projection, ellipsoidal measures."""
+    georef = ps.report.georef
+    if georef is None:
+        return {}
+    from core.export.geographic import geographic_metadata
+
+    meta = geographic_metadata(ac, shape, georef)
+    return {k: meta[k] for k in ("units", "area_m2", "perimeter_m") if k in meta}
 
 
 def _text(info: dict, lines: list[str]) -> str:
@@ -146,7 +158,13 @@ def _text(info: dict, lines: list[str]) -> str:
         f"at alpha    {info['alpha']:.6g}",
     ]
     lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))
-    lines.append(f"{measure:<12}{info[measure]:.6g}")
+    if info.get("units") == "m":
+        unit = "m²" if measure == "area" else "m³"
+        lines.append(f"{f'{measure} ({unit})':<12}{info[measure]:.6g} in the projection"
+                     + (f", {info['area_m2']:.6g} on the WGS 84 ellipsoid (perimeter "
+                        f"{info['perimeter_m']:.6g} m)" if "area_m2" in info else ""))
+    else:
+        lines.append(f"{measure:<12}{info[measure]:.6g}")
     lines.append(f"{'classes':<12}" + "".join(f"{c:>10}" for c in CLASS_NAMES))
     for name, counts in info["classes"].items():
         lines.append(f"  {name:<10}" + "".join(f"{counts[c]:>10,}" for c in CLASS_NAMES))
@@ -177,13 +195,13 @@ def cmd_export(args) -> int:
             refuse_source(f"{args.output}.json", args.file)
     except InputError as exc:
         raise UsageError(str(exc)) from None
-    ac = load(args)[1]
+    ps, ac = load(args)[:2]
     if args.table:
         print(write_table(ac, args.output, source=args.file).line())
         return 0
     alpha = args.alpha if args.alpha is not None else float(ac.optimal_alpha(args.optimal or 1))
     report = write_shape(ac, alpha, args.output, manifold=args.manifold, sidecar=args.sidecar,
-                         source=args.file)
+                         source=args.file, georef=ps.report.georef)
     print(report.line())
     return 0
 

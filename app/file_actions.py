@@ -52,10 +52,12 @@ def ask_save_path(parent: QWidget, prefs: Preferences, title: str, formats: dict
     return path
 
 
-def export_shape(ac, alpha: float, path: Path, progress=None, source: Path | None = None) -> str:
+def export_shape(ac, alpha: float, path: Path, progress=None, source: Path | None = None,
+                 georef=None) -> str:
     """Write the shape at alpha to path with core.export (never over `source`, the points'
-    file); returns what was written."""
-    return write_shape(ac, alpha, path, progress=progress, source=source).line()
+    file; back in longitude/latitude when the points were read from them: `georef`);
+    returns what was written."""
+    return write_shape(ac, alpha, path, progress=progress, source=source, georef=georef).line()
 
 
 def export_table(ac, path: Path, progress=None, source: Path | None = None) -> str:

@@ -81,9 +81,10 @@ def export_shape(window) -> None:
     path = file_actions.ask_save_path(window, window.prefs, "Export shape", SHAPE_FORMATS,
                                       f"{stem}_alpha")
     if path and not is_the_source(window, "Export shape", path):
-        ac, alpha, source = window.model.dataset.ac, window.model.alpha, window.model.dataset.path
+        ds, alpha = window.model.dataset, window.model.alpha
+        georef = None if ds.report is None else ds.report.georef  # longitude/latitude input
         run_in_background(window, "Export shape", lambda progress: file_actions.export_shape(
-            ac, alpha, path, progress, source=source))
+            ds.ac, alpha, path, progress, source=ds.path, georef=georef))
 
 
 def export_table(window) -> None:

@@ -21,6 +21,7 @@ import numpy as np
 from core.atomic import remove_stale_temporaries
 from core.complex import AlphaComplex
 from core.errors import AlphaScoopError
+from core.modes import Mode
 
 CACHE_VERSION = 1  # bump when the saved table layout or the build rules change
 MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this
@@ -37,29 +38,48 @@ def cache_dir() -> Path:
     return Path(user_cache_dir("alphascoop")) / "tables"
 
 
-def points_key(points: np.ndarray) -> str:
-    """Hex digest of the points' shape and float64 bytes, plus the cache version."""
+def points_key(points: np.ndarray, mode: Mode | None = None,
+               normals: np.ndarray | None = None, weights: np.ndarray | None = None) -> str:
+    """Hex digest of the points' shape and float64 bytes, the cache version, for a mode
+    (core/modes.py) its parameters and any given normals, and the weights of a weighted set."""
     arr = np.ascontiguousarray(points, dtype=np.float64)
     digest = hashlib.blake2b(digest_size=20)
     digest.update(f"alphascoop-table-v{CACHE_VERSION}:{arr.shape}".encode())
     digest.update(memoryview(arr).cast("B"))
+    if mode is not None and mode.active:
+        digest.update(f"mode:{mode.key()}".encode())
+        if mode.normals == "given" and normals is not None:
+            digest.update(memoryview(np.ascontiguousarray(normals, dtype=np.float64)).cast("B"))
+    if weights is not None:
+        w = np.ascontiguousarray(weights, dtype=np.float64)
+        digest.update(f":weights{w.shape}".encode())
+        digest.update(memoryview(w).cast("B"))
     return digest.hexdigest()
 
 
-def entry_path(points: np.ndarray) -> Path:
-    """Where the table of these (n, d) points is (or would be) cached."""
-    return cache_dir() / f"{points_key(points)}.npz"
+def entry_path(points: np.ndarray, mode: Mode | None = None,
+               normals: np.ndarray | None = None, weights: np.ndarray | None = None) -> Path:
+    """Where the table of these (n, d) points (in `mode`, with `weights`) is (or would be)
+    cached."""
+    return cache_dir() / f"{points_key(points, mode, normals, weights)}.npz"
 
 
-def is_cached(pointset) -> bool:
+def pointset_weights(pointset) -> np.ndarray | None:
+    """The (n,) weights a point set carries (its `weights` attribute), None for arrays."""
+    weights = getattr(pointset, "weights", None)
+    return None if weights is None else np.asarray(weights, dtype=np.float64)
+
+
+def is_cached(pointset, mode: Mode | None = None, normals: np.ndarray | None = None) -> bool:
     """True when a cache entry exists for these points (it may still prove unreadable)."""
     try:
-        return entry_path(np.asarray(getattr(pointset, "points", pointset))).is_file()
+        return entry_path(np.asarray(getattr(pointset, "points", pointset)), mode,
+                          normals, pointset_weights(pointset)).is_file()
     except OSError:  # a cache folder we may not read is no cache
         return False
 
 
-def _load(path: Path, n_points: int) -> AlphaComplex | None:
+def _load(path: Path, n_points: int, mode: Mode) -> AlphaComplex | None:
     """The cached complex, or None (and the entry removed) if it is missing or unusable."""
     try:
         if not path.is_file():
@@ -69,6 +89,8 @@ def _load(path: Path, n_points: int) -> AlphaComplex | None:
         ac = AlphaComplex.load(path)
         if len(ac.input_index) != n_points:
             raise ValueError("cached table was built from other points")
+        if ac.mode != mode:
+            raise ValueError("cached table was built in another mode")
         return ac
     except (AlphaScoopError, OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
         with contextlib.suppress(OSError):
@@ -76,10 +98,11 @@ def _load(path: Path, n_points: int) -> AlphaComplex | None:
         return None
 
 
-def store(ac: AlphaComplex, points: np.ndarray) -> Path | None:
-    """Save ac as the entry of these points (with its signatures, if computed); None when
-    the cache folder cannot be written."""
-    path = entry_path(np.asarray(points, dtype=np.float64))
+def store(ac: AlphaComplex, points: np.ndarray, normals: np.ndarray | None = None,
+          weights: np.ndarray | None = None) -> Path | None:
+    """Save ac as the entry of these points (and input weights) in ac's mode (with its
+    signatures, if computed); None when the cache folder cannot be written."""
+    path = entry_path(np.asarray(points, dtype=np.float64), ac.mode, normals, weights)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         ac.save(path)
@@ -89,15 +112,18 @@ def store(ac: AlphaComplex, points: np.ndarray) -> Path | None:
     return path
 
 
-def load_cached(points: np.ndarray) -> AlphaComplex | None:
-    """The cached complex of these (n, d) points, or None (a bad entry is removed).
+def load_cached(points: np.ndarray, mode: Mode | None = None,
+                normals: np.ndarray | None = None,
+                weights: np.ndarray | None = None) -> AlphaComplex | None:
+    """The cached complex of these (n, d) points in `mode` (with input `weights`), or None (a
+    bad entry is removed).
 
     Stale temporaries of killed stores are cleaned from the cache folder first.
     """
     points = np.asarray(points, dtype=np.float64)
-    path = entry_path(points)
+    path = entry_path(points, mode, normals, weights)
     remove_stale_temporaries(path.parent)
-    ac = _load(path, len(points))
+    ac = _load(path, len(points), mode or Mode())
     if ac is not None:
         with contextlib.suppress(OSError):
             os.utime(path)  # mark as recently used
@@ -133,30 +159,35 @@ def _stat(path: Path) -> os.stat_result | None:
 
 
 def build_cached(pointset, *, use_cache: bool = True, progress: Progress | None = None,
-                 signatures: bool = False) -> AlphaComplex:
+                 signatures: bool = False, mode: Mode | None = None,
+                 normals: np.ndarray | None = None) -> AlphaComplex:
     """AlphaComplex of pointset.points (or an (n, d) array), from the cache when possible.
 
     With `signatures`, they are computed too and cached with the table, so that re-opening
-    needs no topology pass either.
+    needs no topology pass either. `mode` (default classic) and, for its "given" normals,
+    `normals` ((n, d) like the points) choose the alpha mode (core/modes.py).
     """
     points = np.asarray(getattr(pointset, "points", pointset), dtype=np.float64)
+    mode = mode or Mode()
+    weights = pointset_weights(pointset)
+    build = mode.build_kwargs(normals) | ({} if weights is None else {"weights": weights})
     if not use_cache:
-        ac = AlphaComplex.from_points(points, progress=progress)
+        ac = AlphaComplex.from_points(points, progress=progress, **build)
         if signatures:
             ac.signatures()
         return ac
-    ac = load_cached(points)
+    ac = load_cached(points, mode, normals, weights)
     if ac is not None:
         if progress is not None:
             progress(1.0, "loaded from cache")
         if signatures and "_signatures" not in ac.__dict__:
             ac.signatures()
-            store(ac, points)
+            store(ac, points, normals, weights)
         return ac
-    ac = AlphaComplex.from_points(points, progress=progress)
+    ac = AlphaComplex.from_points(points, progress=progress, **build)
     if signatures:
         if progress is not None:
             progress(1.0, "topology")
         ac.signatures()
-    store(ac, points)
+    store(ac, points, normals, weights)
     return ac

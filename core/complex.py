@@ -10,11 +10,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import storage
-from .delaunay import triangulate
+from .delaunay import regular_triangulate, triangulate
 from .errors import InputError
+from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
 from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
+from .power import signed_sqrt, signed_square
 from .shape import AlphaShape, readonly
 from .table import Level, Progress, Table, build_table
+from .weights import as_weights, hide_light_duplicates
 
 if TYPE_CHECKING:
     from .cursor import ShapeCursor
@@ -35,8 +38,35 @@ def _radius(alpha: object) -> float:
     except (TypeError, ValueError):
         raise InputError(f"alpha must be a number (a radius), not {alpha!r}") from None
     if not value >= 0:
-        raise InputError(f"alpha is a radius and must be >= 0, not {alpha!r}")
+        raise InputError(f"alpha is a radius and must be >= 0, not {alpha!r}; pass a "
+                         "squared value (which may be negative) as alpha2=")
     return value
+
+
+def table_value(alpha: object = None, alpha2: object = None) -> float:
+    """The table's value for a query given as exactly one of `alpha` (a radius >= 0) or
+    `alpha2` (its square; any real, negative below zero radius): sign(a2) * sqrt(|a2|)."""
+    if (alpha is None) == (alpha2 is None):
+        raise InputError("give exactly one of alpha (a radius) and alpha2 (a squared radius), "
+                         f"not {'both' if alpha is not None else 'neither'}")
+    if alpha is not None:
+        return _radius(alpha)
+    try:
+        value = float(alpha2)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise InputError(f"alpha2 must be a number (a squared radius), not {alpha2!r}") from None
+    if value != value:
+        raise InputError("alpha2 must be a number (a squared radius), not NaN")
+    return float(signed_sqrt(np.float64(value)))
+
+
+def _point_normals(normals: np.ndarray, input_index: np.ndarray, m: int,
+                   frame: Frame | None) -> np.ndarray:
+    """(m, dim) unit normals of the complex's points from the (n, ambient) input normals
+    (planar 3D: projected onto the plane; a duplicate point takes one of its rows)."""
+    out = np.zeros((m, normals.shape[1]))
+    out[input_index] = normals
+    return unit_rows(out if frame is None else out @ frame.basis.T)
 
 
 class AlphaComplex:
@@ -44,13 +74,24 @@ class AlphaComplex:
 
     Build with `from_points` (or `load`); then every alpha is a query on the interval table.
     Arrays handed out are read-only.
+
+    Weighted complexes (`weights` given: squared radii, power distance |x - p|² - w) have
+    values that may be negative. Their table holds signed radii sign(a2) * sqrt(|a2|) of the
+    squared values a2 (equal to the radius where a2 >= 0): `intervals`, `spectrum`,
+    signatures, persistence and `optimal_alpha` speak that unit; `intervals_sq`,
+    `spectrum_sq` and `optimal_alpha2` give squares. Every query takes either `alpha` (a
+    radius >= 0) or the keyword `alpha2` (a squared value, may be negative), never both.
     """
 
     def __init__(self, points: np.ndarray, input_index: np.ndarray, table: Table,
-                 frame: Frame | None = None, ambient_dim: int | None = None) -> None:
+                 frame: Frame | None = None, ambient_dim: int | None = None,
+                 mode: Mode | None = None, weights: np.ndarray | None = None) -> None:
         self._table = table
+        self.mode = mode or Mode()
         self.points = readonly(points)
         self.input_index = readonly(input_index)
+        #: (m,) float64 squared radii aligned with `points`, or None for a classic complex.
+        self.weights = None if weights is None else readonly(weights)
         self.frame = frame
         self.dim = points.shape[1]
         self.ambient_dim = ambient_dim or (3 if frame is not None else self.dim)
@@ -63,11 +104,21 @@ class AlphaComplex:
             readonly(arr)
 
     @classmethod
-    def from_points(cls, points: object, progress: Progress | None = None) -> AlphaComplex:
+    def from_points(cls, points: object, progress: Progress | None = None, *,
+                    weights: object = None, density: int | None = None,
+                    combine: str = "mean", anisotropy: float = 0.0,
+                    normals: object = None) -> AlphaComplex:
         """Build from (n, 2) or (n, 3) points; duplicates merged, planar 3D built in 2D.
 
         `progress(fraction, stage)` is called between stages; raising core.errors.Cancelled
         from it stops the build. Raises InputError for points that make no complex.
+        `weights`: (n,) squared radii for a weighted complex (regular triangulation, power
+        distance); None or all zeros build the classic complex. Points whose ball is hidden
+        by the others get input_index -1.
+        Modes (core/modes.py; alpha is then in the mode's units): `density=k` divides radii
+        by the local spacing (distance to the k-th neighbour, `combine`d over a simplex's
+        vertices by "mean" or "max"); `anisotropy=tau` in [0, 1) compresses the alpha ball
+        along the surface normal, taken from `normals` ((n, d) like the points) or estimated.
         """
         def step(fraction: float, stage: str) -> None:
             if progress is not None:
@@ -75,30 +126,53 @@ class AlphaComplex:
 
         step(0.0, "checking points")
         raw = as_points(points)
+        w = as_weights(weights, len(raw))
+        mode = make_mode(density, combine, anisotropy, normals is not None)
+        if w is not None and mode.active:
+            raise InputError("weights cannot be combined with the density or anisotropy "
+                             "modes: build a weighted or a mode complex")
+        if mode.anisotropy > 0.0 and normals is not None:
+            normals = check_normals(normals, len(raw), raw.shape[1])
         unique, input_index = merge_duplicates(raw)
+        if w is not None:
+            w, input_index = hide_light_duplicates(w, input_index, len(unique))
         frame = check_spread(unique)
         coords = unique if frame is None else (unique - frame.origin) @ frame.basis.T
         order = spatial_order(coords)
         coords = coords[order]
-        rank = np.empty(len(order), dtype=np.int64)
+        w = None if w is None else w[order]
+        rank = np.append(np.empty(len(order), dtype=np.int64), -1)
         rank[order] = np.arange(len(order))
-        input_index = rank[input_index]
+        input_index = rank[input_index]  # -1 (hidden duplicates) stays -1 via rank[-1]
         offset = 0.5 * (coords.min(axis=0) + coords.max(axis=0))
-        step(0.02, "Delaunay triangulation")
-        tri = triangulate((coords - offset) / _power_of_two_scale(coords - offset))
+        step(0.02, "Delaunay triangulation" if w is None else "regular triangulation")
+        lift_scale = _power_of_two_scale(coords - offset)
+        if w is None or bool(np.all(w == w[0])):  # equal weights: the Delaunay cells
+            tri = triangulate((coords - offset) / lift_scale)
+        else:
+            tri = regular_triangulate((coords - offset) / lift_scale, w / lift_scale**2)
         if len(tri.kept) < len(coords):
             coords = coords[tri.kept]
-            input_index = tri.vertex_of_point[input_index]
+            w = None if w is None else w[tri.kept]
+            input_index = np.where(input_index >= 0,
+                                   tri.vertex_of_point[np.maximum(input_index, 0)], -1)
         # The table works on the points themselves, scaled exactly by a power of two: its
         # arithmetic is relative to a vertex, so it needs no (rounding) shift to the origin.
         scale = _power_of_two_scale(coords)
         local = coords / scale
         step(0.6, "interval table")
+        share = 0.3 if mode.active else 0.4
         table = build_table(local, tri.cells, tri.neighbors,
-                            None if progress is None else lambda f, s: step(0.6 + 0.4 * f, s))
+                            None if progress is None else lambda f, s: step(0.6 + share * f, s),
+                            weights=None if w is None else w / scale**2)
         for level in table.levels:
             for arr in (level.enter, level.regular, level.interior):
                 arr *= scale
+        if mode.active:
+            table = scaled_table(table, coords, mode,
+                                 _point_normals(normals, input_index, len(coords), frame)
+                                 if mode.normals == "given" else None,
+                                 None if progress is None else lambda f, s: step(0.9 + 0.1 * f, s))
         with np.errstate(over="ignore"):
             measure_scale = np.float64(scale) ** coords.shape[1]
         if not np.isfinite(measure_scale):
@@ -106,7 +180,8 @@ class AlphaComplex:
                              f"{'areas' if coords.shape[1] == 2 else 'volumes'} overflow "
                              "float64; rescale the points (e.g. to metres or kilometres)")
         table.cell_measure *= measure_scale
-        return cls(np.ascontiguousarray(coords), input_index, table, frame, raw.shape[1])
+        return cls(np.ascontiguousarray(coords), input_index, table, frame, raw.shape[1], mode,
+                   w)
 
     # --- the table -------------------------------------------------------------------------
     def _level(self, k: int) -> Level:
@@ -119,12 +194,18 @@ class AlphaComplex:
         return self._level(k).simplices
 
     def intervals(self, k: int) -> np.ndarray:
-        """(n_k, 3) float64 columns enter <= regular <= interior (radii; inf = never)."""
+        """(n_k, 3) float64 columns enter <= regular <= interior (radii; inf = never; signed
+        radii sign(a2) * sqrt(|a2|) for weighted complexes)."""
         cache = self.__dict__.setdefault("_intervals", {})
         if k not in cache:
             level = self._level(k)
             cache[k] = readonly(np.stack((level.enter, level.regular, level.interior), axis=1))
         return cache[k]
+
+    def intervals_sq(self, k: int) -> np.ndarray:
+        """(n_k, 3) float64 enter <= regular <= interior as squared radii (the filtration
+        values of CGAL and gudhi; negative for weighted values below zero radius)."""
+        return readonly(signed_square(self.intervals(k)))
 
     def face_ids(self, k: int) -> np.ndarray:
         """(n_k, k+1) int32: row in simplices(k-1) of the face opposite each vertex (k >= 1)."""
@@ -172,7 +253,9 @@ class AlphaComplex:
 
     @cached_property
     def _spectrum(self) -> np.ndarray:
-        values = np.concatenate([[0.0]] + [lv.enter for lv in self._table.levels[1:]])
+        levels = self._table.levels
+        first = [[0.0]] if self.weights is None else [levels[0].enter]
+        values = np.concatenate(first + [lv.enter for lv in levels[1:]])
         values.sort()
         keep = np.empty(len(values), dtype=bool)
         keep[0] = True
@@ -180,22 +263,31 @@ class AlphaComplex:
         return readonly(values[keep])
 
     def spectrum(self) -> np.ndarray:
-        """(s,) float64 sorted distinct alphas at which the complex changes; 0 comes first."""
+        """(s,) float64 sorted distinct alphas at which the complex changes; 0 comes first
+        (weighted: the vertices' values come first, signed radii)."""
         return self._spectrum
 
+    def spectrum_sq(self) -> np.ndarray:
+        """(s,) float64 the spectrum as squared values (may be negative when weighted)."""
+        return readonly(signed_square(self._spectrum))
+
     # --- queries ---------------------------------------------------------------------------
-    def classify(self, alpha: float, k: int) -> np.ndarray:
+    def classify(self, alpha: float | None = None, k: int | None = None, *,
+                 alpha2: float | None = None) -> np.ndarray:
         """(n_k,) int8 class of every k-simplex: 0 exterior, 1 singular, 2 regular, 3 interior."""
-        alpha = _radius(alpha)
+        alpha = table_value(alpha, alpha2)
+        if k is None:
+            raise InputError("classify needs k, the dimension of the simplices")
         level = self._level(k)
         out = (level.enter <= alpha).view(np.int8).copy()
         out += level.regular <= alpha
         out += level.interior <= alpha
         return readonly(out)
 
-    def shape(self, alpha: float) -> AlphaShape:
-        """The alpha shape at `alpha` (a radius); arrays are computed when first used."""
-        return AlphaShape(self, _radius(alpha))
+    def shape(self, alpha: float | None = None, *, alpha2: float | None = None) -> AlphaShape:
+        """The alpha shape at `alpha` (a radius) or `alpha2` (squared); arrays are computed
+        when first used. Its `alpha` attribute is the table value (signed radius)."""
+        return AlphaShape(self, table_value(alpha, alpha2))
 
     def cursor(self) -> ShapeCursor:
         """A ShapeCursor: shapes at one alpha after another, each step costing what changed
@@ -253,9 +345,11 @@ class AlphaComplex:
         self.__dict__.update(_topology=topology, _signatures=signatures,
                              _spectrum=signatures.alphas)
 
-    def betti(self, alpha: float) -> tuple[int, ...]:
+    def betti(self, alpha: float | None = None, *, alpha2: float | None = None
+              ) -> tuple[int, ...]:
         """Betti numbers at alpha: (components, holes) in 2D, (components, tunnels, voids) in 3D."""
-        return self._topology.betti(alpha)
+        at = np.array([table_value(alpha, alpha2)], dtype=np.float64)
+        return tuple(int(b) for b in self._topology.betti_many(at)[0])
 
     def signatures(self):
         """Betti numbers, solid components, measures and class counts over the whole spectrum."""
@@ -279,10 +373,15 @@ class AlphaComplex:
                            len(self.points))
 
     def optimal_alpha(self, n_components: int = 1) -> float:
-        """Smallest alpha with every point in a cell and <= n_components solid parts (CGAL)."""
+        """Smallest alpha with every point in a cell and <= n_components solid parts (CGAL);
+        a signed radius for weighted complexes (see optimal_alpha2)."""
         from .suggest import optimal_alpha
 
         return optimal_alpha(self._signatures, self._cover_alpha, n_components)
+
+    def optimal_alpha2(self, n_components: int = 1) -> float:
+        """optimal_alpha as a squared value (may be negative for weighted complexes)."""
+        return float(signed_square(np.float64(self.optimal_alpha(n_components))))
 
     def suggest_alphas(self, k: int = 5) -> tuple:
         """The k alpha ranges where the Betti numbers hold longest on a log scale, best first."""
@@ -290,7 +389,8 @@ class AlphaComplex:
 
         return suggest_alphas(self._signatures, k)
 
-    def contains(self, query_points: object, alpha: float) -> np.ndarray:
+    def contains(self, query_points: object, alpha: float | None = None, *,
+                 alpha2: float | None = None) -> np.ndarray:
         """(k,) bool: each query point lies in a cell of the complex at alpha.
 
         Queries are (k, ambient_dim) input-space points (planar 3D input: projected onto the
@@ -299,5 +399,6 @@ class AlphaComplex:
         from .locate import contains
         from .locate import query_points as checked
 
+        value = table_value(alpha, alpha2)
         queries = checked(query_points, self.dim, self.ambient_dim, self.to_ambient)
-        return contains(self._locator, queries, alpha, self.intervals(self.dim)[:, 0])
+        return contains(self._locator, queries, value, self.intervals(self.dim)[:, 0])

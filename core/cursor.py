@@ -207,9 +207,10 @@ class ShapeCursor:
     def _sets(self) -> list[IntervalSet]:
         return [self.regular, *self.singular.values()]
 
-    def move(self, alpha: float) -> AlphaShape:
-        """The shape at alpha (a radius), from the previous one by the simplices that changed."""
-        shape = self._ac.shape(alpha)
+    def move(self, alpha: float | None = None, *, alpha2: float | None = None) -> AlphaShape:
+        """The shape at alpha (a radius) or alpha2 (squared), from the previous one by the
+        simplices that changed."""
+        shape = self._ac.shape(alpha, alpha2=alpha2)
         alpha = shape.alpha
         for tracked in self._sets():
             if self.alpha is None:

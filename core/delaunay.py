@@ -5,9 +5,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import Delaunay, QhullError, cKDTree
+from scipy.spatial import ConvexHull, Delaunay, QhullError, cKDTree
 
 from .errors import InputError
+from .tolerances import LOWER_FACET_COS
 
 _NETWORKS = {3: ((0, 1), (1, 2), (0, 1)), 4: ((0, 1), (2, 3), (0, 2), (1, 3), (1, 2))}
 
@@ -18,7 +19,7 @@ class Triangulation:
 
     cells: np.ndarray  # (t, d+1) int32, each row ascending
     neighbors: np.ndarray  # (t, d+1) int32, neighbour opposite each vertex; -1 = hull
-    vertex_of_point: np.ndarray  # (m,) int64: vertex row for every input row
+    vertex_of_point: np.ndarray  # (m,) int64: vertex row for every input row (-1 = hidden)
     kept: np.ndarray  # (v,) int64: input rows that are vertices, ascending
 
 
@@ -59,5 +60,39 @@ def triangulate(points: np.ndarray) -> Triangulation:
         lost = np.flatnonzero(~used)
         _, nearest = cKDTree(points[kept]).query(points[lost])
         vertex_of_point[lost] = nearest
+        cells = vertex_of_point[cells].astype(np.int32)
+    return Triangulation(cells, neighbors, vertex_of_point, kept)
+
+
+def regular_triangulate(points: np.ndarray, weights: np.ndarray) -> Triangulation:
+    """Regular (weighted Delaunay) cells of (m, d) distinct points with (m,) weights.
+
+    The lower convex hull of the lifted points (p, |p|² - w) (Qhull in d + 1 dimensions).
+    Points that are no vertex of it are hidden: their balls add nothing to the union of the
+    others' power cells; `vertex_of_point` maps them to -1. Input that is well scaled
+    (centred, extent about 1) keeps the lifting accurate.
+    """
+    lifted = np.column_stack((points, np.einsum("nd,nd->n", points, points) - weights))
+    try:
+        hull = ConvexHull(lifted, qhull_options="Qt Qbb Qc Q12")
+    except (QhullError, ValueError) as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise InputError(
+            f"the regular triangulation failed (degenerate input?): {first}"
+        ) from None
+    lower = hull.equations[:, -2] < -LOWER_FACET_COS
+    if not lower.any():
+        raise InputError("the points span no cell: they are (nearly) collinear or coplanar")
+    new_id = np.full(len(lower), -1, dtype=np.int64)
+    new_id[lower] = np.arange(int(lower.sum()))
+    cells = np.ascontiguousarray(hull.simplices[lower], dtype=np.int32)
+    around = hull.neighbors[lower]
+    neighbors = np.ascontiguousarray(np.where(around >= 0, new_id[around], -1), dtype=np.int32)
+    sort_rows(cells, neighbors)
+    used = np.zeros(len(points), dtype=bool)
+    used[cells.ravel()] = True
+    kept = np.flatnonzero(used)
+    vertex_of_point = np.where(used, np.cumsum(used, dtype=np.int64) - 1, -1)
+    if not used.all():
         cells = vertex_of_point[cells].astype(np.int32)
     return Triangulation(cells, neighbors, vertex_of_point, kept)

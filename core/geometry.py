@@ -33,7 +33,7 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", a, b)
 
 
-def _edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
+def edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     """(n, k, d) vectors from each simplex's first vertex to its others."""
     n, width = simplices.shape
     corners = np.take(points, simplices.ravel(), axis=0).reshape(n, width, points.shape[1])
@@ -41,53 +41,78 @@ def _edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     return corners[:, 1:]
 
 
-def _extended(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, ...]:
+def extended(points: np.ndarray, simplices: np.ndarray,
+             weights: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
     """Centre offsets, determinants and degeneracy flags of ill-conditioned simplices,
-    computed in extended precision: only what is flat there is treated as flat."""
+    computed in extended precision: only what is flat there is treated as flat.
+
+    With (m,) `weights` (squared radii) the centres are those of the orthogonal spheres."""
     wide = points.astype(np.longdouble)
     vec = wide[simplices[:, 1:]] - wide[simplices[:, :1]]
+    rhs = None
+    if weights is not None:
+        wide_w = weights.astype(np.longdouble)
+        rhs = (np.einsum("nid,nid->ni", vec, vec)
+               - (wide_w[simplices[:, 1:]] - wide_w[simplices[:, :1]]))
     wider = np.finfo(np.longdouble).eps < 1e-18  # else long double is plain double
-    c0, det, bad = _solve(vec, EXTENDED_DEGENERATE_RTOL if wider else DEGENERATE_RTOL)[:3]
+    c0, det, bad = solve_centres(vec, EXTENDED_DEGENERATE_RTOL if wider else DEGENERATE_RTOL,
+                                 rhs)[:3]
     return c0.astype(np.float64), det.astype(np.float64), bad
 
 
-def _least_squares(vec: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Offsets and squared radii of the smallest spheres through degenerate simplices."""
+def least_squares(vec: np.ndarray, rel_weights: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets and squared radii of the smallest spheres through degenerate simplices.
+
+    With (n, k+1) `rel_weights` (each vertex's weight minus the first vertex's), the smallest
+    orthogonal spheres instead, and their powers relative to the first vertex's weight."""
     gram = np.einsum("nid,njd->nij", vec, vec)
     rhs = 0.5 * np.einsum("nid,nid->ni", vec, vec)
+    if rel_weights is not None:
+        rhs -= 0.5 * rel_weights[:, 1:]
     lam = np.einsum("nij,nj->ni", np.linalg.pinv(gram), rhs)
     c0 = np.einsum("ni,nid->nd", lam, vec)
     dist2 = np.einsum("nid,nid->ni", vec - c0[:, None, :], vec - c0[:, None, :])
+    if rel_weights is not None:
+        dist2 -= rel_weights[:, 1:]
     return c0, np.maximum(np.einsum("nd,nd->n", c0, c0), dist2.max(axis=1))
 
 
-def _solve(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL) -> tuple[np.ndarray, ...]:
+def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
+                  rhs: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
     """Centre offsets (n, d), determinants (n,), flags (degenerate, ill-conditioned), and for
-    d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0."""
+    d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0.
+
+    The centre c solves 2 vec_i . c = rhs_i in the simplex's span; rhs defaults to |vec_i|²
+    (circumcentres); |vec_i|² - (w_i - w_0) gives the centres of orthogonal spheres."""
     k, d = vec.shape[1], vec.shape[2]
     sq = np.einsum("nid,nid->ni", vec, vec)
     if k == 1:
         zero = sq[:, 0] == 0.0
-        return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero, None
+        if rhs is None:
+            return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero, None
+        ratio = rhs[:, 0] / (2.0 * np.where(zero, 1.0, sq[:, 0]))
+        return ratio[:, None] * vec[:, 0], np.ones(len(vec)), zero, zero, None
+    rhs = sq if rhs is None else rhs
     a, b = vec[:, 0], vec[:, 1]
     if k == 2 and d == 2:
         det = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-        num = np.stack((b[:, 1] * sq[:, 0] - a[:, 1] * sq[:, 1],
-                        a[:, 0] * sq[:, 1] - b[:, 0] * sq[:, 0]), axis=1)
+        num = np.stack((b[:, 1] * rhs[:, 0] - a[:, 1] * rhs[:, 1],
+                        a[:, 0] * rhs[:, 1] - b[:, 0] * rhs[:, 0]), axis=1)
         scale = np.sqrt(sq[:, 0] * sq[:, 1])
         duals = np.stack([np.stack((b[:, 1], -b[:, 0]), axis=1),
                           np.stack((-a[:, 1], a[:, 0]), axis=1)])
     elif k == 2:
         n = _cross(a, b)
         det = _dot(n, n)
-        num = sq[:, :1] * _cross(b, n) + sq[:, 1:2] * _cross(n, a)
+        num = rhs[:, :1] * _cross(b, n) + rhs[:, 1:2] * _cross(n, a)
         scale = np.sqrt(det * sq[:, 0] * sq[:, 1])  # det is |a x b|²: compare |a x b|
         duals = None
     else:
         c = vec[:, 2]
         duals = np.stack((_cross(b, c), _cross(c, a), _cross(a, b)))
         det = _dot(a, duals[0])
-        num = sq[:, :1] * duals[0] + sq[:, 1:2] * duals[1] + sq[:, 2:3] * duals[2]
+        num = rhs[:, :1] * duals[0] + rhs[:, 1:2] * duals[1] + rhs[:, 2:3] * duals[2]
         scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
     shape = np.abs(det) / np.where(scale > 0, scale, 1.0)  # 0 flat .. 1 well-shaped
     degenerate = shape <= degenerate_rtol
@@ -98,14 +123,14 @@ def _solve(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL) -> tuple[n
 def _spheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, ...]:
     """One chunk: centre offsets, radii², determinants, degenerate flags and attach bits
     (for d-simplices; else None), with extended precision and least squares where needed."""
-    vec = _edge_vectors(points, simplices)
-    c0, det, bad, poor, duals = _solve(vec)
+    vec = edge_vectors(points, simplices)
+    c0, det, bad, poor, duals = solve_centres(vec)
     if poor.any():
-        c0[poor], det[poor], bad[poor] = _extended(points, simplices[poor])
+        c0[poor], det[poor], bad[poor] = extended(points, simplices[poor])
     r2 = np.einsum("nd,nd->n", c0, c0)
-    bits = None if duals is None else _barycentric_signs(duals, c0, det)
+    bits = None if duals is None else barycentric_signs(duals, c0, det)
     if bad.any():
-        c0[bad], r2[bad] = _least_squares(vec[bad])
+        c0[bad], r2[bad] = least_squares(vec[bad])
         if bits is not None:
             bits[bad] = 0
     return c0, r2, det, bad, bits
@@ -139,7 +164,7 @@ def any_point_inside(points: np.ndarray, centres: np.ndarray, r2: np.ndarray) ->
     return dist * dist < r2 * (1.0 - 2.0 * ON_SPHERE_RTOL)
 
 
-def _barycentric_signs(duals: np.ndarray, c0: np.ndarray, det: np.ndarray) -> np.ndarray:
+def barycentric_signs(duals: np.ndarray, c0: np.ndarray, det: np.ndarray) -> np.ndarray:
     """(n,) uint8, bit i set when the circumcentre's barycentric coordinate i is negative.
 
     For a cell, coordinate i < 0 means the centre lies beyond facet i, away from vertex i:
@@ -180,7 +205,7 @@ def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np
     tol = ON_SPHERE_RTOL
     for lo in range(0, len(facets), CHUNK):
         sl = slice(lo, lo + CHUNK)
-        vec = _edge_vectors(points, facets[sl])
+        vec = edge_vectors(points, facets[sl])
         a, b = vec[:, 0], vec[:, 1]
         n = _cross(a, b)
         saa, sbb, nn, ab = _dot(a, a), _dot(b, b), _dot(n, n), _dot(a, b)
@@ -188,7 +213,7 @@ def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np
         bad = nn <= (DEGENERATE_RTOL ** 2) * saa * sbb
         out[sl] = saa * sbb * s12 / (4.0 * np.where(bad, 1.0, nn))
         if bad.any():
-            out[sl][bad] = _least_squares(vec[bad])[1]
+            out[sl][bad] = least_squares(vec[bad])[1]
         chunk = (ab < -tol * (saa + sbb)).astype(np.uint8)
         chunk |= ((saa - ab) < -tol * (saa + s12)).astype(np.uint8) << 1
         chunk |= ((sbb - ab) < -tol * (sbb + s12)).astype(np.uint8) << 2

@@ -60,8 +60,9 @@ class Locator:
 
 def contains(locator: Locator, queries: np.ndarray, alpha: float,
              cell_enter: np.ndarray) -> np.ndarray:
-    """(k,) bool: each (k, dim) query lies in a cell whose enter <= alpha (a radius >= 0)."""
-    alpha = checked_alpha(alpha)
+    """(k,) bool: each (k, dim) query lies in a cell whose enter <= alpha (a table value:
+    a radius, or for weighted complexes a signed radius, checked by the caller)."""
+    alpha = float(alpha)
     cells = locator.locate(queries)
     inside = cells >= 0
     inside[inside] = cell_enter[cells[inside]] <= alpha

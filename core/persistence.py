@@ -17,7 +17,7 @@ from scipy.sparse.csgraph import connected_components
 
 from .errors import InputError
 from .forest import younger_roots
-from .topology import Topology, ascending_order
+from .topology import Topology, ascending_order, vertex_spanning_forest
 
 
 @dataclass(frozen=True, eq=False)
@@ -45,15 +45,38 @@ def compute_persistence(ac, topology: Topology) -> Persistence:
     n_vertices = len(topology.enter_sorted[0])
     deaths = topology.vertex_forest
     essential = n_vertices - len(deaths)
-    components = np.stack(
-        [np.zeros(n_vertices), np.concatenate([deaths, np.full(essential, np.inf)])], axis=1
-    )
+    if ac.weights is None:  # every component is born at 0
+        components = np.stack(
+            [np.zeros(n_vertices), np.concatenate([deaths, np.full(essential, np.inf)])], axis=1
+        )
+    else:
+        components = component_pairs(np.asarray(ac.intervals(0)[:, 0], dtype=np.float64),
+                                      np.asarray(ac.simplices(1), dtype=np.int64),
+                                      np.asarray(ac.intervals(1)[:, 0], dtype=np.float64))
     cell_enter = np.asarray(ac.intervals(ac.dim)[:, 0], dtype=np.float64)
     return Persistence(
         dim=ac.dim,
         components=_by_lifetime(components),
         cavities=_by_lifetime(cavity_pairs(topology, cell_enter)),
     )
+
+
+def component_pairs(vertex_enter: np.ndarray, edges: np.ndarray,
+                    edge_enter: np.ndarray) -> np.ndarray:
+    """(n, 2) float64 (birth, death) of components whose vertices enter at different values
+    (weighted complexes): the elder rule on the vertex spanning forest."""
+    n = len(vertex_enter)
+    deaths, a, b = vertex_spanning_forest(n, edges, edge_enter)
+    order = ascending_order(vertex_enter)
+    key = np.empty(n, dtype=np.int64)
+    key[order] = n - np.arange(n)  # larger = older
+    dying = younger_roots(key, a, b)
+    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(n, n))
+    _, group = connected_components(graph, directed=False)
+    first = np.full(group.max() + 1, np.inf)
+    np.minimum.at(first, group, vertex_enter)
+    births = np.concatenate([vertex_enter[order[n - dying]], first])
+    return np.stack([births, np.concatenate([deaths, np.full(len(first), np.inf)])], axis=1)
 
 
 def cavity_pairs(topology: Topology, cell_enter: np.ndarray) -> np.ndarray:

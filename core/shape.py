@@ -31,6 +31,11 @@ class AlphaShape:
         self.dim = complex_.dim
         self.points = complex_.points
 
+    @property
+    def alpha2(self) -> float:
+        """The shape's alpha as a squared value (signed: negative below zero radius)."""
+        return self.alpha * abs(self.alpha)
+
     def _entered(self, k: int) -> int:
         """Number of k-simplices in the complex (they are a prefix: sorted by enter)."""
         return int(np.searchsorted(self._ac._level(k).enter, self.alpha, side="right"))

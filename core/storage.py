@@ -7,10 +7,17 @@ k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter, `enter_k`/`regular_
 (f, 2) int32 (-1 = outside), `facet_flip` (f,) bool, `cell_measure` (c,) float64,
 `facet_interior_order` (f,) int32 (facet rows by ascending interior).
 
+Weighted tables (tables without it are classic, so older files load unchanged) add `weights`
+(m,) float64 squared radii aligned with `points`; their values are signed radii and
+`input_index` holds -1 for hidden points.
+
 Optional, written once computed, so re-opening skips the topology pass: `sig_alphas` (s,)
 float64 (the spectrum), `sig_betti` (s, dim) int32, `sig_solid` (s,) int32, `sig_measure`,
 `sig_boundary` (s,) float64; `topo_vertex_forest`, `topo_dual_forest` (float64),
 `topo_dual_edges` (fd, 2) int64, `topo_solid_forest` (float64).
+
+Optional, for a table built in a mode (core/modes.py; absent = classic): `mode_density` (int,
+0 = off), `mode_combine` (str), `mode_anisotropy` (float), `mode_normals` (str).
 """
 
 from __future__ import annotations
@@ -23,7 +30,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .atomic import atomic_write
-from .errors import FileFormatError
+from .errors import FileFormatError, InputError
+from .modes import Mode, make_mode
 from .points import Frame
 from .table import Level, Table
 
@@ -42,6 +50,13 @@ def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
            "facet_interior_order": table.facet_interior_order}
     if ac.frame is not None:
         out["frame_origin"], out["frame_basis"] = ac.frame.origin, ac.frame.basis
+    if ac.weights is not None:
+        out["weights"] = ac.weights
+    if ac.mode.active:
+        out.update(mode_density=np.array(ac.mode.density or 0),
+                   mode_combine=np.array(ac.mode.combine),
+                   mode_anisotropy=np.array(ac.mode.anisotropy),
+                   mode_normals=np.array(ac.mode.normals))
     out.update(_derived_arrays(ac))
     for k, level in enumerate(table.levels):
         out[f"simplices_{k}"] = level.simplices
@@ -70,7 +85,8 @@ def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], path: Path) -> No
 
     alphas = a["sig_alphas"]
     s, dim = len(alphas), ac.dim
-    _check(alphas.ndim == 1 and s > 0 and alphas[0] == 0.0
+    first = 0.0 if ac.weights is None else float(ac._table.levels[0].enter.min())
+    _check(alphas.ndim == 1 and s > 0 and alphas[0] == first
            and bool(np.all(alphas[1:] > alphas[:-1])), path, "sig_alphas")
     for name, shape in (("sig_betti", (s, dim)), ("sig_solid", (s,)), ("sig_measure", (s,)),
                         ("sig_boundary", (s,))):
@@ -90,6 +106,18 @@ def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], path: Path) -> No
         if isinstance(arr, np.ndarray):
             arr.flags.writeable = False
     ac._adopt(topology, signatures)
+
+
+def _mode(a: dict[str, np.ndarray], path: Path) -> Mode:
+    """The mode saved with a table (classic when none was)."""
+    if "mode_density" not in a:
+        return Mode()
+    try:
+        density = int(a["mode_density"])
+        return make_mode(density or None, str(a["mode_combine"]), float(a["mode_anisotropy"]),
+                         str(a["mode_normals"]) == "given")
+    except (InputError, TypeError, ValueError):
+        raise FileFormatError(f"{path}: not a valid Alpha Scoop table (mode)") from None
 
 
 def save(ac: AlphaComplex, path: str | os.PathLike) -> None:
@@ -153,7 +181,11 @@ def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
         _check(order.shape == (n_facets,) and (n_facets == 0 or (order.min() >= 0
                and order.max() < n_facets)), path, "facet_interior_order")
         table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"], order)
-        ac = cls(points, a["input_index"], table, frame, int(a["ambient_dim"]))
+        weights = a.get("weights")
+        _check(weights is None or (weights.shape == (len(points),)
+                                   and weights.dtype == np.float64), path, "weights")
+        ac = cls(points, a["input_index"], table, frame, int(a["ambient_dim"]), _mode(a, path),
+                 weights)
         if "sig_alphas" in a:
             _adopt_derived(ac, a, path)
         return ac

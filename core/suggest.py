@@ -23,6 +23,21 @@ class AlphaRange:
     betti: tuple[int, ...]
     log_span: float
 
+    @property
+    def alpha2(self) -> float:
+        """`alpha` squared (the squared-radius unit of weighted complexes and gudhi)."""
+        return self.alpha * self.alpha
+
+    @property
+    def low2(self) -> float:
+        """`low` squared."""
+        return self.low * self.low
+
+    @property
+    def high2(self) -> float:
+        """`high` squared."""
+        return self.high * self.high
+
 
 def cover_alpha(cells: np.ndarray, cell_enter: np.ndarray, n_points: int) -> float:
     """Smallest alpha at which every point that belongs to some cell is in a cell of the complex.

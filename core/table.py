@@ -5,6 +5,11 @@ Rules (DESIGN.md §1, CGAL's GENERAL mode): a cell enters at its circumradius; a
 at its smallest circumradius unless attached (a cofacet's vertex strictly inside that sphere),
 then with its first cofacet; regular = smallest enter among cofacets; interior = largest enter
 among the cells around it, inf on the convex hull. Each level is returned sorted by enter.
+
+Weighted points (weights = squared radii) use the same rules with orthogonal spheres and power
+distance (core.power); their values are signed radii sign(p) * sqrt(|p|) of the powers p, so
+every comparison is the same as on powers, and vertices enter at -sqrt(w) (or, attached, with
+their first edge).
 """
 
 from __future__ import annotations
@@ -16,6 +21,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from .geometry import CHUNK, any_point_inside, cell_spheres, circumspheres, facet_radii2
+from .power import (
+    any_point_below,
+    cell_orthospheres,
+    edge_powers,
+    orthospheres,
+    signed_sqrt,
+    triangle_powers,
+)
 
 Progress = Callable[[float, str], None]
 
@@ -60,7 +73,8 @@ def _remap(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
 
 
 def argsort_radii(values: np.ndarray) -> np.ndarray:
-    """Stable argsort of (n,) non-negative float64 values (inf allowed), n < 2**32.
+    """Stable argsort of (n,) float64 values (inf allowed; negative ones for weighted
+    tables), n < 2**32.
 
     np.sort of (float32 key, index) packed in a uint64 is several times faster than
     np.argsort here; float32 rounding is monotone, so a stable pass over the nearly sorted
@@ -71,7 +85,10 @@ def argsort_radii(values: np.ndarray) -> np.ndarray:
         return np.argsort(values, kind="stable")
     with np.errstate(over="ignore"):  # beyond float32's range: inf keys, order fixed below
         key = values.astype(np.float32)
-    packed = key.view(np.uint32).astype(np.uint64) << np.uint64(32)
+    bits = key.view(np.uint32)
+    if n and values.min() < 0:  # IEEE order as unsigned: flip negatives, set positives' sign
+        bits = np.where(key < 0, ~bits, bits | np.uint32(0x80000000))
+    packed = bits.astype(np.uint64) << np.uint64(32)
     del key
     packed |= np.arange(n, dtype=np.uint64)
     packed.sort()
@@ -94,7 +111,7 @@ def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> N
     ids = np.flatnonzero(flat)
     while len(ids):
         around = neighbors[ids]
-        later = np.where(around >= 0, enter[np.maximum(around, 0)], 0.0).max(axis=1)
+        later = np.where(around >= 0, enter[np.maximum(around, 0)], -np.inf).max(axis=1)
         grow = later > enter[ids]
         if not grow.any():
             return
@@ -102,11 +119,16 @@ def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> N
         ids = ids[grow]
 
 
-def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray):
+def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
+           weights: np.ndarray | None = None):
     """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
     cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas."""
-    r2, det, flat, bits = cell_spheres(points, cells)
-    enter = np.sqrt(r2)
+    if weights is None:
+        r2, det, flat, bits = cell_spheres(points, cells)
+        enter = np.sqrt(r2)
+    else:
+        power, det, flat, bits = cell_orthospheres(points, weights, cells)
+        enter = signed_sqrt(power)
     measure = np.abs(det) / math.factorial(points.shape[1])
     if flat.any():
         det[flat] = 0.0  # orientation unknown: the facets use the other side or the hull
@@ -131,8 +153,31 @@ def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
     return np.einsum("nd,nd->n", normal, to_centre) > 0
 
 
+def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarray | None):
+    """Facet values (radii, or signed radii of powers), (3D) attach bits of their edges, and
+    the global attachment test for the listed facets."""
+    if weights is None:
+        r2, obtuse = facet_radii2(points, simplices)
+
+        def global_test(ids: np.ndarray) -> np.ndarray:
+            offsets, _, _, _ = circumspheres(points, simplices[ids])
+            centres = points[simplices[ids, 0]] + offsets
+            return any_point_inside(points, centres, r2[ids])
+        return np.sqrt(r2), obtuse, global_test
+    if simplices.shape[1] == 2:
+        power, obtuse = edge_powers(points, weights, simplices)[0], None
+    else:
+        power, obtuse = triangle_powers(points, weights, simplices)
+
+    def power_test(ids: np.ndarray) -> np.ndarray:
+        offsets, _, _, _ = orthospheres(points, weights, simplices[ids])
+        centres = points[simplices[ids, 0]] + offsets
+        return any_point_below(points, weights, centres, power[ids])
+    return signed_sqrt(power), obtuse, power_test
+
+
 def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray,
-            bits: np.ndarray):
+            bits: np.ndarray, weights: np.ndarray | None = None):
     """Level d-1 from the cells' neighbour table: each shared facet taken once."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
@@ -144,22 +189,20 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     has1 = np.flatnonzero(t1 >= 0)
     j1 = np.argmax(neighbors[t1[has1]] == t0[has1, None], axis=1)
 
-    r2, obtuse = facet_radii2(points, simplices)
+    radius, obtuse, global_test = _facet_spheres(points, simplices, weights)
     attached = ((bits[t0] >> i0) & 1).astype(bool)
     attached[has1] |= ((bits[t1[has1]] >> j1) & 1).astype(bool)
     near_flat = det[t0] == 0
     near_flat[has1] |= det[t1[has1]] == 0
     if near_flat.any():
         ids = np.flatnonzero(near_flat)
-        offsets, _, _, _ = circumspheres(points, simplices[ids])
-        centres = points[simplices[ids, 0]] + offsets
-        attached[ids] |= any_point_inside(points, centres, r2[ids])
+        attached[ids] |= global_test(ids)
     e0 = cells.enter[t0]
     e1 = np.full(len(t0), np.inf)
     e1[has1] = cells.enter[t1[has1]]
     regular = np.minimum(e0, e1)
     interior = np.maximum(e0, e1)
-    enter = np.where(attached, regular, np.minimum(np.sqrt(r2), regular))
+    enter = np.where(attached, regular, np.minimum(radius, regular))
 
     flip = (i0 % 2 == 1) ^ (det[t0] < 0)
     better = np.abs(det[t1[has1]]) > np.abs(det[t0[has1]])
@@ -210,7 +253,7 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
 
 
 def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
-           bits: np.ndarray) -> Level:
+           bits: np.ndarray, weights: np.ndarray | None = None) -> Level:
     """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values.
 
     `bits` (bit j: vertex j attaches the opposite edge) come from facet_radii2; edges of
@@ -248,10 +291,16 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     edge_keys = keys[starts]
     del keys, tri_ids, inside
     a, b = np.divmod(edge_keys, m)
-    half = 0.5 * np.sqrt(((points[b] - points[a]) ** 2).sum(axis=1))
-    if len(check):
-        centres = 0.5 * (points[a[check]] + points[b[check]])
-        attached[check] |= any_point_inside(points, centres, half[check] ** 2)
+    if weights is None:
+        half = 0.5 * np.sqrt(((points[b] - points[a]) ** 2).sum(axis=1))
+        if len(check):
+            centres = 0.5 * (points[a[check]] + points[b[check]])
+            attached[check] |= any_point_inside(points, centres, half[check] ** 2)
+    else:
+        power, centres, _ = edge_powers(points, weights, np.stack((a, b), axis=1))
+        half = signed_sqrt(power)
+        if len(check):
+            attached[check] |= any_point_below(points, weights, centres[check], power[check])
     enter = np.where(attached, regular, np.minimum(half, regular))
     level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
     inverse = _sort_by_enter(level)
@@ -259,8 +308,10 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     return level
 
 
-def _vertices(n_points: int, edges: Level) -> Level:
-    """Level 0: vertices enter at 0; regular/interior aggregated over their edges."""
+def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
+              weights: np.ndarray | None = None) -> Level:
+    """Level 0: vertices enter at 0 (weighted: at -sqrt(w), or with their first edge when
+    a neighbour has negative power to their sphere); regular/interior over their edges."""
     regular = np.full(n_points, np.inf)
     interior = np.full(n_points, -np.inf)
     for col in (0, 1):
@@ -268,28 +319,39 @@ def _vertices(n_points: int, edges: Level) -> Level:
         np.maximum.at(interior, edges.simplices[:, col], edges.interior)
     edges.face_ids = edges.simplices[:, ::-1].copy()
     simplices = np.arange(n_points, dtype=np.int32)[:, None]
-    return Level(simplices, np.zeros(n_points), regular, interior)
+    if weights is None:
+        return Level(simplices, np.zeros(n_points), regular, interior)
+    bits = edge_powers(points, weights, edges.simplices)[2]
+    attached = np.zeros(n_points, dtype=bool)
+    attached[edges.simplices[(bits & 2) != 0, 0]] = True  # vertex 1 below vertex 0's power
+    attached[edges.simplices[(bits & 1) != 0, 1]] = True
+    enter = np.where(attached, regular, np.minimum(signed_sqrt(-weights), regular))
+    return Level(simplices, enter, regular, interior)
 
 
 def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
-                progress: Progress | None = None) -> Table:
-    """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled)."""
+                progress: Progress | None = None, weights: np.ndarray | None = None) -> Table:
+    """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled).
+
+    With (m,) `weights` (squared radii >= 0, same scale), the cells are the regular
+    triangulation's and the values signed radii of powers (module docstring)."""
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
 
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
-    top, neighbors, det, bits, measure = _cells(points, cells, neighbors)
+    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights)
     step(0.2, "facets")
-    facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits)
+    facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
+                                                           weights)
     del neighbors
     levels = [facets, top]
     if d == 3:
         step(0.55, "edges")
-        levels.insert(0, _edges(points, facets, near_flat, obtuse))
+        levels.insert(0, _edges(points, facets, near_flat, obtuse, weights))
     step(0.9, "vertices")
-    levels.insert(0, _vertices(len(points), levels[0]))
+    levels.insert(0, _vertices(len(points), levels[0], points, weights))
     by_interior = argsort_radii(facets.interior).astype(np.int32)
     step(1.0, "done")
     return Table(levels, facet_cells, flip, measure, by_interior)

@@ -22,6 +22,10 @@ ILL_CONDITIONED_RTOL = 1e-5
 #: squared distances involved: cospherical points of lattices and scans count as on the sphere.
 ON_SPHERE_RTOL = 1e-13
 
+#: A facet of the lifted points' hull is a cell of the regular triangulation when its unit
+#: outward normal points down by more than this (vertical facets are not cells).
+LOWER_FACET_COS = 1e-12
+
 #: Largest |coordinate| accepted per dimension: squared distances of points this far apart,
 #: and areas (2D) or volumes (3D) of their cells, stay finite in float64 with room to spare.
 MAX_COORDINATE = {2: 1e150, 3: 1e100}

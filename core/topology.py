@@ -63,7 +63,7 @@ def build_topology(ac) -> Topology:
     enter = [np.asarray(ac.intervals(k)[:, 0], dtype=np.float64) for k in range(dim + 1)]
     facet_cells = np.asarray(ac.facet_cells(), dtype=np.int64)
     edges = np.asarray(ac.simplices(1), dtype=np.int64)
-    vertex_forest, _, _ = spanning_forest(len(enter[0]), edges[:, 0], edges[:, 1], enter[1])
+    vertex_forest = vertex_spanning_forest(len(enter[0]), edges, enter[1])[0]
     dual_values, dual_edges = dual_forest(facet_cells, enter[dim - 1], len(enter[dim]))
     return Topology(
         dim=dim,
@@ -74,6 +74,19 @@ def build_topology(ac) -> Topology:
         dual_edges=_frozen(dual_edges),
         solid_forest=_frozen(solid_forest(facet_cells, enter[dim])),
     )
+
+
+def vertex_spanning_forest(n_vertices: int, edges: np.ndarray, edge_enter: np.ndarray):
+    """(enter, a, b) of the edges that join components, by entry: (f,) float64, (f,) int64.
+
+    Edges are (n_e, 2) int64 sorted by their (n_e,) enter values; values <= 0 (weighted
+    complexes) go through their ranks, as the spanning forest takes positive weights only.
+    """
+    if len(edge_enter) == 0 or edge_enter[0] > 0:
+        return spanning_forest(n_vertices, edges[:, 0], edges[:, 1], edge_enter)
+    ranks, a, b = spanning_forest(n_vertices, edges[:, 0], edges[:, 1],
+                                  np.arange(1.0, len(edge_enter) + 1.0))
+    return edge_enter[ranks.astype(np.int64) - 1], a, b
 
 
 def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) -> tuple:

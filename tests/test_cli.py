@@ -57,8 +57,9 @@ def test_info_duplicates_and_columns(capsys):
     code, out, _ = run(capsys, "info", DATA / "plane_flat.laz", "--json", "--alpha", "0.02")
     assert code == 0 and json.loads(out)["load"]["n_duplicates"] == 9850
     code, out, _ = run(capsys, "info", DATA / "us_airports.csv", "--json", "--alpha", "1",
-                       "--columns", "latitude,longitude")
+                       "--columns", "5,6")  # by index: plain numbers, latitude first
     assert code == 0 and json.loads(out)["load"]["bbox"][0][0] == pytest.approx(7.36722)
+    assert json.loads(out)["load"]["georef"] is None
 
 
 @needs_data
@@ -78,12 +79,14 @@ def test_export_manifold_ply_with_sidecar(capsys, tmp_path):
 @needs_data
 def test_export_geojson_area_and_optimal_k(capsys, tmp_path):
     import shapely
+    from pyproj import Geod
 
     code, _, _ = run(capsys, "export", DATA / "us_airports.csv", "-o", tmp_path / "a.geojson",
-                     "--alpha", "1.5")
+                     "--alpha", "150000")  # metres: longitude/latitude are projected
     doc = json.loads((tmp_path / "a.geojson").read_text())
     geom = shapely.geometry.shape(doc["features"][0]["geometry"])
-    assert code == 0 and geom.area == pytest.approx(doc["features"][0]["properties"]["area"])
+    area = abs(Geod(ellps="WGS84").geometry_area_perimeter(geom)[0])
+    assert code == 0 and area == pytest.approx(doc["features"][0]["properties"]["area_m2"])
     code, out, _ = run(capsys, "export", DATA / "us_airports.csv", "-o", tmp_path / "a.wkt",
                        "--optimal", "20")
     assert code == 0 and "WKT" in out

@@ -149,8 +149,9 @@ def test_polygon_area_equals_measure(seed, alpha):
 def test_airports_geojson(tmp_path):
     from core.io import read_points
 
-    ac = AlphaComplex.from_points(read_points(DATA / "us_airports.csv").points)
-    report = write_shape(ac, 2.0, tmp_path / "airports.geojson")
+    ac = AlphaComplex.from_points(read_points(DATA / "us_airports.csv").points)  # metres
+    report = write_shape(ac, 150_000.0, tmp_path / "airports.geojson")  # no georef: metres
     geom = shapely.geometry.shape(json.loads(Path(report.path).read_text())
                                   ["features"][0]["geometry"])
-    assert geom.is_valid and geom.area == pytest.approx(ac.shape(2.0).measure, rel=1e-9)
+    measure = ac.shape(150_000.0).measure
+    assert geom.is_valid and measure > 0 and geom.area == pytest.approx(measure, rel=1e-9)

@@ -89,6 +89,14 @@ def test_text_round_trip(tmp_path, cloud, normals, name):
     path = tmp_path / name
     path.write_text(header + "\n".join(rows) + "\n")
     ps = read_points(path)
+    if kind == "lonlat":  # a 2D footprint in metres (pyproj, the CRS the reader chose)
+        from pyproj import Transformer
+
+        to_crs = Transformer.from_crs("EPSG:4326", ps.report.georef.crs, always_xy=True)
+        want = np.column_stack(to_crs.transform(cloud[:, 0], cloud[:, 1]))
+        np.testing.assert_allclose(ps.points, want, rtol=1e-12)
+        np.testing.assert_array_equal(ps.attributes["altitude"], cloud[:, 2])
+        return
     np.testing.assert_array_equal(ps.points, cloud)
     if "nx" in header:
         np.testing.assert_array_equal(ps.attributes["normals"], normals)
@@ -262,3 +270,14 @@ def test_gltf_vertices_read(tmp_path, ext):
         (tmp_path / "m.gltf").write_bytes(files["model.gltf"])
     ps = read_points(tmp_path / f"m{ext}")
     assert {tuple(p) for p in ps.points} == {tuple(p) for p in pts}
+
+
+@pytest.mark.parametrize("data", ["ascii", "binary"])
+def test_pcd_without_the_optional_count_line(tmp_path, cloud, data):
+    head = ("# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+            f"WIDTH {len(cloud)}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {len(cloud)}\n"
+            f"DATA {data}\n").encode()
+    body = (cloud.astype("<f4").tobytes() if data == "binary"
+            else "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in cloud.tolist()).encode())
+    (tmp_path / "p.pcd").write_bytes(head + body)
+    np.testing.assert_array_equal(read_points(tmp_path / "p.pcd").points, cloud)

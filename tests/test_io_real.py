@@ -27,7 +27,8 @@ EXPECTED = {
                         (637179.22, 849497.90, 520.51)),
     "plane_flat.laz": (28185, 18335, 3, (1423214.52, 4189096.63, 67.86),
                        (1423216.76, 4189098.60, 67.90)),
-    "us_airports.csv": (3376, 3376, 2, (-176.646, 7.36722), (145.621, 71.2854)),
+    # longitude/latitude: metres in an oblique stereographic centred on the data
+    "us_airports.csv": (3376, 3376, 2, (-1.5908049e7, -2.2061676e6), (3.5585303e6, 2.151115e7)),
 }
 
 

@@ -18,11 +18,13 @@ import numpy as np
 from core.atomic import atomic_path, atomic_write_text
 from core.errors import AlphaScoopError, FileFormatError
 from core.export.complex_vtu import write_vtu
+from core.export.geographic import geographic_metadata, write_prj
 from core.export.metadata import shape_metadata, sidecar_text
 from core.export.polygons import POLYGON_WRITERS
 from core.export.surface import SURFACE_WRITERS, manifold_meta, surface_arrays
 from core.export.table import TABLE_WRITERS
 from core.export.targets import refuse_source
+from core.georef import Georef
 
 Progress = Callable[[float, str], None]
 
@@ -60,16 +62,25 @@ class ExportReport:
     manifold: str | None = None
     sidecar: str | None = None
     metadata: dict = field(default_factory=dict)
+    crs_file: str | None = None
 
     def line(self) -> str:
-        """One-line summary for the CLI and the status bar."""
+        """One-line summary for the CLI and the status bar (units for geographic input)."""
         if self.alpha is None:
             return f"wrote {self.path} (interval table, {self.n_faces:,} simplices)"
-        parts = [f"wrote {self.path} ({self.format}, alpha {self.alpha:.6g}"]
+        metres = self.metadata.get("units") == "m"
+        parts = [f"wrote {self.path} ({self.format}, alpha {self.alpha:.6g}{' m' * metres}"]
         if self.n_faces:
             parts.append(f", {self.n_vertices:,} vertices, {self.n_faces:,} faces")
         label = next((k for k in ("volume", "area") if k in self.metadata), "measure")
-        parts.append(f", {label} {self.measure:.6g})")
+        if "area_m2" in self.metadata:  # geographic 2D: measured on the ellipsoid
+            parts.append(f", area {self.metadata['area_m2']:.6g} m², perimeter "
+                         f"{self.metadata['perimeter_m']:.6g} m on the WGS 84 ellipsoid)")
+        else:
+            unit = {"volume": " m³", "area": " m²"}.get(label, "") if metres else ""
+            parts.append(f", {label} {self.measure:.6g}{unit})")
+        if self.crs_file:
+            parts.append(f"; longitude/latitude, CRS in {self.crs_file}")
         if self.manifold:
             parts.append(f"; {self.manifold}")
         return "".join(parts)
@@ -130,35 +141,46 @@ def _step(progress: Progress | None, fraction: float, stage: str) -> None:
 
 def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = False,
                 sidecar: bool = False, source: str | os.PathLike | None = None,
-                progress: Progress | None = None) -> ExportReport:
+                progress: Progress | None = None, georef: Georef | None = None
+                ) -> ExportReport:
     """Write ac.shape(alpha) in the format of `path`'s extension (SHAPE_FORMATS).
 
     3D: surfaces are the outward REGULAR facets (`manifold=True` splits where the shape
     touches itself); 2D: polygon formats, or the filled triangles for surface formats.
     `sidecar=True` also writes PATH.json with the metadata. A target (or sidecar) that is
     the `source` file itself is refused with an InputError before anything is written.
+    `georef` (the load report's, for points read from longitude/latitude) puts GeoJSON, WKT
+    and CSV back in WGS 84 longitude/latitude (WKT and CSV with a PATH.prj naming the CRS)
+    and adds the projection and the ellipsoidal area and perimeter to the metadata.
     """
     path = Path(path)
     ext = _extension(path, SHAPE_FORMATS)
     refuse_source(path, source)
     if sidecar:
         refuse_source(f"{path}.json", source)
+    if georef is not None and ext in (".wkt", ".csv"):
+        refuse_source(path.with_suffix(".prj"), source)
     if ac.dim == 3 and ext in POLYGON_WRITERS:
         raise FileFormatError(f"{path}: {ext} holds 2D polygons, but this shape is 3D; "
                               f"use one of {' '.join(SURFACE_WRITERS)} .vtu")
     _step(progress, 0.0, "computing the shape")
     shape = ac.shape(alpha)
     meta = shape_metadata(ac, shape, source)
+    if georef is not None:
+        meta.update(geographic_metadata(ac, shape, georef))
     fields: dict = {}
     with _reported(path), atomic_path(path) as tmp:
         _step(progress, 0.2, f"writing {ext.lstrip('.').upper()}")
         if ext in POLYGON_WRITERS:
-            POLYGON_WRITERS[ext](tmp, ac, shape, meta)
+            POLYGON_WRITERS[ext](tmp, ac, shape, meta, georef)
         elif ext == ".vtu":
             write_vtu(tmp, ac, shape, meta)
         else:
             fields = _write_surface(tmp, ext, ac, shape, manifold, meta)
         _step(progress, 0.95, "replacing the file")
+    if georef is not None and ext in (".wkt", ".csv"):
+        with _reported(path.with_suffix(".prj")):
+            fields["crs_file"] = str(write_prj(path))
     side = None
     if sidecar:
         side = str(path) + ".json"

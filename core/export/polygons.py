@@ -9,6 +9,7 @@ import numpy as np
 import shapely
 
 from core.export.csvrows import format_rows, write_rows
+from core.export.geographic import rfc7946, to_lonlat
 from core.export.metadata import sidecar_text
 from core.export.rings import ring_order, successors
 
@@ -59,7 +60,7 @@ def _hole_owners(shells: list, holes: list) -> np.ndarray:
     return owner
 
 
-def _singular_lines(ac, shape) -> shapely.MultiLineString:
+def singular_lines(ac, shape) -> shapely.MultiLineString:
     """SINGULAR edges (dangling, in no triangle) as line segments."""
     edges = np.asarray(shape.singular(1), dtype=np.int64).reshape(-1, 2)
     if len(edges) == 0:
@@ -67,38 +68,54 @@ def _singular_lines(ac, shape) -> shapely.MultiLineString:
     return shapely.multilinestrings(shapely.linestrings(np.asarray(ac.points)[edges]))
 
 
-def write_geojson(path: Path, ac, shape, meta: dict) -> None:
-    """FeatureCollection: the polygons (properties = metadata) and any singular edges."""
+def _user_coordinates(ac, geometry, georef):
+    """`geometry` as the user gave the points: longitude/latitude for geographic input."""
+    return geometry if georef is None else to_lonlat(ac, georef, geometry)
+
+
+def write_geojson(path: Path, ac, shape, meta: dict, georef=None) -> None:
+    """FeatureCollection: the polygons (properties = metadata) and any singular edges.
+
+    Geographic input (`georef`, a core.georef.Georef) is written in WGS 84 longitude/latitude
+    as RFC 7946 requires: shells counter-clockwise, cut at the antimeridian.
+    """
+    polygons = rfc7946(_user_coordinates(ac, shape_polygons(ac, shape), georef))
     features = [{"type": "Feature", "properties": {"role": "shape", **meta},
-                 "geometry": json.loads(shapely.to_geojson(shape_polygons(ac, shape)))}]
-    lines = _singular_lines(ac, shape)
+                 "geometry": json.loads(shapely.to_geojson(polygons))}]
+    lines = _user_coordinates(ac, singular_lines(ac, shape), georef)
     if not lines.is_empty:
         features.append({"type": "Feature", "properties": {"role": "singular_edges"},
                          "geometry": json.loads(shapely.to_geojson(lines))})
     path.write_text(sidecar_text({"type": "FeatureCollection", "features": features}))
 
 
-def write_wkt(path: Path, ac, shape, meta: dict) -> None:
-    """Well-known text of the MultiPolygon, at full precision."""
-    path.write_text(shapely.to_wkt(shape_polygons(ac, shape), rounding_precision=-1) + "\n")
+def write_wkt(path: Path, ac, shape, meta: dict, georef=None) -> None:
+    """Well-known text of the MultiPolygon, at full precision (longitude/latitude when
+    `georef` is given; write_shape names the CRS in a .prj file beside it)."""
+    geom = _user_coordinates(ac, shape_polygons(ac, shape), georef)
+    path.write_text(shapely.to_wkt(geom, rounding_precision=-1) + "\n")
 
 
-def write_rings_csv(path: Path, ac, shape, meta: dict) -> None:
-    """One row per ring vertex: polygon, ring (0 = shell), role, vertex, x, y."""
-    polygons = shapely.get_parts(shape_polygons(ac, shape))
+def write_rings_csv(path: Path, ac, shape, meta: dict, georef=None) -> None:
+    """One row per ring vertex: polygon, ring (0 = shell), role, vertex, x, y (lon, lat for
+    geographic input)."""
+    geom = _user_coordinates(ac, shape_polygons(ac, shape), georef)
+    polygons = shapely.get_parts(geom)
     rings, polygon = shapely.get_rings(polygons, return_index=True)  # shell first, then holes
     coords, ring = shapely.get_coordinates(rings, return_index=True)
     ring_no = np.arange(len(rings)) - np.searchsorted(polygon, polygon)
     vertex = np.arange(len(coords)) - np.searchsorted(ring, ring)
     role = np.where(ring_no[ring] == 0, "shell", "hole")
     with open(path, "w", encoding="utf-8", newline="\n") as fh:
-        fh.write("polygon,ring,role,vertex,x,y\n")
+        fh.write("polygon,ring,role,vertex,x,y\n" if georef is None
+                 else "polygon,ring,role,vertex,lon,lat\n")
         write_rows(fh, "%d,%d,%s,%d,%r,%r\n",
                    [polygon[ring], ring_no[ring], role, vertex, coords[:, 0], coords[:, 1]])
 
 
-def write_svg(path: Path, ac, shape, meta: dict) -> None:
-    """An SVG figure: filled polygons (even-odd holes), singular edges as thin lines."""
+def write_svg(path: Path, ac, shape, meta: dict, georef=None) -> None:
+    """An SVG figure: filled polygons (even-odd holes), singular edges as thin lines; always
+    in the complex's coordinates (metres in the projection for geographic input)."""
     geom = shape_polygons(ac, shape)
     lo, hi = np.min(ac.points, axis=0), np.max(ac.points, axis=0)
     size = float(np.max(hi - lo)) or 1.0
@@ -110,7 +127,7 @@ def write_svg(path: Path, ac, shape, meta: dict) -> None:
 
     paths = [" ".join(f"M {pts(r.coords)} Z" for r in [p.exterior, *p.interiors])
              for p in geom.geoms]
-    lines = [f"M {pts(line.coords)}" for line in _singular_lines(ac, shape).geoms]
+    lines = [f"M {pts(line.coords)}" for line in singular_lines(ac, shape).geoms]
     box = (lo[0] - pad, -hi[1] - pad, hi[0] - lo[0] + 2 * pad, hi[1] - lo[1] + 2 * pad)
     view = " ".join(repr(float(v)) for v in box)
     title = f"alpha shape, alpha={meta['alpha']:.6g}, area={meta.get('area', 0.0):.6g}"

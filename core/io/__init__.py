@@ -10,6 +10,9 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
+from core.georef import Georef
+from core.io.columns import parse_columns
+from core.io.geographic import geographic_points
 from core.io.las import read_las
 from core.io.mesh import read_mesh
 from core.io.npy import read_npy
@@ -17,7 +20,7 @@ from core.io.pcd import read_pcd
 from core.io.ply import read_ply
 from core.io.report import LoadReport, PointSet, finish
 from core.io.subsample import SUBSAMPLE_METHODS
-from core.io.text import read_text
+from core.io.text import read_text, read_text_columns
 
 __all__ = ["READ_FORMATS", "SUBSAMPLE_METHODS", "LoadReport", "PointSet", "read_points"]
 
@@ -86,12 +89,12 @@ def read_points(
     ext = _check_file(path)
     with np.errstate(all="ignore"), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        points, attrs, notes = _read(path, ext, columns)
+        points, attrs, notes, georef = _read(path, ext, columns)
         if points.ndim != 2 or points.shape[1] not in (2, 3):
             raise FileFormatError(f"{path}: points must have 2 or 3 coordinates, "
                                   f"got shape {points.shape}")
         ps = finish(path, _format_name(ext), points, attrs, subsample=subsample,
-                    method=subsample_method, seed=seed,
+                    method=subsample_method, seed=seed, georef=georef,
                     notes=tuple(notes) + _warning_notes(caught))
     if len(ps.points) == 0:
         raise FileFormatError(f"{path}: no finite points ({ps.report.n_read:,} rows read)")
@@ -105,10 +108,29 @@ def _warning_notes(caught: list[warnings.WarningMessage]) -> tuple[str, ...]:
     return tuple(f"reader warning: {m}" for m in list(seen)[:3])
 
 
-def _read(path: Path, ext: str, columns) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
-    """The format's reader, with every failure as a FileFormatError naming the file."""
+def _read(path: Path, ext: str, columns) -> tuple[np.ndarray, dict[str, np.ndarray], tuple,
+                                                  Georef | None]:
+    """(points, attributes, notes, georef): named longitude/latitude columns of text files
+    projected to metres (core.io.geographic), the other formats' points as they are."""
+    if READERS[ext] is read_text:
+        points, attrs, notes, names = _reported(path, ext, read_text_columns, columns)
+        if names is None or _by_index(columns):
+            return points, attrs, notes, None
+        points, attrs, more, georef = geographic_points(points, attrs, names,
+                                                        explicit=columns is not None)
+        return points, attrs, tuple(notes) + more, georef
+    return (*_reported(path, ext, READERS[ext], columns), None)
+
+
+def _by_index(columns) -> bool:
+    """True when `columns` picks every column by its index (plain numbers, never projected)."""
+    return columns is not None and all(isinstance(c, int) for c in parse_columns(columns))
+
+
+def _reported(path: Path, ext: str, reader, columns) -> tuple:
+    """reader(path, columns), with every failure as a FileFormatError naming the file."""
     try:
-        return READERS[ext](path, columns)
+        return reader(path, columns)
     except MemoryError:
         raise FileFormatError(f"{path}: too large to read into memory") from None
     except (OSError, UnicodeDecodeError) as exc:

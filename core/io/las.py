@@ -10,6 +10,8 @@ import numpy as np
 from core.errors import FileFormatError
 from core.io.las_checks import MAX_LAZ_RATIO, check_las_file
 
+BOUNDS_RTOL = 0.01  # points beyond the header's box by this fraction of its size are reported
+
 
 def _open(path: Path):
     """laspy reader object; errors become format errors naming the file."""
@@ -60,4 +62,43 @@ def read_las(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
     if colors is not None:
         attrs["colors"] = colors
     version = f"LAS {las.header.version}, point format {las.header.point_format.id}"
-    return points.astype(np.float64), attrs, (version,)
+    points = points.astype(np.float64)
+    notes = (version, *outside_bounds(points, las.header), *crs_mismatch(points, las.header))
+    return points, attrs, notes
+
+
+def outside_bounds(points: np.ndarray, header) -> tuple[str, ...]:
+    """A warning when points lie well outside the header's declared bounding box.
+
+    The file's problem (a corrupt record, scale or offset), not ours: the points are kept,
+    and the report says so. Header boxes left at zero by some writers are not checked.
+    """
+    lo, hi = np.asarray(header.mins, dtype=np.float64), np.asarray(header.maxs, dtype=np.float64)
+    if not (np.isfinite(lo).all() and np.isfinite(hi).all()) or not (lo.any() or hi.any()):
+        return ()
+    tol = np.maximum(BOUNDS_RTOL * (hi - lo), 2.0 * np.abs(np.asarray(header.scales)))
+    with np.errstate(invalid="ignore"):
+        below, above = lo - tol - points, points - hi - tol
+    out = np.nanmax(np.maximum(below, above), axis=1, initial=0.0) > 0
+    if not out.any():
+        return ()
+    far = float(np.nanmax(np.maximum(below, above)[out]))
+    return (f"warning: {int(out.sum()):,} points lie outside the header's bounding box "
+            f"(by up to {far:.6g}): corrupt records, scale or offset?",)
+
+
+def crs_mismatch(points: np.ndarray, header) -> tuple[str, ...]:
+    """A warning when the file declares a geographic CRS but holds coordinates that cannot
+    be degrees (a wrong CRS record; the coordinates are read as they are)."""
+    try:
+        crs = header.parse_crs()
+    except Exception:  # pyproj or laspy refusing a malformed CRS record
+        return ("warning: the CRS record cannot be parsed",)
+    if crs is None or not crs.is_geographic:
+        return ()
+    with np.errstate(invalid="ignore"):
+        big = np.nanmax(np.abs(points[:, :2]), axis=0, initial=0.0)
+    if big[0] <= 360.0 and big[1] <= 90.0:
+        return ()
+    return (f"warning: the file declares the geographic CRS {crs.name!r} (degrees) but its x, y "
+            f"reach {max(big):,.6g}: not degrees; read as plain coordinates",)

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import io
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -23,8 +25,9 @@ MAX_LZF_RATIO = 200  # a compressed body claiming more than this expansion is bo
 HEADER_LINES = 20
 
 
-def _check_size(path: Path) -> None:
-    """Refuse headers whose POINTS x row size the body cannot hold (before any allocation)."""
+def _check_size(path: Path) -> dict[str, list[str]]:
+    """Refuse headers whose POINTS x row size the body cannot hold (before any allocation);
+    returns the header's fields (upper-case keyword -> words)."""
     fields: dict[str, list[str]] = {}
     with open(path, "rb") as fh:
         for _ in range(HEADER_LINES):
@@ -45,13 +48,26 @@ def _check_size(path: Path) -> None:
     if n * row > limit or n < 0:
         raise FileFormatError(f"{path}: truncated PCD (header claims {n:,} points, "
                               f"the file holds {body:,} bytes of data)")
+    return fields
 
 
-def _load(path: Path):
+def _with_count(path: Path, n_fields: int) -> io.BytesIO:
+    """The file with the optional COUNT line (1 per field) that pypcd4 requires added."""
+    data = path.read_bytes()
+    count = b"COUNT " + b" ".join([b"1"] * n_fields) + b"\n"
+    match = re.search(rb"^SIZE[^\n]*\n", data, re.M)
+    if match is None:
+        raise FileFormatError(f"{path}: bad PCD header (no SIZE line)")
+    return io.BytesIO(data[: match.end()] + count + data[match.end() :])
+
+
+def _load(path: Path, fields: dict[str, list[str]]):
     """pypcd4's PointCloud, with any parser failure as a format error naming the file."""
     from pypcd4 import PointCloud
 
     try:
+        if "COUNT" not in fields:
+            return PointCloud.from_fileobj(_with_count(path, len(fields["SIZE"])))
         return PointCloud.from_path(path)
     except Exception as exc:  # pypcd4 raises many types (ValueError, struct.error, lzf...)
         raise FileFormatError(f"{path}: unreadable PCD ({type(exc).__name__}: {exc})") from None
@@ -59,8 +75,7 @@ def _load(path: Path):
 
 def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, 3) xyz and normals/colours/intensity when the PCD has those fields."""
-    _check_size(path)
-    cloud = _load(path)
+    cloud = _load(path, _check_size(path))
     fields = tuple(cloud.fields)
     if not {"x", "y"}.issubset(fields):
         raise FileFormatError(f"{path}: PCD has no x/y fields ({', '.join(fields)})")

@@ -1,4 +1,5 @@
-"""PLY (ascii and binary) vertices via plyfile's header parser; only the vertex element is read."""
+"""PLY (ascii and binary) vertices: our own header parser; only the vertex element is read,
+its scalar properties as coordinates and attributes (list properties are skipped)."""
 
 from __future__ import annotations
 
@@ -7,9 +8,10 @@ import os
 from pathlib import Path
 
 import numpy as np
-import plyfile
 
 from core.errors import FileFormatError
+from core.io.ply_body import read_ascii_rows, read_binary
+from core.io.ply_header import Element, Header, parse_header
 
 NORMAL_NAMES = ("nx", "ny", "nz")
 WEIGHT_NAMES = ("weight", "weights")
@@ -17,79 +19,61 @@ COLOR_NAMES = (("red", "green", "blue"), ("r", "g", "b"), ("diffuse_red", "diffu
                                                            "diffuse_blue"))
 
 
-def _header(fh, path: Path) -> plyfile.PlyData:
-    """The parsed header (elements, format, comments); the stream is left at the body."""
-    try:
-        return plyfile.PlyData._parse_header(fh)
-    except (plyfile.PlyParseError, ValueError, UnicodeDecodeError) as exc:
-        raise FileFormatError(f"{path}: bad PLY header ({exc})") from None
-
-
-def _has_lists(element: plyfile.PlyElement) -> bool:
-    """True when the element has variable-length list properties."""
-    return any(isinstance(p, plyfile.PlyListProperty) for p in element.properties)
-
-
-def _check_size(header: plyfile.PlyData, body: int, path: Path) -> None:
+def _check_size(header: Header, body: int, path: Path) -> None:
     """Refuse element counts the file is too small to hold (bogus or truncated headers)."""
     need = 0
     for el in header.elements:
         if header.text:
-            row = sum(1 if isinstance(p, plyfile.PlyListProperty) else 2 for p in el.properties)
+            row = sum(1 if p.count is not None else 2 for p in el.properties)
         else:
-            row = el.dtype(header.byte_order).itemsize if not _has_lists(el) else 1
-        need += el.count * max(row, 1)
+            row = sum((p.count or p.dtype).itemsize for p in el.properties)
+        need += el.n * max(row, 1)
     if need > body:
         raise FileFormatError(f"{path}: truncated PLY (header promises more data than the "
                               f"{body:,} bytes after it)")
 
 
-def _vertex_table(fh, header: plyfile.PlyData, path: Path) -> np.ndarray:
-    """Structured array of the vertex element, skipping whatever comes before it."""
+def _vertex_table(fh, header: Header, path: Path) -> np.ndarray:
+    """Structured array of the vertex element's scalar properties (lists skipped)."""
     names = [el.name for el in header.elements]
     if "vertex" not in names:
         raise FileFormatError(f"{path}: PLY has no 'vertex' element")
     pos = names.index("vertex")
     before, vertex = header.elements[:pos], header.elements[pos]
-    if _has_lists(vertex) or (not header.text and any(_has_lists(e) for e in before)):
-        return _read_whole(path)["vertex"].data
     if header.text:
-        return _read_ascii(fh, vertex, sum(e.count for e in before), path)
-    fh.seek(sum(e.count * e.dtype(header.byte_order).itemsize for e in before), os.SEEK_CUR)
-    dtype = vertex.dtype(header.byte_order)
-    raw = fh.read(vertex.count * dtype.itemsize)
-    if len(raw) < vertex.count * dtype.itemsize:
-        raise FileFormatError(f"{path}: truncated PLY ({len(raw) // dtype.itemsize:,} of "
-                              f"{vertex.count:,} vertices)")
-    return np.frombuffer(raw, dtype=dtype)
+        return _read_ascii(fh, vertex, sum(e.n for e in before), path)
+    buf, at = memoryview(fh.read()), 0
+    for element in before:
+        _, at = read_binary(buf, at, element, str(path))
+    return read_binary(buf, at, vertex, str(path))[0]
 
 
-def _read_ascii(fh, vertex: plyfile.PlyElement, skip: int, path: Path) -> np.ndarray:
-    """ASCII vertex rows through numpy's C parser."""
-    dtype = vertex.dtype()
-    text = io.TextIOWrapper(fh, encoding="ascii", errors="replace")
-    try:
-        table = np.loadtxt(text, dtype=np.float64, skiprows=skip, max_rows=vertex.count,
-                           ndmin=2, usecols=range(len(vertex.properties)))
-    except ValueError as exc:
-        raise FileFormatError(f"{path}: bad PLY vertex data ({exc})") from None
-    finally:
-        text.detach()  # the caller owns and closes the binary stream
-    if len(table) < vertex.count:
+def _read_ascii(fh, vertex: Element, skip: int, path: Path) -> np.ndarray:
+    """ASCII vertex rows: numpy's C parser, or row by row when the vertex has lists."""
+    for _ in range(skip):
+        if not fh.readline():
+            break
+    if vertex.has_lists:
+        lines = [fh.readline() for _ in range(vertex.n)]
+        lines = [ln for ln in lines if ln.strip()]
+        table = read_ascii_rows(lines, vertex, str(path))
+    else:
+        text = io.TextIOWrapper(fh, encoding="ascii", errors="replace")
+        try:
+            values = np.loadtxt(text, dtype=np.float64, max_rows=vertex.n, ndmin=2,
+                                usecols=range(len(vertex.properties)))
+        except ValueError:
+            raise FileFormatError(f"{path}: bad PLY vertex data (a value is not a number or "
+                                  "a row is short)") from None
+        finally:
+            text.detach()  # the caller owns and closes the binary stream
+        table = np.empty(len(values), dtype=vertex.row_dtype())
+        for i, name in enumerate(table.dtype.names):
+            table[name] = values[:, i]
+    if len(table) < vertex.n:
         raise FileFormatError(f"{path}: truncated PLY ({len(table):,} of "
-                              f"{vertex.count:,} vertices)")
-    out = np.empty(len(table), dtype=dtype)
-    for i, name in enumerate(dtype.names):
-        out[name] = table[:, i]
-    return out
-
-
-def _read_whole(path: Path) -> plyfile.PlyData:
-    """Fallback: let plyfile read everything (vertex elements with list properties)."""
-    try:
-        return plyfile.PlyData.read(str(path))
-    except (plyfile.PlyParseError, ValueError) as exc:
-        raise FileFormatError(f"{path}: bad PLY data ({exc})") from None
+                              f"{vertex.n:,} vertices)")
+    return table
 
 
 def _attributes(table: np.ndarray) -> dict[str, np.ndarray]:
@@ -115,7 +99,7 @@ def _attributes(table: np.ndarray) -> dict[str, np.ndarray]:
 def read_ply(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, 3) or (n, 2) vertex coordinates, vertex attributes, and header comments as notes."""
     with open(path, "rb") as fh:
-        header = _header(fh, path)
+        header = parse_header(fh, str(path))
         _check_size(header, os.fstat(fh.fileno()).st_size - fh.tell(), path)
         table = _vertex_table(fh, header, path)
     names = table.dtype.names or ()
@@ -123,5 +107,5 @@ def read_ply(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
     if axes[:2] != ["x", "y"]:
         raise FileFormatError(f"{path}: PLY vertices have no x/y properties ({', '.join(names)})")
     points = np.column_stack([table[a] for a in axes]).astype(np.float64)
-    notes = tuple(f"comment {c}" for c in header.comments[:5])
+    notes = (*header.notes, *(f"comment {c}" for c in header.comments[:5]))
     return points, _attributes(table), notes

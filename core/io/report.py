@@ -10,6 +10,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from core.errors import FileFormatError
+from core.georef import Georef
 from core.io.subsample import first_unique, subsample_indices
 from core.points import first_too_large, flatness, too_large_message
 from core.tolerances import FLAT_RTOL
@@ -35,6 +36,7 @@ class LoadReport:
     subsampled_from: int | None = None
     subsample_method: str | None = None
     notes: tuple[str, ...] = ()
+    georef: Georef | None = None
 
     def to_dict(self) -> dict:
         """Plain JSON-ready dict (lists instead of tuples)."""
@@ -42,6 +44,7 @@ class LoadReport:
         out["bbox"] = [list(c) for c in self.bbox]
         out["attributes"] = list(self.attributes)
         out["notes"] = list(self.notes)
+        out["georef"] = None if self.georef is None else self.georef.to_dict()
         return out
 
     def lines(self) -> list[str]:
@@ -59,6 +62,8 @@ class LoadReport:
         ]
         if self.subsampled_from is not None:
             out.append(f"subsampled  {self.subsample_method} from {self.subsampled_from:,}")
+        if self.georef is not None:
+            out.append(f"projection  {self.georef.line()}")
         out.extend(f"note        {n}" for n in self.notes)
         return out
 
@@ -100,6 +105,17 @@ def median_spacing(points: np.ndarray, seed: int = 0) -> float:
     return float(np.median(dist[:, 1]))
 
 
+def nonfinite_attributes(attributes: dict[str, np.ndarray]) -> tuple[str, ...]:
+    """Warnings for float attributes holding NaN or infinite values (kept as they are)."""
+    out = []
+    for name, values in sorted(attributes.items()):
+        if np.issubdtype(values.dtype, np.floating) and values.size:
+            bad = int(np.count_nonzero(~np.isfinite(values).reshape(len(values), -1).all(axis=1)))
+            if bad:
+                out.append(f"warning: attribute {name!r} has {bad:,} non-finite values")
+    return tuple(out)
+
+
 def finish(
     path: Path,
     fmt: str,
@@ -110,6 +126,7 @@ def finish(
     method: str = "voxel",
     seed: int = 0,
     notes: tuple[str, ...] = (),
+    georef: Georef | None = None,
 ) -> PointSet:
     """Drop non-finite rows, merge duplicates, subsample, and measure: the common reader tail."""
     points = np.asarray(points, dtype=np.float64)
@@ -121,6 +138,7 @@ def finish(
     finite = np.all(np.isfinite(points), axis=1)
     points = points[finite]
     attributes = {k: np.asarray(v)[finite] for k, v in attributes.items()}
+    notes = tuple(notes) + nonfinite_attributes(attributes)
     keep = first_unique(points)
     n_dup = int(len(points) - keep.sum())
     points = points[keep]
@@ -147,6 +165,7 @@ def finish(
         subsampled_from=before if len(points) < before else None,
         subsample_method=method if len(points) < before else None,
         notes=notes,
+        georef=georef,
     )
     return PointSet(
         points=_readonly(points),

@@ -3,18 +3,23 @@
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass
+import itertools
+import re
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns, named_attributes, named_coordinates
+from core.io.numbers import NumberStyle, number_style
 
 SNIFF_BYTES = 1 << 16
 DELIMITERS = (",", ";", "\t", "|")
 MISSING = {"", "na", "nan", "null", "none", "n/a"}
 COMMENTS = ("#", "//", "%")
+PTS_COUNT = re.compile(r"^\s*\d+\s*$")  # a PTS scan's point count line
 
 
 @dataclass(frozen=True)
@@ -26,6 +31,8 @@ class Layout:
     skiprows: int
     n_cols: int
     first_row: list[str]
+    style: NumberStyle = field(default_factory=NumberStyle)
+    pts: bool = False
 
 
 def _split(line: str, delimiter: str | None) -> list[str]:
@@ -50,6 +57,7 @@ def _head_lines(path: Path) -> list[str]:
         head = fh.read(SNIFF_BYTES)
     if b"\0" in head:
         raise FileFormatError(f"{path}: binary content in a text point file")
+    head = head.removeprefix(b"\xef\xbb\xbf")  # a UTF-8 byte order mark is no data
     try:
         text = head.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -71,15 +79,32 @@ def _delimiter(lines: list[str]) -> str | None:
     return None
 
 
+def _uncomment(line: str) -> str:
+    """The line without a trailing '# comment'."""
+    return line.split("#", 1)[0] if "#" in line else line
+
+
+def _cells(line: str, delim: str | None) -> list[str]:
+    """Cells of one line, without trailing empty cells (a trailing delimiter or tab)."""
+    row = _split(line, delim)
+    while row and not row[-1].strip():
+        row.pop()
+    return row
+
+
 def sniff(path: Path) -> Layout:
-    """Find delimiter, header and first data row from the head of the file."""
+    """Find delimiter, header, number style and first data row from the head of the file."""
     raw = _head_lines(path)
     numbered = [(i, ln) for i, ln in enumerate(raw) if ln.strip()]
-    data = [(i, ln) for i, ln in numbered if not ln.lstrip().startswith(COMMENTS)]
+    data = [(i, _uncomment(ln)) for i, ln in numbered if not ln.lstrip().startswith(COMMENTS)]
+    data = [(i, ln) for i, ln in data if ln.strip()]
     if not data:
         raise FileFormatError(f"{path}: empty file (no data lines)")
+    style = number_style([ln for _, ln in data[:21]], str(path))
+    if not style.plain:
+        data = [(i, style.fix()(ln)) for i, ln in data]
     delim = _delimiter([ln for _, ln in data[1:21]] or [data[0][1]])
-    rows = [(i, _split(ln, delim)) for i, ln in data[:3]]
+    rows = [(i, _cells(ln, delim)) for i, ln in data[:3]]
     names, start = None, 0
     if len(rows) > 1 and len(rows[0][1]) == 1 and rows[0][1][0].strip().isdigit():
         start = 1  # PTS: a point count line before the data
@@ -90,7 +115,8 @@ def sniff(path: Path) -> Layout:
     if start >= len(rows):
         raise FileFormatError(f"{path}: header but no data rows")
     first_index, first_row = rows[start]
-    return Layout(delim, names, first_index, len(first_row), first_row)
+    return Layout(delim, names, first_index, len(first_row), first_row, style, start == 1
+                  and names is None)
 
 
 def _comment_header(numbered, first_data, delim, n_cols) -> list[str] | None:
@@ -116,27 +142,59 @@ def choose_columns(layout: Layout, columns, path: Path) -> tuple[list[int], dict
     return numeric[:3], {}
 
 
-def _read_fast(path: Path, layout: Layout, usecols: list[int]) -> np.ndarray:
+def _lines(fh: Iterable[str], layout: Layout, counts: list[int]) -> Iterator[str]:
+    """Lines from the first data row on, in plain float syntax; a PTS file's count lines are
+    appended to `counts` and replaced by blank lines (so line numbers stay right)."""
+    lines: Iterator[str] = iter(fh) if layout.pts else itertools.islice(fh, layout.skiprows, None)
+    if layout.pts:
+        lines = _without_counts(lines, counts)
+    return lines if layout.style.plain else map(layout.style.fix(), lines)
+
+
+def _without_counts(lines: Iterator[str], counts: list[int]) -> Iterator[str]:
+    """PTS: each scan starts with a line holding only its point count."""
+    for line in lines:
+        if PTS_COUNT.match(line):
+            counts.append(int(line))
+            yield "\n"
+        else:
+            yield line
+
+
+def _read_fast(path: Path, layout: Layout, usecols: list[int]) -> tuple[np.ndarray, list[int]]:
     """numpy's C parser; raises ValueError on anything unusual (missing values, ragged rows)."""
     quoted = layout.delimiter is not None  # numpy allows quotes with one comment marker only
-    return np.loadtxt(
-        path, delimiter=layout.delimiter, quotechar='"' if quoted else None,
-        skiprows=layout.skiprows, usecols=usecols, comments="#" if quoted else COMMENTS, ndmin=2,
-        dtype=np.float64, encoding="utf-8",
-    )
+    options = {"delimiter": layout.delimiter, "quotechar": '"' if quoted else None,
+               "usecols": usecols, "comments": "#" if quoted else COMMENTS, "ndmin": 2,
+               "dtype": np.float64}
+    counts: list[int] = []
+    if layout.style.plain and not layout.pts:
+        return np.loadtxt(path, skiprows=layout.skiprows, encoding="utf-8-sig", **options), counts
+    with open(path, encoding="utf-8-sig") as fh:
+        return np.loadtxt(_lines(fh, layout, counts), **options), counts
 
 
-def _read_careful(path: Path, layout: Layout, usecols: list[int]) -> np.ndarray:
+def _read_careful(path: Path, layout: Layout, usecols: list[int]) -> tuple[np.ndarray, list[int]]:
     """Line by line: missing values become NaN; a bad value is reported with its line."""
-    out = []
-    with open(path, encoding="utf-8", errors="replace") as fh:
-        for lineno, line in enumerate(fh, 1):
-            if lineno <= layout.skiprows or not line.strip():
+    out, counts = [], []
+    first = 1 if layout.pts else layout.skiprows + 1
+    with open(path, encoding="utf-8-sig", errors="replace") as fh:
+        for lineno, line in enumerate(_lines(fh, layout, counts), first):
+            if not line.strip() or line.lstrip().startswith(COMMENTS):
                 continue
-            if line.lstrip().startswith(COMMENTS):
-                continue
-            out.append(_parse_row(_split(line, layout.delimiter), usecols, path, lineno))
-    return np.array(out, dtype=np.float64).reshape(-1, len(usecols))
+            row = _split(_uncomment(line), layout.delimiter)
+            out.append(_parse_row(row, usecols, path, lineno))
+    return np.array(out, dtype=np.float64).reshape(-1, len(usecols)), counts
+
+
+def _pts_note(counts: list[int], n_rows: int) -> tuple[str, ...]:
+    """Report line for a PTS file: its scans, and any count that disagrees with the rows."""
+    if not counts:
+        return ()
+    note = f"PTS: {len(counts)} scan{'s' if len(counts) > 1 else ''}, {n_rows:,} points read"
+    if sum(counts) != n_rows:
+        note += f" (the count lines promise {sum(counts):,})"
+    return (note,)
 
 
 def _parse_row(row: list[str], usecols: list[int], path: Path, lineno: int) -> list[float]:
@@ -159,13 +217,19 @@ def _parse_row(row: list[str], usecols: list[int], path: Path, lineno: int) -> l
 
 def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, d) coordinates, attributes and notes from a delimited text file."""
+    return read_text_columns(path, columns)[:3]
+
+
+def read_text_columns(path: Path, columns=None
+                      ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, list[str] | None]:
+    """read_text's result and the coordinate columns' header names (None without a header)."""
     layout = sniff(path)
     coords, attrs = choose_columns(layout, columns, path)
     usecols = coords + [c for cols in attrs.values() for c in cols]
     try:
-        table = _read_fast(path, layout, usecols)
+        table, counts = _read_fast(path, layout, usecols)
     except ValueError:
-        table = _read_careful(path, layout, usecols)
+        table, counts = _read_careful(path, layout, usecols)
     if len(table) == 0:
         raise FileFormatError(f"{path}: no data rows")
     points, pos = table[:, : len(coords)], len(coords)
@@ -176,7 +240,9 @@ def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarra
         attributes[name] = _attribute(name, block)
     names = layout.names or [str(i + 1) for i in range(layout.n_cols)]
     note = f"coordinates from columns {', '.join(names[c] for c in coords)}"
-    return points, attributes, (note,)
+    coord_names = [layout.names[c] for c in coords] if layout.names else None
+    notes = (note, *layout.style.notes(), *_pts_note(counts, len(table)))
+    return points, attributes, notes, coord_names
 
 
 def _attribute(name: str, block: np.ndarray) -> np.ndarray:

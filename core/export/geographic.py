@@ -1,0 +1,89 @@
+"""2D shapes of geographic input, back in WGS 84 longitude/latitude, measured on the ellipsoid.
+
+GeoJSON (RFC 7946) wants longitude/latitude with counter-clockwise shells, and geometries that
+cross the antimeridian cut in two; WKT and CSV get the same coordinates with the CRS named in a
+`.prj` file beside them (the GIS convention: OGC WKT of EPSG:4326).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from core.georef import WGS84, WGS84_NAME, Georef, geodesic_area_perimeter, geodesic_length
+
+WORLD = shapely.box(-180.0, -90.0, 180.0, 90.0)
+CUT_SEGMENT_M = 1000.0  # edges crossing the antimeridian are split this finely before the cut
+
+
+def to_lonlat(ac, georef: Georef, geometry):
+    """`geometry` (complex coordinates, metres) in longitude/latitude degrees, cut at +-180.
+
+    A geometry that crosses the antimeridian is densified in metres first, so the cut (a
+    straight line in degrees) follows its edges to within centimetres.
+    """
+    def transform(xy: np.ndarray) -> np.ndarray:
+        if ac.dim < ac.ambient_dim:  # planar 3D input: back to the input's x, y first
+            xy = np.asarray(ac.to_ambient(xy))[:, :2]
+        return georef.to_lonlat(xy)
+
+    lonlat = shapely.transform(geometry, transform)
+    if lonlat.is_empty or WORLD.covers(shapely.envelope(lonlat)):
+        return lonlat
+    dense = shapely.segmentize(geometry, CUT_SEGMENT_M)
+    return cut_antimeridian(shapely.transform(dense, transform))
+
+
+def cut_antimeridian(geometry):
+    """Split a geometry whose longitudes pass +-180 into parts within [-180, 180]."""
+    if geometry.is_empty:
+        return geometry
+    lo, _, hi, _ = geometry.bounds
+    if lo >= -180.0 and hi <= 180.0:
+        return geometry
+    parts = [shapely.affinity.translate(shapely.intersection(
+        geometry, shapely.affinity.translate(WORLD, xoff=shift)), xoff=-shift)
+        for shift in (-360.0, 0.0, 360.0)]
+    parts = [p for p in parts if not p.is_empty]
+    flat = [g for p in parts for g in shapely.get_parts(p)]
+    if geometry.geom_type.endswith("Polygon"):
+        return shapely.MultiPolygon([g for g in flat if g.geom_type == "Polygon"])
+    return shapely.MultiLineString([g for g in flat if g.geom_type == "LineString"])
+
+
+def rfc7946(geometry):
+    """Counter-clockwise shells and clockwise holes, as RFC 7946 section 3.1.6 asks."""
+    return shapely.orient_polygons(geometry, exterior_cw=False)
+
+
+def geographic_metadata(ac, shape, georef: Georef) -> dict:
+    """Metadata of a geographic export: the projection (lengths in metres), and for 2D shapes
+    the area, perimeter and dangling-edge length measured on the WGS 84 ellipsoid."""
+    from core.export.polygons import shape_polygons, singular_lines
+
+    meta: dict = {"units": "m", "georef": georef.to_dict()}
+    if ac.dim == 2:
+        polygons = to_lonlat(ac, georef, shape_polygons(ac, shape))
+        area, perimeter = (0.0, 0.0) if polygons.is_empty else geodesic_area_perimeter(polygons)
+        lines = to_lonlat(ac, georef, singular_lines(ac, shape))
+        meta["area_m2"] = area
+        meta["perimeter_m"] = perimeter
+        meta["singular_length_m"] = 0.0 if lines.is_empty else geodesic_length(lines)
+    return meta
+
+
+def write_prj(path: Path) -> Path:
+    """The `.prj` file naming the CRS (WGS 84 longitude/latitude) beside `path`."""
+    from pyproj import CRS
+
+    from core.atomic import atomic_write_text
+
+    prj = path.with_suffix(".prj")
+    atomic_write_text(prj, CRS.from_user_input(WGS84).to_wkt("WKT1_ESRI") + "\n")
+    return prj
+
+
+__all__ = ["WGS84_NAME", "cut_antimeridian", "geographic_metadata", "rfc7946", "to_lonlat",
+           "write_prj"]

@@ -1,0 +1,248 @@
+"""Density-scaled and anisotropic alpha (Teichmann & Capps, IEEE Vis 1998) as alpha modes.
+
+A mode changes only the test radius of each Delaunay simplex; the triangulation and which
+faces are attached stay the classic (geometric) ones, so the complex is a subcomplex of the
+Delaunay triangulation at every alpha. `scaled_table` turns the classic table into the mode's
+table, which every query, cursor, signature and export then uses unchanged:
+
+- own value rho(T) of a cell or an unattached face (classic enter < regular): density scaling
+  divides T's smallest-circumsphere radius by T's local spacing (the mean or max over its
+  vertices of the distance to their k-th nearest neighbour), so alpha counts local spacings;
+  anisotropy takes the radius after stretching T along its normal by 1 / (1 - tau), which is
+  the alpha test with a ball compressed along the normal to an ellipsoid of half-axis
+  (1 - tau) alpha; with both on, the stretched radius is divided by the spacing.
+- repair, from the cells down: enter(T) = min(rho(T) if T is unattached, min enter over T's
+  cofacets); so a face never enters after its cofaces, attached faces enter with their first
+  cofacet as in the classic rule. regular(T) = min enter over cofacets, interior(T) = max
+  enter over the cells around T (inf on the convex hull), as in DESIGN.md section 1; so
+  enter <= regular <= interior and classes are monotone in alpha.
+- every level is re-sorted by its new enter, and the ids that point into it are renumbered.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from .anisotropy import attached, stretched_spheres
+from .errors import InputError
+from .neighbourhood import neighbours, orient, pca_normals, spacing
+from .table import Level, Table, argsort_radii
+
+COMBINES = ("mean", "max")
+NORMAL_SOURCES = ("estimate", "given")
+NORMAL_NEIGHBOURS = 16  #: neighbours of the PCA that estimates normals (8 tilts them
+#: where two sheets are closer than their spacing)
+Progress = Callable[[float, str], None]
+
+
+@dataclass(frozen=True)
+class Mode:
+    """How test radii are scaled: density=k (k-th neighbour spacing, None = off) combined
+    over a simplex's vertices by `combine`; anisotropy tau in [0, 1) (0 = off) with normals
+    "estimate"d by PCA or "given" by the caller. Mode() is the classic alpha."""
+
+    density: int | None = None
+    combine: str = "mean"
+    anisotropy: float = 0.0
+    normals: str = "estimate"
+
+    @property
+    def active(self) -> bool:
+        """False for the classic alpha (its table is built without this module)."""
+        return self.density is not None or self.anisotropy > 0.0
+
+    @property
+    def name(self) -> str:
+        """'classic', 'density', 'anisotropic' or 'density+anisotropic'."""
+        parts = [n for n, on in (("density", self.density is not None),
+                                 ("anisotropic", self.anisotropy > 0.0)) if on]
+        return "+".join(parts) or "classic"
+
+    def describe(self) -> str:
+        """One line for the info dock, `info` and export metadata."""
+        parts = []
+        if self.density is not None:
+            parts.append(f"density-scaled (k={self.density}, {self.combine}; alpha in local "
+                         "spacings)")
+        if self.anisotropy > 0.0:
+            parts.append(f"anisotropic (tau={self.anisotropy:g}, {self.normals} normals)")
+        return ", ".join(parts) or "classic"
+
+    def to_dict(self) -> dict:
+        """JSON-ready parameters (the name first)."""
+        return {"name": self.name, "density": self.density, "combine": self.combine,
+                "anisotropy": self.anisotropy, "normals": self.normals}
+
+    def build_kwargs(self, normals: np.ndarray | None = None) -> dict:
+        """The keywords of AlphaComplex.from_points that build in this mode (`normals`, the
+        (n, d) array aligned with the points, is passed only for "given" normals)."""
+        return {"density": self.density, "combine": self.combine,
+                "anisotropy": self.anisotropy,
+                "normals": normals if self.normals == "given" else None}
+
+    def key(self) -> str:
+        """A canonical text of the parameters ('' for classic), for cache keys."""
+        if not self.active:
+            return ""
+        return f"density={self.density};combine={self.combine};tau={self.anisotropy!r};" \
+               f"normals={self.normals}"
+
+
+def make_mode(density: object = None, combine: object = "mean", anisotropy: object = 0.0,
+              normals_given: bool = False) -> Mode:
+    """A checked, canonical Mode (unused parameters reset to defaults); InputError otherwise."""
+    if density is not None and (isinstance(density, bool) or not isinstance(
+            density, (int, np.integer)) or density < 1):
+        raise InputError(f"density must be a whole number k >= 1 (neighbours), not {density!r}")
+    if combine not in COMBINES:
+        raise InputError(f"combine must be 'mean' or 'max', not {combine!r}")
+    try:
+        tau = float(anisotropy)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise InputError(f"anisotropy must be a number in [0, 1), not {anisotropy!r}") from None
+    if not 0.0 <= tau < 1.0:
+        raise InputError(f"anisotropy must be in [0, 1) (0 = off), not {anisotropy!r}")
+    return Mode(None if density is None else int(density),
+                str(combine) if density is not None else "mean", tau,
+                "given" if normals_given and tau > 0.0 else "estimate")
+
+
+def point_normals(points: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    """(m, d) PCA normals over each point and its neighbours `ids`, oriented consistently."""
+    return orient(points, pca_normals(points, ids), ids)
+
+
+def _radii(table: Table, k: int, points: np.ndarray, mode: Mode,
+           normals: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """Rows of level k that are cells or unattached faces, and their test radii."""
+    level = table.levels[k]
+    d = len(table.levels) - 1
+    if mode.anisotropy <= 0.0:
+        ids = np.arange(len(level.enter)) if k == d else np.flatnonzero(
+            level.enter < level.regular)
+        return ids, level.enter[ids]
+    spheres = stretched_spheres(points, level.simplices, normals, mode.anisotropy)
+    if k == d:
+        return np.arange(len(level.enter)), np.sqrt(spheres.radii2)
+    up = table.levels[k + 1]
+    ids = np.flatnonzero(~attached(points, level.simplices, spheres, up.simplices, up.face_ids,
+                                   mode.anisotropy))
+    return ids, np.sqrt(spheres.radii2[ids])
+
+
+def _own_values(table: Table, points: np.ndarray, mode: Mode, spacing_: np.ndarray | None,
+                normals: np.ndarray | None) -> list[np.ndarray]:
+    """Per level: (n_k,) rho of cells and unattached faces, inf for attached faces (0 for
+    vertices)."""
+    out = [np.zeros(len(table.levels[0].enter))]
+    for k in range(1, len(table.levels)):
+        own = np.full(len(table.levels[k].enter), np.inf)
+        ids, radii = _radii(table, k, points, mode, normals)
+        if spacing_ is not None:
+            gathered = spacing_[table.levels[k].simplices[ids]]
+            radii = radii / (gathered.max(axis=1) if mode.combine == "max"
+                             else gathered.mean(axis=1))
+        own[ids] = radii
+        out.append(own)
+    return out
+
+
+def _repair(table: Table, own: list[np.ndarray]) -> list[tuple[np.ndarray, ...]]:
+    """(enter, regular, interior) per level from the own values, cells down (module doc)."""
+    d = len(own) - 1
+    cells = own[d]
+    fc = table.facet_cells
+    outside = fc[:, 1] < 0
+    second = np.where(outside, np.inf, cells[np.maximum(fc[:, 1], 0)])
+    first = cells[fc[:, 0]]
+    regular, interior = np.minimum(first, second), np.maximum(first, second)
+    out = [(cells, cells, cells), (np.minimum(own[d - 1], regular), regular, interior)]
+    for k in range(d - 2, -1, -1):
+        enter_up, interior_up = out[-1][0], out[-1][2]
+        faces = table.levels[k + 1].face_ids if k > 0 else table.levels[1].simplices
+        flat_faces = faces.ravel()
+        regular = np.full(len(own[k]), np.inf)
+        interior = np.full(len(own[k]), -np.inf)
+        np.minimum.at(regular, flat_faces, np.repeat(enter_up, k + 2))
+        np.maximum.at(interior, flat_faces, np.repeat(interior_up, k + 2))
+        enter = np.zeros(len(own[k])) if k == 0 else np.minimum(own[k], regular)
+        out.append((enter, regular, interior))
+    return out[::-1]
+
+
+def _renumber(ids: np.ndarray, inverse: np.ndarray | None) -> np.ndarray:
+    """Apply a new numbering to ids (-1 = none kept); None: unchanged."""
+    if inverse is None:
+        return ids
+    return np.where(ids >= 0, inverse[np.maximum(ids, 0)], -1).astype(np.int32)
+
+
+def _resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
+    """The table with the new values, each level sorted by enter, ids renumbered."""
+    d = len(values) - 1
+    orders = [np.arange(len(values[0][0]))]  # vertices keep their rows: they all enter at 0
+    orders += [argsort_radii(enter) for enter, _, _ in values[1:]]
+    inverses = []
+    for order in orders:
+        inverse = np.empty(len(order), dtype=np.int32)
+        inverse[order] = np.arange(len(order), dtype=np.int32)
+        inverses.append(inverse)
+    levels = []
+    for k, (order, row) in enumerate(zip(orders, values, strict=True)):
+        old = table.levels[k]
+        face_ids = None if k == 0 else _renumber(old.face_ids[order], inverses[k - 1])
+        levels.append(Level(old.simplices[order], *(a[order] for a in row), face_ids))
+    facets = orders[d - 1]
+    return Table(levels, _renumber(table.facet_cells[facets], inverses[d]),
+                 table.facet_flip[facets], table.cell_measure[orders[d]],
+                 argsort_radii(levels[d - 1].interior).astype(np.int32))
+
+
+def scaled_table(table: Table, points: np.ndarray, mode: Mode, normals: np.ndarray | None = None,
+                 progress: Progress | None = None) -> Table:
+    """The mode's interval table from the classic one of `points` ((m, d) float64, the
+    coordinates the table's radii are in); `normals` (m, d) for mode.normals == "given"."""
+    def step(fraction: float, stage: str) -> None:
+        if progress is not None:
+            progress(fraction, stage)
+
+    step(0.0, "neighbours")
+    wanted = max(mode.density or 0, NORMAL_NEIGHBOURS if mode.anisotropy > 0.0 else 0)
+    if len(points) < 2:
+        raise InputError("a mode needs at least two points")
+    dist, ids = neighbours(points, wanted)
+    spacing_ = None
+    if mode.density is not None:
+        spacing_ = spacing(dist[:, : min(mode.density, dist.shape[1])])
+    if mode.anisotropy > 0.0 and normals is None:
+        step(0.2, "normals")
+        normals = point_normals(points, ids[:, :NORMAL_NEIGHBOURS])
+    del dist, ids
+    step(0.4, "scaled radii")
+    own = _own_values(table, points, mode, spacing_, normals)
+    step(0.8, "filtration repair")
+    return _resorted(table, _repair(table, own))
+
+
+def check_normals(normals: object, n: int, dim: int) -> np.ndarray:
+    """(n, dim) float64 normals (any length; 0 = no direction); InputError otherwise."""
+    try:
+        arr = np.array(normals, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"normals must be numbers: {exc}") from None
+    if arr.shape != (n, dim):
+        raise InputError(f"normals must be an ({n}, {dim}) array like the points, got "
+                         f"shape {arr.shape}")
+    if not np.isfinite(arr).all():
+        raise InputError("normals have NaN or infinite values")
+    return arr
+
+
+def unit_rows(vectors: np.ndarray) -> np.ndarray:
+    """(n, d) rows scaled to length 1 (zero rows stay zero)."""
+    length = np.sqrt(np.einsum("nd,nd->n", vectors, vectors))
+    return vectors / np.where(length > 0, length, 1.0)[:, None]
+
