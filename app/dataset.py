@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -40,6 +40,7 @@ class Dataset:
     build_seconds: float
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
     from_cache: bool = False  # the table was loaded from the cache, not built
+    attributes: dict = field(default_factory=dict)  # name -> per-point values, rows of ac.points
 
     def build_line(self) -> str:
         """How the table came: 'built in 12.3 s' or 'loaded from cache in 0.4 s'."""
@@ -78,4 +79,23 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
         from_cache=cached,
+        attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )
+
+
+def aligned_attributes(attributes: dict[str, np.ndarray], input_index: np.ndarray,
+                       n_points: int) -> dict[str, np.ndarray]:
+    """Per-input-row attributes re-indexed to the complex's points (input_index maps input rows
+    to point rows, -1 = not a vertex); merged duplicates keep one row's value. Read-only."""
+    index = np.asarray(input_index, dtype=np.int64)
+    used = index >= 0
+    out = {}
+    for name, values in attributes.items():
+        values = np.asarray(values)
+        if len(values) != len(index):
+            continue
+        aligned = np.zeros((n_points, *values.shape[1:]), dtype=values.dtype)
+        aligned[index[used]] = values[used]
+        aligned.flags.writeable = False
+        out[name] = aligned
+    return out

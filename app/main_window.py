@@ -18,6 +18,8 @@ from pyvistaqt import QtInteractor
 
 from app import file_actions
 from app.alpha_panel import AlphaPanel
+from app.clipping import Clipper
+from app.colour_view import Colourer
 from app.help import ExplainPanel
 from app.info_panel import InfoPanel
 from app.inspect_panel import InspectPanel
@@ -75,6 +77,8 @@ class MainWindow(QMainWindow):
         self.explain_dock = self._add_dock("Help", ExplainPanel(), left)
         self.explain_dock.setWindowTitle("What am I looking at?")
         self.explain_dock.hide()
+        self.colourer = Colourer(self.plotter, self.scene, self.model)
+        self.clipper = Clipper(self.plotter, self.scene)
         self.menus = build_menus(self)
         self._connect()
         self._restore_layout()
@@ -160,6 +164,8 @@ class MainWindow(QMainWindow):
         ac = ds.ac
         styles = self.prefs.styles(ac.dim)
         self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles)
+        self.colourer.set_dataset(ds.attributes)
+        self.clipper.set_enabled(self.clipper.enabled)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
@@ -167,6 +173,7 @@ class MainWindow(QMainWindow):
     def _show_shape(self) -> None:
         """New alpha: swap layer connectivity, one render, status line."""
         self.scene.set_shape(self.model.shape)
+        self.colourer.update()
         self.scene.render()
         ds = self.model.dataset
         self.status.setText(
@@ -177,6 +184,7 @@ class MainWindow(QMainWindow):
     def _set_style(self, name: str, style) -> None:
         """Apply and remember one layer's style; render once."""
         self.scene.set_style(name, style)
+        self.colourer.update()
         if self.model.dataset is not None:
             self.prefs.set_style(self.model.dataset.ac.dim, name, style)
         self.scene.render()

@@ -9,6 +9,8 @@ from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QMessageBox
 
 from app import file_actions
+from app.clipping import add_clip_action
+from app.colour_view import add_colour_menu
 from app.help import add_help_actions
 from core.errors import InputError
 from core.export import SHAPE_FORMATS, TABLE_FORMATS
@@ -128,6 +130,9 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
     for dock in window.findChildren(QDockWidget):
         view.addAction(dock.toggleViewAction())
     add_action(view, "&Reset camera", lambda: (window.scene.fit_view(), window.scene.render()))
+    view.addSeparator()
+    actions["colour_by"] = add_colour_menu(view, window.colourer).menuAction()
+    actions["clip"] = add_clip_action(view, window.clipper)
     shape = bar.addMenu("&Shape")
     model = window.model
     actions["optimal"] = add_action(shape, "&Optimal alpha",
