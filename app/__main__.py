@@ -43,9 +43,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("file", nargs="?", help="point file to open (default: bundled sample)")
     choice = parser.add_mutually_exclusive_group()
     choice.add_argument("--alpha", type=radius, metavar="R", help="alpha radius to show")
-    choice.add_argument("--optimal", action="store_true", help="show the optimal alpha (default)")
+    choice.add_argument("--optimal", action="store_true", help="open at CGAL's optimal alpha "
+                        "(default: the opening alpha, where the shape looks like the object)")
     parser.add_argument("--screenshot", metavar="OUT.png", help="render, save an image, exit")
     parser.add_argument("--size", type=parse_size, metavar="WxH", help="window/image size")
+    parser.add_argument("--no-legend", action="store_true",
+                        help="screenshot without legend, alpha, scale bar and axes")
     return parser
 
 

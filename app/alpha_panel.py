@@ -1,8 +1,10 @@
-"""Alpha control: a slider over the spectrum index, an exact radius field, r², optimal/hull.
+"""Alpha control: a slider in log alpha, an exact radius field, r², back/forward, optimal/hull.
 
-The slider, the field and the model show one value; widget changes go to the model, and the
-model's alphaChanged updates the widgets under signal blockers (no feedback loop). Slider
-events are coalesced with a zero-interval timer, so a fast drag queues no stale work.
+The slider's travel follows log alpha (app.log_travel) but it always lands on a critical
+value: arrows step one, Page keys multiply alpha by a factor. The slider, the field and the
+model show one value; widget changes go to the model, and the model's alphaChanged updates
+the widgets under signal blockers (no feedback loop). Slider moves and key presses are
+coalesced with a zero-interval timer, so a fast drag queues no stale work.
 """
 
 from __future__ import annotations
@@ -15,14 +17,17 @@ from PySide6.QtWidgets import (
     QLabel,
     QLineEdit,
     QPushButton,
-    QSlider,
     QVBoxLayout,
     QWidget,
 )
 
+from app.alpha_slider import AlphaSlider, Mark
+from app.log_travel import LogTravel, snap_index
 from app.model import ExplorerModel
+from app.palette import MARK_COLOURS
+from app.signed_travel import SignedTravel
 
-PAGE_STEPS = 50
+N_SUGGESTED = 5
 
 
 def format_alpha(value: float) -> str:
@@ -45,9 +50,8 @@ class AlphaPanel(QWidget):
         """Build the widgets and wire them to model."""
         super().__init__(parent)
         self.model = model
-        self.slider = QSlider(Qt.Orientation.Horizontal)
-        self.slider.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
-        self.slider.setTracking(True)
+        self.slider = AlphaSlider()
+        self.travel: LogTravel | SignedTravel | None = None
         self.radius = QLineEdit()
         self.radius.setValidator(radius_validator())
         self.radius.setToolTip("alpha as a radius; Enter snaps to the shape at that value")
@@ -56,11 +60,18 @@ class AlphaPanel(QWidget):
         self.squared.setToolTip("alpha squared: the value CGAL and gudhi use")
         self.step = QLabel()
         self.optimal = QPushButton("Optimal")
+        self.optimal.setToolTip("CGAL's optimal alpha: every point in one solid (Ctrl+1)")
         self.hull = QPushButton("Convex hull")
+        self.back = QPushButton("◀ Back")
+        self.back.setToolTip("the alpha visited before (Alt+Left)")
+        self.forward = QPushButton("Forward ▶")
+        self.forward.setToolTip("redo Back (Alt+Right)")
         self._pending = 0
         self._timer = QTimer(self, singleShot=True, interval=0)
         self._layout()
         self._connect()
+        if model.dataset is not None:
+            self._new_travel()
         self.sync()
 
     def _layout(self) -> None:
@@ -71,28 +82,68 @@ class AlphaPanel(QWidget):
         buttons = QHBoxLayout()
         buttons.addWidget(self.optimal)
         buttons.addWidget(self.hull)
+        history = QHBoxLayout()
+        history.addWidget(self.back)
+        history.addWidget(self.forward)
         column = QVBoxLayout(self)
         column.addLayout(form)
         column.addWidget(self.slider)
         column.addWidget(self.step)
+        column.addLayout(history)
         column.addLayout(buttons)
         column.addStretch(1)
 
     def _connect(self) -> None:
         """Widget -> model (slider coalesced), model -> widgets."""
-        self.slider.valueChanged.connect(self._queue_index)
+        self.slider.valueChanged.connect(
+            lambda position: self._queue_index(self.travel.index_at(position)))
+        self.slider.stepRequested.connect(lambda step: self._queue_index(self._base() + step))
+        self.slider.pageRequested.connect(
+            lambda up: self._queue_index(self.travel.page(self._base(), up)))
+        self.slider.endRequested.connect(
+            lambda end: self._queue_index(self.model.hull_index() if end else 0))
+        self.slider.historyRequested.connect(
+            lambda forward: self.model.go_forward() if forward else self.model.go_back())
+        self.back.clicked.connect(self.model.go_back)
+        self.forward.clicked.connect(self.model.go_forward)
         self._timer.timeout.connect(lambda: self.model.set_index(self._pending))
         self.radius.editingFinished.connect(self._apply_radius)
         self.optimal.clicked.connect(lambda: self.model.set_index(self.model.optimal_index()))
         self.hull.clicked.connect(lambda: self.model.set_index(self.model.hull_index()))
         self.model.datasetChanged.connect(self._timer.stop)
+        self.model.datasetChanged.connect(self._new_travel)
         self.model.datasetChanged.connect(self.sync)
         self.model.alphaChanged.connect(self.sync)
 
+    def _base(self) -> int:
+        """The index a key moves from: a still-queued one, else the model's."""
+        return self._pending if self._timer.isActive() else self.model.index
+
     def _queue_index(self, index: int) -> None:
         """Remember the newest slider index; the model gets it once events settle."""
-        self._pending = index
+        if self.model.dataset is None:
+            return
+        self._pending = max(0, min(index, self.model.hull_index()))
         self._timer.start()
+
+    def _new_travel(self) -> None:
+        """A new dataset: its log-alpha travel and tick marks (suggested, opening, optimal)."""
+        ds = self.model.dataset
+        travel = SignedTravel if self.model.weighted else LogTravel  # alpha² < 0: no log
+        self.travel = travel(ds.spectrum, reach=ds.optimal_alpha)
+        self.slider.set_marks(tuple(self.marks()))
+
+    def marks(self) -> list[Mark]:
+        """Tick marks of the current dataset: suggested alphas, the opening and optimal one."""
+        ds, model = self.model.dataset, self.model
+        marks = [Mark(self.travel.position(snap_index(ds.spectrum, r.alpha)),
+                      MARK_COLOURS["suggested"], f"suggested: r {r.alpha:.4g} (Betti {r.betti})")
+                 for r in ds.ac.suggest_alphas(N_SUGGESTED)]
+        marks.append(Mark(self.travel.position(model.default_index()), MARK_COLOURS["opening"],
+                          f"opening: r {ds.default_alpha:.4g}"))
+        marks.append(Mark(self.travel.position(model.optimal_index()), MARK_COLOURS["optimal"],
+                          f"optimal: r {ds.optimal_alpha:.4g}"))
+        return marks
 
     def _apply_radius(self) -> None:
         """Send the typed radius to the model (it snaps to the critical value at or below)."""
@@ -109,15 +160,20 @@ class AlphaPanel(QWidget):
         count = len(self.model.spectrum)
         self.setEnabled(count > 0)
         with QSignalBlocker(self.slider):
-            self.slider.setRange(0, max(count - 1, 0))
-            self.slider.setPageStep(max(1, count // PAGE_STEPS))
-            self.slider.setValue(max(self.model.index, 0))
+            position = self.travel.position(self.model.index) if count else 0
+            self.slider.setValue(position)
+        self.back.setEnabled(self.model.history.can_back())
+        self.forward.setEnabled(self.model.history.can_forward())
         if count == 0:
             self.radius.clear()
             self.squared.clear()
             self.step.clear()
             return
         alpha = self.model.alpha
-        self.radius.setText(format_alpha(alpha))
-        self.squared.setText(f"{alpha * alpha:.6g}")
+        self.radius.setText(format_alpha(alpha) if alpha >= 0 else "")
+        self.radius.setPlaceholderText("below zero radius: see r²" if alpha < 0 else "")
+        self.squared.setText(f"{self.model.alpha2:.6g}")
+        self.squared.setToolTip("alpha squared: the value CGAL and gudhi use"
+                                + ("; weighted points enter at minus their squared radius"
+                                   if self.model.weighted else ""))
         self.step.setText(f"critical value {self.model.index + 1:,} of {count:,}")

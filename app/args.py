@@ -16,6 +16,32 @@ def radius(text: str) -> float:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"alpha must be a number, not {text!r}") from None
+    if value < 0.0 and math.isfinite(value):
+        raise argparse.ArgumentTypeError(
+            f"alpha must be a radius >= 0, not {text!r}; for a squared value (which may be "
+            "negative with weights) use --alpha2")
     if not (value >= 0.0 and math.isfinite(value)):
         raise argparse.ArgumentTypeError(f"alpha must be a finite radius >= 0, not {text!r}")
+    return value
+
+
+def squared_radius(text: str) -> float:
+    """A finite squared alpha (any sign: weighted points enter below zero)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"alpha2 must be a number, not {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"alpha2 must be a finite number, not {text!r}")
+    return value
+
+
+def probe_radius(text: str) -> float:
+    """A finite radius >= 0 to add to every point's radius."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a radius, not {text!r}") from None
+    if not (value >= 0.0 and math.isfinite(value)):
+        raise argparse.ArgumentTypeError(f"expected a finite radius >= 0, not {text!r}")
     return value

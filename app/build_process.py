@@ -30,24 +30,28 @@ TABLE_SHARE, SAVE_START = 0.65, 0.95  # of the child's progress; the topology pa
 
 
 def build(points: np.ndarray, progress: Progress, cancel: threading.Event,
-          use_cache: bool = True) -> AlphaComplex:
-    """The complex of (n, d) points with signatures computed, from the cache when possible.
+          use_cache: bool = True, weights: np.ndarray | None = None) -> AlphaComplex:
+    """The complex of (n, d) points (weighted: with (n,) squared radii `weights`) with
+    signatures computed, from the cache when possible.
 
     Raises core.errors.Cancelled soon after `cancel` is set, and the errors of the build
     (InputError for point sets that make no complex) as they are.
     """
     points = np.asarray(points, dtype=np.float64)
     if len(points) < IN_THREAD_BELOW:
-        return build_cached(points, use_cache=use_cache, progress=progress, signatures=True)
-    if use_cache and (ac := load_cached(points)) is not None:
+        return build_cached(points, use_cache=use_cache, progress=progress, signatures=True,
+                            weights=weights)
+    if use_cache and (ac := load_cached(points, weights=weights)) is not None:
         progress(1.0, "loaded from cache")
         if "_signatures" not in ac.__dict__:  # an entry the command line left without them
             ac.signatures()
-            store(ac, points)
+            store(ac, points, weights=weights)
         return ac
     with tempfile.TemporaryDirectory(prefix="alphascoop-build-") as folder:
         source, target = Path(folder) / "points.npy", Path(folder) / "table.npz"
         np.save(source, points)
+        if weights is not None:
+            np.save(Path(folder) / "weights.npy", np.asarray(weights, dtype=np.float64))
         written = _run_child(source, target, use_cache, progress, cancel)
         progress(1.0, "loading the table")
         return AlphaComplex.load(written)
@@ -106,12 +110,14 @@ def child_main(source: str, target: str, use_cache: bool, sender: Connection) ->
     """Body of the build process: build, compute signatures, save, report where (or why not)."""
     try:
         points = np.load(source, allow_pickle=False)
+        weights_file = Path(source).with_name("weights.npy")
+        weights = np.load(weights_file, allow_pickle=False) if weights_file.exists() else None
         ac = AlphaComplex.from_points(
-            points, lambda f, s: sender.send(("progress", TABLE_SHARE * f, s)))
+            points, lambda f, s: sender.send(("progress", TABLE_SHARE * f, s)), weights=weights)
         sender.send(("progress", TABLE_SHARE, "topology"))
         ac.signatures()
         sender.send(("progress", SAVE_START, "saving the table"))
-        written = store(ac, points) if use_cache else None
+        written = store(ac, points, weights=weights) if use_cache else None
         if written is None:
             ac.save(target)
             written = Path(target)

@@ -15,10 +15,11 @@ import sys
 import time
 import warnings
 from collections.abc import Iterator, Sequence
+from pathlib import Path
 
 import numpy as np
 
-from app.args import radius
+from app.args import probe_radius, radius, squared_radius
 from core.errors import AlphaScoopError, InputError
 
 CLASS_NAMES = ("exterior", "singular", "regular", "interior")
@@ -43,12 +44,32 @@ def count(text: str) -> int:
     return int(text)
 
 
+def index(text: str) -> int:
+    """A whole number from 0."""
+    if not text.isdigit():
+        raise argparse.ArgumentTypeError(f"expected a whole number from 0, not {text!r}")
+    return int(text)
+
+
 def _common(sub: argparse.ArgumentParser) -> None:
     """Options shared by info and export."""
     sub.add_argument("file", help="point file (see README: Formats)")
     sub.add_argument("--columns", metavar="A,B[,C]", help="coordinate columns (names or 0-based)")
     sub.add_argument("--subsample", type=count, metavar="N", help="thin to at most N points")
+    sub.add_argument("--scan", type=index, metavar="N",
+                     help="E57: read only scan N (0-based; default all scans, poses applied)")
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
+    sizes = sub.add_mutually_exclusive_group()
+    sizes.add_argument("--weights", metavar="COLUMN",
+                       help="weighted points: squared radii from this column")
+    sizes.add_argument("--radius", metavar="COLUMN",
+                       help="weighted points: radii from this column (squared)")
+    sub.add_argument("--radius-add", type=probe_radius, metavar="R",
+                     help="add R to every point's radius before squaring (a probe radius)")
+    sub.add_argument("--probe", type=probe_radius, default=1.4, metavar="R",
+                     help="molecules: solvent probe radius in Å added to every atom "
+                     "(default 1.4; 0 = van der Waals surface)")
+    sub.add_argument("--keep-water", action="store_true", help="molecules: keep water atoms")
 
 
 def build_parser() -> Parser:
@@ -57,16 +78,26 @@ def build_parser() -> Parser:
     subs = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     info = subs.add_parser("info", help="load report, spectrum, optimal alpha, shape summary")
     _common(info)
-    info.add_argument("--alpha", type=radius, metavar="R", help="alpha radius (default optimal)")
+    at = info.add_mutually_exclusive_group()
+    at.add_argument("--alpha", type=radius, metavar="R", help="alpha radius (default: opening)")
+    at.add_argument("--alpha2", type=squared_radius, metavar="A2",
+                    help="squared alpha (may be negative for weighted points)")
     info.add_argument("--json", action="store_true", help="print JSON instead of text")
     export = subs.add_parser("export", help="write the shape at one alpha (format from -o)")
     _common(export)
     export.add_argument("-o", "--output", required=True, metavar="OUT", help="output file")
     choice = export.add_mutually_exclusive_group()
     choice.add_argument("--alpha", type=radius, metavar="R", help="alpha radius")
+    choice.add_argument("--alpha2", type=squared_radius, metavar="A2",
+                        help="squared alpha (may be negative for weighted points)")
     choice.add_argument("--optimal", type=count, nargs="?", const=1, metavar="K",
                         help="optimal alpha for at most K solid components (default)")
-    export.add_argument("--manifold", action="store_true", help="split where the shape touches")
+    split = export.add_mutually_exclusive_group()
+    split.add_argument("--no-manifold", dest="manifold", action="store_false",
+                       help="keep the raw boundary (3D surfaces are split where the shape "
+                       "touches itself by default, to a closed 2-manifold)")
+    split.add_argument("--manifold", dest="manifold", action="store_true",
+                       help="the default; accepted for compatibility")
     export.add_argument("--sidecar", action="store_true", help="also write OUT.json metadata")
     export.add_argument("--table", action="store_true", help="write the interval table "
                         "(.npz or .csv) instead of the shape")
@@ -94,15 +125,14 @@ def _progress():
 def load(args) -> tuple:
     """(PointSet, AlphaComplex, seconds, from cache?) for the file and options."""
     from core.cache import build_cached, is_cached
-    from core.io import read_points
 
-    ps = read_points(args.file, columns=args.columns, subsample=args.subsample)
+    ps = _read(args)
     cached = not args.no_cache and is_cached(ps)
     update, close = _progress()
     start = time.perf_counter()
     try:
         # Where the optimal alpha is needed, the topology is cached with the table too.
-        needs_topology = args.command == "info" or getattr(args, "alpha", None) is None
+        needs_topology = args.command == "info" or chosen_alpha(args) is None
         ac = build_cached(ps, use_cache=not args.no_cache, progress=update,
                           signatures=needs_topology and not getattr(args, "table", False))
     finally:
@@ -110,28 +140,106 @@ def load(args) -> tuple:
     return ps, ac, time.perf_counter() - start, cached
 
 
-def summary(ps, ac, seconds: float, cached: bool, alpha: float | None) -> dict:
-    """Everything `info` reports, as a JSON-ready dict."""
-    optimal = float(ac.optimal_alpha())
-    alpha = optimal if alpha is None else alpha
+def is_molecule(args) -> bool:
+    """The file is a PDB/mmCIF molecule (read as balls: atoms with radii plus the probe)."""
+    from core.io.molecule import molecule_extension
+
+    return molecule_extension(Path(args.file)) is not None
+
+
+def _read(args):
+    """The PointSet of the file; a molecule's atoms weighted by (radius + probe)²."""
+    from core.io import read_points
+
+    if not is_molecule(args):
+        return read_points(args.file, columns=args.columns, subsample=args.subsample,
+                           weights=args.weights, radius=args.radius,
+                           radius_add=args.radius_add, scan=args.scan)
+    from core.io.molecule import read_molecule_pointset
+
+    for option in ("columns", "subsample", "weights", "radius", "radius_add", "scan"):
+        if getattr(args, option) is not None:
+            raise UsageError(f"--{option.replace('_', '-')} does not apply to molecule files "
+                             "(use --probe)")
+    return read_molecule_pointset(args.file, probe=args.probe, keep_water=args.keep_water)[0]
+
+
+def molecule_summary(ac, probe: float) -> dict:
+    """The `molecule` object of `info`: exact area and volume, per-atom area, cavities."""
+    from core.molecule.analysis import measure_molecule
+
+    return {**measure_molecule(ac, probe).to_dict(), "pockets": None}
+
+
+def _molecule_text(mol: dict) -> list[str]:
+    """Text lines of the `molecule` object."""
+    kind = "solvent-accessible" if mol["probe"] > 0 else "van der Waals"
+    cavities = ", ".join(f"{v:.4g} ± {e:.2g}" for v, e in
+                         zip(mol["cavities"], mol["cavity_errors"], strict=True))
+    return [
+        f"atoms       {mol['atoms']:,} balls, probe {mol['probe']:g} Å ({kind} surface)",
+        f"surface     {mol['surface_area']:,.2f} Å² (exact)",
+        f"volume      {mol['volume']:,.2f} Å³ (exact, union of balls)",
+        f"cavities    {len(mol['cavities'])}" + (f": {cavities} Å³" if cavities else ""),
+        "pockets     not computed (see README: Molecules)",
+    ]
+
+
+def chosen_alpha(args) -> dict | None:
+    """The alpha the command line asks for, as keyword arguments of the core's queries
+    ({"alpha": R} or {"alpha2": A2}), or None (the default)."""
+    if getattr(args, "alpha2", None) is not None:
+        return {"alpha2": args.alpha2}
+    if getattr(args, "alpha", None) is not None:
+        return {"alpha": args.alpha}
+    return None
+
+
+def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
+    """Everything `info` reports, as a JSON-ready dict (`at`: chosen_alpha's result; None:
+    the opening alpha)."""
+    optimal, opening = float(ac.optimal_alpha()), float(ac.default_alpha())
+    shape = ac.shape(**(at or {"alpha2": opening * abs(opening)}))
+    alpha = shape.alpha
     spectrum = np.asarray(ac.spectrum())
-    shape = ac.shape(alpha)
+    weighted = ac.weights is not None
     classes = {SIMPLEX_NAMES[k]: dict(zip(CLASS_NAMES, np.bincount(
-        ac.classify(alpha, k), minlength=4).tolist(), strict=True)) for k in range(ac.dim + 1)}
+        ac.classify(alpha2=shape.alpha2, k=k), minlength=4).tolist(), strict=True))
+        for k in range(ac.dim + 1)}
+    first = 0 if weighted or len(spectrum) < 2 else 1  # classic: 0 (bare points) left out
     return {
         "load": ps.report.to_dict(),
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
                     "from_cache": cached,
                     **{SIMPLEX_NAMES[k]: len(ac.simplices(k)) for k in range(ac.dim + 1)}},
-        "spectrum": {"count": len(spectrum), "min": float(spectrum[1 if len(spectrum) > 1 else 0]),
-                     "max": float(spectrum[-1])},
+        "spectrum": {"count": len(spectrum), "min": float(spectrum[first]),
+                     "max": float(spectrum[-1]), "min2": _sq(spectrum[first]),
+                     "max2": _sq(spectrum[-1])},
+        "weighted": weighted,
+        "hidden_points": int((np.asarray(ac.input_index) < 0).sum()),
         "optimal_alpha": optimal,
+        "optimal_alpha2": _sq(optimal),
+        "default_alpha": opening,
+        "default_alpha2": _sq(opening),
         "alpha": alpha,
-        "betti": [int(b) for b in ac.betti(alpha)],
+        "alpha2": shape.alpha2 if np.isfinite(shape.alpha2) else None,
+        "betti": [int(b) for b in ac.betti(alpha2=shape.alpha2)],
         "volume" if ac.dim == 3 else "area": shape.measure,
         "classes": classes,
         **_geographic(ps, ac, shape),
     }
+
+
+def _sq(value: float) -> float | None:
+    """A table value (radius; signed for weighted sets) squared with its sign, None beyond
+    float64 (JSON has no infinity)."""
+    square = float(value) * abs(float(value))
+    return square if np.isfinite(square) else None
+
+
+def _alpha_text(alpha: float, alpha2: float | None) -> str:
+    """'alpha² A2 (alpha R)' for weighted sets (no radius below zero)."""
+    return f"alpha² {alpha2:.6g}" + (f" (alpha {alpha:.6g})" if alpha >= 0 else "")
 
 
 def _geographic(ps, ac, shape) -> dict:
@@ -153,10 +261,22 @@ def _text(info: dict, lines: list[str]) -> str:
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
-        f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}",
-        f"optimal     alpha {info['optimal_alpha']:.6g}",
-        f"at alpha    {info['alpha']:.6g}",
+        f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
+        + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
     ]
+    if info["weighted"]:
+        lines += [
+            f"hidden      {info['hidden_points']:,} points (their ball adds nothing)",
+            f"optimal     {_alpha_text(info['optimal_alpha'], info['optimal_alpha2'])}"
+            " (every point in one solid)",
+            f"opening     {_alpha_text(info['default_alpha'], info['default_alpha2'])}"
+            " (the shape looks like the object)",
+            f"at          {_alpha_text(info['alpha'], info['alpha2'])}"]
+    else:
+        lines += [
+            f"optimal     alpha {info['optimal_alpha']:.6g} (every point in one solid)",
+            f"opening     alpha {info['default_alpha']:.6g} (the shape looks like the object)",
+            f"at alpha    {info['alpha']:.6g}"]
     lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))
     if info.get("units") == "m":
         unit = "m²" if measure == "area" else "m³"
@@ -172,10 +292,15 @@ def _text(info: dict, lines: list[str]) -> str:
 
 
 def cmd_info(args) -> int:
-    """Print the load report and the shape summary."""
+    """Print the load report and the shape summary (and a molecule's measures)."""
     ps, ac, seconds, cached = load(args)
-    info = summary(ps, ac, seconds, cached, args.alpha)
-    print(json.dumps(info, indent=2) if args.json else _text(info, ps.report.lines()))
+    info = summary(ps, ac, seconds, cached, chosen_alpha(args))
+    if is_molecule(args):
+        info["molecule"] = molecule_summary(ac, args.probe)
+    text = None if args.json else _text(info, ps.report.lines())
+    if text is not None and "molecule" in info:
+        text += "\n" + "\n".join(_molecule_text(info["molecule"]))
+    print(json.dumps(info, indent=2) if args.json else text)
     return 0
 
 
@@ -199,9 +324,10 @@ def cmd_export(args) -> int:
     if args.table:
         print(write_table(ac, args.output, source=args.file).line())
         return 0
-    alpha = args.alpha if args.alpha is not None else float(ac.optimal_alpha(args.optimal or 1))
-    report = write_shape(ac, alpha, args.output, manifold=args.manifold, sidecar=args.sidecar,
-                         source=args.file, georef=ps.report.georef)
+    at = chosen_alpha(args) or {"alpha2": ac.optimal_alpha2(args.optimal or 1)}
+    report = write_shape(ac, at.get("alpha"), args.output, alpha2=at.get("alpha2"),
+                         manifold=args.manifold, sidecar=args.sidecar, source=args.file,
+                         georef=ps.report.georef)
     print(report.line())
     return 0
 

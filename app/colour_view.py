@@ -73,7 +73,8 @@ class Colourer:
         if self.mode.source == "points":
             values = point_values(self.mode, self.attributes)
             for layer in self.scene.layers.values():
-                layer.mesh.point_data[SCALARS] = values
+                if layer.mesh.n_points == len(values):  # not glyphs such as atom balls
+                    layer.mesh.point_data[SCALARS] = values
         self.update()
         if render:
             self.scene.render()
@@ -88,7 +89,7 @@ class Colourer:
             labels = solid_labels(self.model.dataset.ac, shape.alpha)
         shown = []
         for name, layer in self.scene.layers.items():
-            if self.mode.source == "points":
+            if self.mode.source == "points" and SCALARS in layer.mesh.point_data:
                 shown.append(self._use_points(layer))
             elif self.mode.source == "cells" and shape is not None and name in CELL_LAYERS \
                     and self.scene.styles[name].visible:

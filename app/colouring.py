@@ -15,7 +15,9 @@ import numpy as np
 
 from core.components import facet_labels, solid_labels
 
-CELL_LAYERS = ("boundary", "interior", "singular_faces", "singular_edges", "singular_points")
+CELL_LAYERS = ("surface", "boundary", "interior", "singular_highlight", "singular_edges",
+               "singular_points")
+FACET_LAYERS = ("surface", "boundary")  # facets beside a cell (3D surface, 2D boundary)
 MAX_CATEGORIES = 20
 
 
@@ -68,7 +70,9 @@ def layer_rows(shape, name: str) -> tuple[int, np.ndarray] | None:
         return dim, shape.cell_ids
     if name == "boundary":
         return dim - 1, shape.regular_facet_ids
-    order = {"singular_points": 0, "singular_edges": 1, "singular_faces": 2}.get(name)
+    if name == "surface":  # the scene's 3D surface: regular then singular triangles
+        return dim - 1, np.concatenate([shape.regular_facet_ids, shape.singular_ids(dim - 1)])
+    order = {"singular_points": 0, "singular_edges": 1, "singular_highlight": 2}.get(name)
     if order is None or order >= dim:
         return None
     return order, shape.singular_ids(order)
@@ -87,7 +91,7 @@ def cell_values(mode: ColourMode, ac, shape, name: str,
     labels = solid_labels(ac, shape.alpha) if labels is None else labels
     if k == ac.dim:
         values = np.take(labels, rows).astype(np.float64)
-    elif k == ac.dim - 1 and name == "boundary":
+    elif k == ac.dim - 1 and name in FACET_LAYERS:
         values = facet_labels(ac, rows, labels).astype(np.float64)
     else:
         return np.full(len(rows), np.nan)

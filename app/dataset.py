@@ -9,20 +9,24 @@ from pathlib import Path
 
 import numpy as np
 
+from app.camera import Z_UP, ViewFrame, frame_for
 from core import AlphaComplex
 from core.cache import build_cached, is_cached
 from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
+from core.molecule.analysis import MoleculeMeasures, measure_molecule
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-Build = Callable[[np.ndarray, Progress], AlphaComplex]
+Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=w])
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 
 
-def build_here(points: np.ndarray, progress: Progress) -> AlphaComplex:
-    """The complex and its signatures, built in this thread (cached)."""
-    return build_cached(points, progress=progress, signatures=True)
+def build_here(points: np.ndarray, progress: Progress,
+               weights: np.ndarray | None = None) -> AlphaComplex:
+    """The complex and its signatures, built in this thread (cached); weighted when
+    `weights` (squared radii) are given."""
+    return build_cached(points, progress=progress, signatures=True, weights=weights)
 
 
 @dataclass(frozen=True)
@@ -33,6 +37,7 @@ class Dataset:
     ac: AlphaComplex
     spectrum: np.ndarray
     optimal_alpha: float
+    default_alpha: float  # where the view opens (ac.default_alpha())
     signatures: Signatures
     n_input: int
     report: LoadReport | None
@@ -41,6 +46,17 @@ class Dataset:
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
     from_cache: bool = False  # the table was loaded from the cache, not built
     attributes: dict = field(default_factory=dict)  # name -> per-point values, rows of ac.points
+    frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
+    #: Molecules: the measures of the atoms' union at alpha² = 0, and (m,) int16 atomic
+    #: numbers aligned with ac.points (None for other point sets).
+    molecule: MoleculeMeasures | None = None
+    atomic_numbers: np.ndarray | None = None
+
+    @property
+    def unit(self) -> str | None:
+        """The length unit the file declares ('m' for geographic data projected to metres),
+        None when unknown."""
+        return "m" if self.report is not None and self.report.georef is not None else None
 
     def build_line(self) -> str:
         """How the table came: 'built in 12.3 s' or 'loaded from cache in 0.4 s'."""
@@ -52,7 +68,8 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     """Read and build path, reporting progress(fraction, stage); Cancelled stops it.
 
     `build(points, progress)` makes the complex with its signatures (the window passes
-    app.build_process.build, which can be cancelled mid-triangulation).
+    app.build_process.build, which can be cancelled mid-triangulation); weighted files
+    (core.io: weight or radius columns) call it with the keyword `weights` too.
     """
     path = Path(path)
     started = time.perf_counter()
@@ -64,38 +81,38 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
     cached = is_cached(pointset)
-    ac = build(pointset.points, build_progress)
+    weights = pointset.weights
+    ac = (build(pointset.points, build_progress) if weights is None
+          else build(pointset.points, build_progress, weights=weights))
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
-    alpha = float(ac.optimal_alpha())
+    optimal, alpha = float(ac.optimal_alpha()), float(ac.default_alpha())
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
-    cursor.move(alpha)
+    cursor.move(alpha2=alpha * abs(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
     ac.persistence()  # for the signatures dock's diagram, computed here, not in the GUI thread
+    molecule, numbers = _molecule(ac, pointset)
     progress(1.0, "done")
     return Dataset(
-        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=alpha,
+        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=optimal,
+        default_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
-        from_cache=cached,
-        attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
+        from_cache=cached, frame=frame_for(path, pointset.report), molecule=molecule,
+        atomic_numbers=numbers,
     )
 
 
-def aligned_attributes(attributes: dict[str, np.ndarray], input_index: np.ndarray,
-                       n_points: int) -> dict[str, np.ndarray]:
-    """Per-input-row attributes re-indexed to the complex's points (input_index maps input rows
-    to point rows, -1 = not a vertex); merged duplicates keep one row's value. Read-only."""
-    index = np.asarray(input_index, dtype=np.int64)
-    used = index >= 0
-    out = {}
-    for name, values in attributes.items():
-        values = np.asarray(values)
-        if len(values) != len(index):
-            continue
-        aligned = np.zeros((n_points, *values.shape[1:]), dtype=values.dtype)
-        aligned[index[used]] = values[used]
-        aligned.flags.writeable = False
-        out[name] = aligned
-    return out
+def _molecule(ac: AlphaComplex, pointset) -> tuple[MoleculeMeasures | None, np.ndarray | None]:
+    """For a molecule (atoms with atomic numbers, weighted): its measures at alpha² = 0 and
+    the atomic numbers of ac's points; (None, None) otherwise."""
+    numbers = pointset.attributes.get("atomic_number")
+    if numbers is None or ac.weights is None or ac.dim != 3:
+        return None, None
+    rows = np.zeros(len(ac.points), dtype=np.int16)
+    shown = ac.input_index >= 0
+    rows[ac.input_index[shown]] = np.asarray(numbers)[shown]
+    probe = float(np.sqrt(pointset.attributes["weights"][0])
+                  - pointset.attributes["vdw_radius"][0])
+    return measure_molecule(ac, round(probe, 6)), rows

@@ -53,11 +53,17 @@ def ask_save_path(parent: QWidget, prefs: Preferences, title: str, formats: dict
 
 
 def export_shape(ac, alpha: float, path: Path, progress=None, source: Path | None = None,
-                 georef=None) -> str:
+                 georef=None, manifold: bool = True) -> str:
     """Write the shape at alpha to path with core.export (never over `source`, the points'
-    file; back in longitude/latitude when the points were read from them: `georef`);
-    returns what was written."""
-    return write_shape(ac, alpha, path, progress=progress, source=source, georef=georef).line()
+    file; back in longitude/latitude when the points were read from them: `georef`; 3D
+    surfaces split to a 2-manifold unless `manifold` is False); returns what was written.
+    `alpha` is the table's value (a signed radius for weighted points: written as its signed
+    square, alpha2)."""
+    if ac.weights is not None:
+        return write_shape(ac, None, path, alpha2=alpha * abs(alpha), progress=progress,
+                           source=source, georef=georef, manifold=manifold).line()
+    return write_shape(ac, alpha, path, progress=progress, source=source, georef=georef,
+                       manifold=manifold).line()
 
 
 def export_table(ac, path: Path, progress=None, source: Path | None = None) -> str:

@@ -28,8 +28,25 @@ def data_lines(model: ExplorerModel) -> list[str]:
         lines.append(f"spacing {report.spacing:.4g}")
     flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
     lines.append(f"{ac.dim}D complex{flat}, {len(ac.simplices(ac.dim)):,} cells")
+    if ac.weights is not None:
+        source = getattr(report, "weights_from", None) or "given weights"
+        hidden = int((np.asarray(ac.input_index) < 0).sum())
+        lines.append(f"weighted: {html.escape(source)}; {hidden:,} hidden points")
     lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}")
-    return lines
+    return lines + molecule_lines(model)
+
+
+def molecule_lines(model: ExplorerModel) -> list[str]:
+    """A molecule's measures (union of its balls at alpha² = 0), or nothing."""
+    m = model.dataset.molecule
+    if m is None:
+        return []
+    cavities = ", ".join(f"{v:.3g}" for v in m.cavities[:5]) + (" ..." if len(m.cavities) > 5
+                                                                else "")
+    return [f"<b>molecule</b>, probe {m.probe:g} Å (at alpha² 0)",
+            f"surface area {m.surface_area:,.2f} Å² (exact)",
+            f"volume {m.volume:,.2f} Å³ (exact)",
+            f"{len(m.cavities)} cavities" + (f": {cavities} Å³" if cavities else "")]
 
 
 def class_counts(model: ExplorerModel) -> tuple[int, int, list[int]]:
@@ -47,7 +64,10 @@ def shape_lines(model: ExplorerModel) -> list[str]:
     """Lines describing the shape at the current alpha: classes, topology, measures."""
     sig, dim = model.dataset.signatures, model.dataset.ac.dim
     cells, facets, singular = class_counts(model)
-    lines = [f"<b>alpha {model.alpha:.6g}</b>", f"{cells:,} cells, {facets:,} boundary facets",
+    at = (f"alpha² {model.alpha2:.6g}" + (f" (alpha {model.alpha:.6g})" if model.alpha >= 0
+                                          else "")
+          if model.weighted else f"alpha {model.alpha:.6g}")
+    lines = [f"<b>{at}</b>", f"{cells:,} cells, {facets:,} boundary facets",
              f"singular (points, edges{', triangles' if dim == 3 else ''}): "
              + ", ".join(f"{n:,}" for n in singular)]
     betti = sig.betti[model.index]

@@ -11,6 +11,7 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
+import numpy as np
 from PySide6.QtCore import QSettings, Qt
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
@@ -28,6 +29,7 @@ from app.jobs import JobRunner
 from app.layers_panel import LayersPanel
 from app.menus import build_menus
 from app.model import ExplorerModel
+from app.palette import ATOM_STYLE, CAVITY_STYLE, cpk_rgb
 from app.progress_widget import ProgressWidget
 from app.resources import ICON_PATH
 from app.scene import Scene, as_xyz
@@ -49,6 +51,7 @@ class MainWindow(QMainWindow):
         self.setAcceptDrops(True)
         self.prefs = Preferences(settings)
         self.start_alpha: float | None = None
+        self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
         self.model = ExplorerModel()
         self.loader = Loader(self)
         self.jobs = JobRunner(self)
@@ -144,6 +147,9 @@ class MainWindow(QMainWindow):
         if self.start_alpha is not None:
             self.model.set_alpha(self.start_alpha)
             self.start_alpha = None
+        elif self.start_optimal:
+            self.model.set_index(self.model.optimal_index())
+        self.start_optimal = False
 
     def _on_failed(self, request: int, message: str) -> None:
         """Show why the current request failed; the previous dataset stays."""
@@ -162,8 +168,15 @@ class MainWindow(QMainWindow):
         """New dataset: new layers and camera (the only time actors are added)."""
         ds = self.model.dataset
         ac = ds.ac
-        styles = self.prefs.styles(ac.dim)
-        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles)
+        weighted = ac.weights is not None
+        styles = self.prefs.styles(ac.dim, weighted)
+        radii = np.sqrt(np.maximum(ac.weights, 0.0)) if weighted else None
+        rgb = None
+        if ds.atomic_numbers is not None:  # a molecule: atoms in CPK colours, its cavities
+            styles["balls"], styles["cavities"] = ATOM_STYLE, CAVITY_STYLE
+            rgb = cpk_rgb(ds.atomic_numbers)
+        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
+                               radii, ds.frame, ds.unit, rgb)
         self.colourer.set_dataset(ds.attributes)
         self.clipper.set_enabled(self.clipper.enabled)
         self.layers_panel.set_layers(styles)
@@ -174,11 +187,14 @@ class MainWindow(QMainWindow):
         """New alpha: swap layer connectivity, one render, status line."""
         self.scene.set_shape(self.model.shape)
         self.colourer.update()
+        if self.model.dataset.atomic_numbers is not None:
+            self.scene.set_cells("cavities", self.model.cavities())
         self.scene.render()
         ds = self.model.dataset
         self.status.setText(
             f"{len(ds.ac.points):,} points · {len(self.model.shape.cells):,} cells · "
-            f"alpha {self.model.alpha:.6g} · {ds.build_line()}"
+            + (f"alpha² {self.model.alpha2:.6g}" if self.model.weighted
+               else f"alpha {self.model.alpha:.6g}") + f" · {ds.build_line()}"
         )
 
     def _set_style(self, name: str, style) -> None:

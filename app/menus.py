@@ -11,9 +11,10 @@ from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QMessageBox
 from app import file_actions
 from app.clipping import add_clip_action
 from app.colour_view import add_colour_menu
+from app.export_dialog import ask_export_shape
 from app.help import add_help_actions
 from core.errors import InputError
-from core.export import SHAPE_FORMATS, TABLE_FORMATS
+from core.export import TABLE_FORMATS
 from core.export.targets import refuse_source
 
 ABOUT = (
@@ -79,14 +80,13 @@ def export_shape(window) -> None:
     if window.model.dataset is None:
         QMessageBox.information(window, "Export shape", "Open a point set first.")
         return
-    stem = window.model.dataset.path.stem
-    path = file_actions.ask_save_path(window, window.prefs, "Export shape", SHAPE_FORMATS,
-                                      f"{stem}_alpha")
-    if path and not is_the_source(window, "Export shape", path):
-        ds, alpha = window.model.dataset, window.model.alpha
+    ds, alpha = window.model.dataset, window.model.alpha
+    chosen = ask_export_shape(window, window.prefs, ds.path.stem, alpha)
+    if chosen and not is_the_source(window, "Export shape", chosen[0]):
+        path, manifold = chosen
         georef = None if ds.report is None else ds.report.georef  # longitude/latitude input
         run_in_background(window, "Export shape", lambda progress: file_actions.export_shape(
-            ds.ac, alpha, path, progress, source=ds.path, georef=georef))
+            ds.ac, alpha, path, progress, source=ds.path, georef=georef, manifold=manifold))
 
 
 def export_table(window) -> None:
@@ -111,6 +111,15 @@ def save_screenshot(window) -> None:
                    lambda: file_actions.save_screenshot(window.plotter, path))
 
 
+VIEW_KEYS = {"top": "T", "front": "F", "side": "S", "iso": "I"}
+
+
+def show_view(window, preset: str) -> None:
+    """View → a preset camera (app.camera.PRESETS), fitted to the data."""
+    window.scene.view_preset(preset)
+    window.scene.render()
+
+
 def build_menus(window: QMainWindow) -> dict[str, QAction]:
     """Create File, View, Shape and Help menus on window; returns the main actions by name."""
     bar = window.menuBar()
@@ -129,7 +138,13 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
     view = bar.addMenu("&View")
     for dock in window.findChildren(QDockWidget):
         view.addAction(dock.toggleViewAction())
-    add_action(view, "&Reset camera", lambda: (window.scene.fit_view(), window.scene.render()))
+    view.addSeparator()
+    for preset, key in VIEW_KEYS.items():
+        actions[f"view_{preset}"] = add_action(view, f"&{preset.capitalize()} view",
+                                               partial(show_view, window, preset), key)
+    actions["reset_view"] = add_action(view, "&Reset view",
+                                       lambda: (window.scene.fit_view(), window.scene.render()),
+                                       "R")
     view.addSeparator()
     actions["colour_by"] = add_colour_menu(view, window.colourer).menuAction()
     actions["clip"] = add_clip_action(view, window.clipper)
@@ -139,6 +154,9 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
                                     lambda: model.set_index(model.optimal_index()), "Ctrl+1")
     actions["hull"] = add_action(shape, "Convex &hull",
                                  lambda: model.set_index(model.hull_index()), "Ctrl+H")
+    shape.addSeparator()
+    actions["back"] = add_action(shape, "&Back to the previous alpha", model.go_back, "Alt+Left")
+    actions["forward"] = add_action(shape, "&Forward", model.go_forward, "Alt+Right")
     help_menu = bar.addMenu("&Help")
     actions.update(add_help_actions(window, help_menu))
     add_action(help_menu, "&About Alpha Scoop", lambda: QMessageBox.about(window, "About", ABOUT))

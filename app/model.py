@@ -10,11 +10,11 @@ import numpy as np
 from PySide6.QtCore import QObject, Signal
 
 from app.dataset import Dataset
+from app.history import AlphaHistory
+from app.log_travel import snap_index
+from core.molecule.cavities import cavity_cells
 
-
-def snap_index(spectrum: np.ndarray, alpha: float) -> int:
-    """Index of the largest critical alpha <= alpha (the shape at alpha is the shape there)."""
-    return max(int(np.searchsorted(spectrum, alpha, side="right")) - 1, 0)
+__all__ = ["ExplorerModel", "snap_index"]
 
 
 class ExplorerModel(QObject):
@@ -30,6 +30,7 @@ class ExplorerModel(QObject):
         self.index = -1
         self._shape = None
         self._cursor = None
+        self.history = AlphaHistory()
 
     @property
     def spectrum(self) -> np.ndarray:
@@ -38,41 +39,84 @@ class ExplorerModel(QObject):
 
     @property
     def alpha(self) -> float:
-        """The current alpha radius (nan without a dataset)."""
+        """The current alpha radius (nan without a dataset; for weighted points the signed
+        radius sign(alpha2) * sqrt(|alpha2|), negative below zero radius)."""
         return float(self.spectrum[self.index]) if self.dataset else float("nan")
+
+    @property
+    def alpha2(self) -> float:
+        """The current alpha squared, signed: negative values exist for weighted points."""
+        alpha = self.alpha
+        return alpha * abs(alpha)
+
+    @property
+    def weighted(self) -> bool:
+        """True when the dataset's points carry weights (squared radii)."""
+        return self.dataset is not None and self.dataset.ac.weights is not None
 
     @property
     def shape(self):
         """AlphaShape at the current alpha (queried once per index, by the dataset's cursor:
         a step costs what changed since the last shape)."""
         if self._shape is None and self.dataset is not None:
-            self._shape = self._cursor.move(self.alpha)
+            self._shape = self._cursor.move(alpha2=self.alpha2)
         return self._shape
 
+    def cavities(self) -> np.ndarray:
+        """(k, 4) int32 cells of the voids at the current alpha (a molecule's cavities)."""
+        ac = self.dataset.ac
+        return ac.simplices(3)[cavity_cells(ac, self.alpha2)]
+
     def set_dataset(self, dataset: Dataset) -> None:
-        """Replace the dataset and move to its optimal alpha."""
+        """Replace the dataset and move to its opening (default) alpha."""
         self.dataset = dataset
         self._cursor = dataset.cursor or dataset.ac.cursor()
-        self.index = snap_index(dataset.spectrum, dataset.optimal_alpha)
+        self.index = self.default_index()
+        self.history.reset(self.index)
         self._shape = None
         self.datasetChanged.emit()
         self.alphaChanged.emit()
 
-    def set_index(self, index: int) -> None:
-        """Move to spectrum[index] (clamped); emits alphaChanged only when it changes."""
+    def set_index(self, index: int, record: bool = True) -> None:
+        """Move to spectrum[index] (clamped); emits alphaChanged only when it changes.
+
+        The move is recorded in `history` (Back/Forward) unless `record` is False.
+        """
         if self.dataset is None:
             return
         index = int(np.clip(index, 0, len(self.spectrum) - 1))
         if index == self.index:
             return
+        if record:
+            self.history.visit(index)
         self.index = index
         self._shape = None
         self.alphaChanged.emit()
+
+    def go_back(self) -> None:
+        """Return to the alpha visited before (undo for the slider)."""
+        index = self.history.back() if self.dataset is not None else None
+        if index is not None:
+            self.set_index(index, record=False)
+
+    def go_forward(self) -> None:
+        """Redo a go_back."""
+        index = self.history.forward() if self.dataset is not None else None
+        if index is not None:
+            self.set_index(index, record=False)
 
     def set_alpha(self, alpha: float) -> None:
         """Move to the shape at alpha (snapped to the critical value at or below it)."""
         if self.dataset is not None:
             self.set_index(snap_index(self.spectrum, alpha))
+
+    def set_alpha2(self, alpha2: float) -> None:
+        """Move to the shape at a squared alpha (any sign), snapped like set_alpha."""
+        self.set_alpha(float(np.copysign(np.sqrt(abs(alpha2)), alpha2)))
+
+    def default_index(self) -> int:
+        """Index of the dataset's opening alpha (where a new dataset starts)."""
+        return snap_index(self.spectrum, self.dataset.default_alpha) if self.dataset else -1
 
     def optimal_index(self) -> int:
         """Index of the dataset's optimal alpha."""

@@ -58,7 +58,11 @@ def draw_persistence(ax, persistence, alphas: np.ndarray) -> list[DrawnPairs]:
             fontsize="x-small", va="bottom", color="#555555")
     ax.plot([0, top], [0, top], color="#aaaaaa", linewidth=0.8)
     ax.set_xscale("symlog", linthresh=low)
-    ax.set_yscale("log")
+    deaths = np.concatenate([d.pairs[:, 1] for d in drawn])
+    if np.any(deaths[np.isfinite(deaths)] <= 0):  # weighted points: negative signed radii
+        ax.set_yscale("symlog", linthresh=low)
+    else:
+        ax.set_yscale("log")
     ax.set_xlim(-0.5 * low, top * 1.5)
     ax.set_ylim(low * 0.8, top * 1.8)
     ax.set_xlabel("birth alpha (data units)", fontsize="x-small")

@@ -26,15 +26,18 @@ def quiet_progress(fraction: float, stage: str) -> None:
     """Progress sink for scripts: says nothing."""
 
 
-def render_png(dataset: Dataset, alpha: float, out: Path, size: tuple[int, int]) -> None:
-    """Render dataset's shape at alpha into out (PNG, written atomically) at size pixels."""
+def render_png(dataset: Dataset, alpha: float, out: Path, size: tuple[int, int],
+               legend: bool = True) -> None:
+    """Render dataset's shape at alpha into out (PNG, written atomically) at size pixels, with
+    the legend, alpha, scale bar and orientation marker unless `legend` is False."""
     ac = dataset.ac
     plotter = pv.Plotter(off_screen=True, window_size=list(size))
     try:
         scene = Scene(plotter)
         scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1),
-                          default_styles(ac.dim))
-        scene.set_shape(ac.shape(alpha))
+                          default_styles(ac.dim), frame=dataset.frame, unit=dataset.unit)
+        scene.overlay.set_visible(legend)
+        scene.set_shape(ac.shape(alpha2=alpha * abs(alpha)))  # weighted: may be below zero
         with atomic_path(out) as tmp:
             save_png(plotter, tmp)
     finally:
@@ -56,10 +59,13 @@ def run_screenshot(args: argparse.Namespace) -> int:
         if not out.parent.is_dir():
             raise AlphaScoopError(f"{out.parent}: no such folder for the screenshot")
         dataset = load_dataset(source, quiet_progress)
-        alpha = dataset.optimal_alpha if args.alpha is None else args.alpha
-        render_png(dataset, alpha, out, args.size or DEFAULT_SIZE)
+        alpha = dataset.optimal_alpha if args.optimal else args.alpha
+        alpha = dataset.default_alpha if alpha is None else alpha
+        render_png(dataset, alpha, out, args.size or DEFAULT_SIZE, legend=not args.no_legend)
     except (AlphaScoopError, OSError) as error:
         print(f"alphascoop: {error}", file=sys.stderr)
         return 1
-    print(f"wrote {out} (alpha {alpha:.6g})")
+    shown = (f"alpha² {alpha * abs(alpha):.6g}" if dataset.ac.weights is not None
+             else f"alpha {alpha:.6g}")
+    print(f"wrote {out} ({shown})")
     return 0

@@ -37,9 +37,18 @@ class Preferences:
         files = [path, *(f for f in self.recent_files() if f != path)]
         self.store.setValue("recent_files", files[:MAX_RECENT])
 
-    def styles(self, dim: int) -> dict[str, LayerStyle]:
-        """Layer styles for a dim-D dataset: defaults overridden by saved ones."""
-        styles = default_styles(dim)
+    def export_manifold(self) -> bool:
+        """Whether Export shape splits surfaces to a 2-manifold (default True)."""
+        return bool(self.store.value("export/manifold", True, type=bool))
+
+    def set_export_manifold(self, manifold: bool) -> None:
+        """Remember the Export shape dialog's manifold choice."""
+        self.store.setValue("export/manifold", bool(manifold))
+
+    def styles(self, dim: int, weighted: bool = False) -> dict[str, LayerStyle]:
+        """Layer styles for a dim-D dataset (weighted: with the balls layer): defaults
+        overridden by saved ones."""
+        styles = default_styles(dim, weighted)
         for name, default in styles.items():
             key = f"layers/{dim}d/{name}"
             styles[name] = LayerStyle(

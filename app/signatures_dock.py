@@ -3,7 +3,8 @@ the persistence diagram.
 
 A vertical cursor marks the current alpha; clicking a plot moves the alpha there. Markers at
 the top of each plot show CGAL's optimal alpha (★) and the suggested alphas (▼); clicking one
-goes to it. A readout under the plots gives the values under the mouse.
+goes to it. A readout under the plots gives the values under the mouse. Weighted points have
+negative squared alphas: their plots use alpha² on a symmetric-log axis (linear around zero).
 """
 
 from __future__ import annotations
@@ -45,6 +46,19 @@ def log_samples(alphas: np.ndarray, count: int = MAX_SAMPLES) -> np.ndarray:
     return np.unique(np.clip(picks, positive[0], len(alphas) - 1))
 
 
+def rank_samples(count_all: int, count: int = MAX_SAMPLES) -> np.ndarray:
+    """Indexes of at most ~count entries evenly spread over all count_all spectrum entries."""
+    if count_all <= count:
+        return np.arange(count_all)
+    return np.unique(np.linspace(0, count_all - 1, count).round().astype(np.int64))
+
+
+def symlog_threshold(values: np.ndarray) -> float:
+    """Width of the linear part of a symmetric-log axis: a low quantile of the non-zero |x|."""
+    size = np.abs(values[values != 0])
+    return float(np.quantile(size, 0.05)) if len(size) else 1.0
+
+
 def markers_of(ac) -> tuple[Marker, list[Marker]]:
     """The optimal alpha and the suggested alphas of a complex, as markers."""
     optimal = float(ac.optimal_alpha())
@@ -69,7 +83,7 @@ def value_line(sig, alpha: float) -> str:
     names = ("b0", "b1", "b2")[: sig.betti.shape[1]]
     betti = "  ".join(f"{n} {int(b):,}" for n, b in zip(names, sig.betti[row], strict=True))
     measure, boundary = (name.split(" (")[0] for name in measure_names(sig.dim))
-    return (f"r {alpha:.4g}  r² {alpha * alpha:.4g}  ·  {betti}  ·  {measure} "
+    return (f"r {alpha:.4g}  r² {alpha * abs(alpha):.4g}  ·  {betti}  ·  {measure} "
             f"{sig.measure[row]:.4g}  ·  {boundary} {sig.boundary_measure[row]:.4g}")
 
 
@@ -122,8 +136,10 @@ class SignaturesPanel(QWidget):
 
     def _plot_signatures(self, sig, axes) -> None:
         """Betti numbers, measure and boundary measure against log alpha, with cursors."""
-        rows = log_samples(np.asarray(sig.alphas))
-        x = sig.alphas[rows]
+        weighted = self.model.weighted
+        alphas = np.asarray(sig.alphas)
+        rows = rank_samples(len(alphas)) if weighted else log_samples(alphas)
+        x = self.plot_x(alphas[rows])
         names = ("b0 components", "b1 tunnels" if sig.dim == 3 else "b1 holes", "b2 voids")
         for k in range(sig.betti.shape[1]):
             axes[0].step(x, sig.betti[rows, k], where="post", color=BETTI_COLOURS[k],
@@ -135,9 +151,13 @@ class SignaturesPanel(QWidget):
         titles = ("Betti numbers", *measure_names(sig.dim))
         ylabels = ("count", *(name.split(" (")[1].rstrip(")") for name in titles[1:]))
         for ax, title, ylabel in zip(axes, titles, ylabels, strict=True):
-            ax.set_xscale("log")
+            if weighted:
+                ax.set_xscale("symlog", linthresh=symlog_threshold(x))
+                ax.set_xlabel("alpha² (symmetric log, data units²)", fontsize="x-small")
+            else:
+                ax.set_xscale("log")
+                ax.set_xlabel("alpha (radius, data units)", fontsize="x-small")
             ax.set_title(title, fontsize="small", pad=10)
-            ax.set_xlabel("alpha (radius, data units)", fontsize="x-small")
             ax.set_ylabel(ylabel, fontsize="x-small")
             self.cursors.append(ax.axvline(x[0], color="#444444", linewidth=1))
 
@@ -148,7 +168,8 @@ class SignaturesPanel(QWidget):
                                               ([optimal], "*", OPTIMAL_COLOUR, 13)):
             if not markers:
                 continue
-            (line,) = ax.plot([m.alpha for m in markers], [1.0] * len(markers), symbol,
+            (line,) = ax.plot(self.plot_x(np.array([m.alpha for m in markers])),
+                              [1.0] * len(markers), symbol,
                               color=colour, markersize=size, clip_on=False,
                               transform=ax.get_xaxis_transform(), pickradius=6, zorder=5,
                               markeredgecolor="white", markeredgewidth=0.6)
@@ -160,7 +181,7 @@ class SignaturesPanel(QWidget):
         for line, markers in self.marker_lines:
             hit, info = line.contains(event)
             for i in info.get("ind", ()) if hit else ():
-                x = line.get_transform().transform((markers[int(i)].alpha, 1.0))[0]
+                x = line.get_transform().transform((line.get_xdata()[int(i)], 1.0))[0]
                 if abs(x - event.x) < best_distance:
                     best, best_distance = markers[int(i)], abs(x - event.x)
         return best
@@ -168,10 +189,12 @@ class SignaturesPanel(QWidget):
     def move_cursor(self) -> None:
         """Put the cursors at the current alpha (redraw is coalesced by matplotlib)."""
         alpha = self.model.alpha
-        if not self.cursors or not alpha > 0:
+        if not self.cursors or not (alpha > 0 or self.model.weighted):
             return
-        for cursor in self.cursors:
-            cursor.set_xdata([alpha, alpha])
+        x = float(self.plot_x(np.array([alpha]))[0])
+        for cursor in self.cursors[:-1]:
+            cursor.set_xdata([x, x])
+        self.cursors[-1].set_xdata([alpha, alpha])  # the persistence plot is in radii
         if self.death_cursor is not None:
             self.death_cursor.set_ydata([alpha, alpha])
         self.canvas.draw_idle()
@@ -183,13 +206,22 @@ class SignaturesPanel(QWidget):
             return
         marker = self.marker_at(event)
         if marker is not None:
-            self.model.set_alpha(marker.alpha)
+            self.model.set_alpha(marker.alpha)  # radii (signed for weighted points)
         elif event.inaxes is self.persistence_ax and event.inaxes is not None:
             pair = self._pair_at(event)
             if pair is not None:
                 self.model.set_alpha(pair[1])
         elif event.inaxes is not None and event.xdata is not None:
-            self.model.set_alpha(float(event.xdata))
+            if self.model.weighted:
+                self.model.set_alpha2(float(event.xdata))
+            else:
+                self.model.set_alpha(float(event.xdata))
+
+    def plot_x(self, alphas: np.ndarray) -> np.ndarray:
+        """Where alphas (radii, signed for weighted points) sit on the signature plots' x axis:
+        the radius itself, or for weighted points the signed square."""
+        alphas = np.asarray(alphas, dtype=np.float64)
+        return alphas * np.abs(alphas) if self.model.weighted else alphas
 
     def _pair_at(self, event) -> tuple[str, float, float] | None:
         """The persistence pair under the mouse (series name, birth, death), or None."""
@@ -216,4 +248,6 @@ class SignaturesPanel(QWidget):
             name, birth, death = pair
             return (f"{name[:-1]} born at r {birth:.4g}, dies at r {death:.4g} "
                     f"(click: go to its birth)")
-        return value_line(sig, float(event.xdata))
+        x = float(event.xdata)
+        alpha = float(np.copysign(np.sqrt(abs(x)), x)) if self.model.weighted else x
+        return value_line(sig, alpha)

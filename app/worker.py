@@ -70,7 +70,9 @@ class Loader(QObject):
             "cancelled by the user")
         try:
             dataset = load_dataset(
-                path, progress, lambda points, report: build_process.build(points, report, cancel))
+                path, progress,
+                lambda points, report, **weights: build_process.build(points, report, cancel,
+                                                                      **weights))
         except Cancelled:
             self.cancelled.emit(request)
         except AlphaScoopError as error:

@@ -129,3 +129,17 @@ def test_slider_benchmark_end_to_end(tmp_path):
     for kind in ("arrow_step", "drag_step", "page_step"):
         assert 0 < figures[kind]["median_s"] <= figures[kind]["max_s"]
         assert f"{kind:10s} median" in done.stdout
+
+
+def test_weighted_packing_radii_span_one_to_two_spacings() -> None:
+    from scipy.spatial import cKDTree
+
+    from benchmarks.bench_weighted import packing
+
+    points, weights = packing(2000, seed=3)
+    dist, _ = cKDTree(points).query(points, k=2)
+    spacing = np.median(dist[:, 1])
+    radii = np.sqrt(weights)
+    assert points.shape == (2000, 3) and weights.shape == (2000,)
+    assert radii.min() >= 0.9 * spacing and radii.max() <= 2.1 * spacing
+    assert radii.max() / radii.min() > 1.8

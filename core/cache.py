@@ -160,16 +160,18 @@ def _stat(path: Path) -> os.stat_result | None:
 
 def build_cached(pointset, *, use_cache: bool = True, progress: Progress | None = None,
                  signatures: bool = False, mode: Mode | None = None,
-                 normals: np.ndarray | None = None) -> AlphaComplex:
+                 normals: np.ndarray | None = None,
+                 weights: np.ndarray | None = None) -> AlphaComplex:
     """AlphaComplex of pointset.points (or an (n, d) array), from the cache when possible.
 
     With `signatures`, they are computed too and cached with the table, so that re-opening
     needs no topology pass either. `mode` (default classic) and, for its "given" normals,
-    `normals` ((n, d) like the points) choose the alpha mode (core/modes.py).
+    `normals` ((n, d) like the points) choose the alpha mode (core/modes.py). `weights` (or
+    the point set's own `weights`) build a weighted complex.
     """
     points = np.asarray(getattr(pointset, "points", pointset), dtype=np.float64)
     mode = mode or Mode()
-    weights = pointset_weights(pointset)
+    weights = pointset_weights(pointset) if weights is None else weights
     build = mode.build_kwargs(normals) | ({} if weights is None else {"weights": weights})
     if not use_cache:
         ac = AlphaComplex.from_points(points, progress=progress, **build)

@@ -287,7 +287,8 @@ class AlphaComplex:
     def shape(self, alpha: float | None = None, *, alpha2: float | None = None) -> AlphaShape:
         """The alpha shape at `alpha` (a radius) or `alpha2` (squared); arrays are computed
         when first used. Its `alpha` attribute is the table value (signed radius)."""
-        return AlphaShape(self, table_value(alpha, alpha2))
+        return AlphaShape(self, table_value(alpha, alpha2),
+                          None if alpha2 is None else float(alpha2))
 
     def cursor(self) -> ShapeCursor:
         """A ShapeCursor: shapes at one alpha after another, each step costing what changed
@@ -378,6 +379,15 @@ class AlphaComplex:
         from .suggest import optimal_alpha
 
         return optimal_alpha(self._signatures, self._cover_alpha, n_components)
+
+    def default_alpha(self) -> float:
+        """The alpha a view opens at: where the shape looks like the object (core.opening).
+
+        The smallest alpha at which the triangles (surface and solid) join at least 99 % of the
+        points into one piece, and never more than `optimal_alpha()` (CGAL's rule for solids).
+        Computed with the signatures and saved with them.
+        """
+        return min(self._signatures.opening_alpha, self.optimal_alpha())
 
     def optimal_alpha2(self, n_components: int = 1) -> float:
         """optimal_alpha as a squared value (may be negative for weighted complexes)."""

@@ -19,7 +19,7 @@ from .geometry import (
     least_squares,
     solve_centres,
 )
-from .tolerances import DEGENERATE_RTOL, ON_SPHERE_RTOL
+from .tolerances import DEGENERATE_RTOL, ON_SPHERE_RTOL, POWER_CANCEL_RTOL, POWER_EXACT_RTOL
 
 
 def signed_sqrt(values: np.ndarray) -> np.ndarray:
@@ -38,6 +38,70 @@ def _relative(weights: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     return w - w[:, :1]
 
 
+def _precise_powers(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray
+                    ) -> np.ndarray:
+    """(n,) powers of (n, k+1) non-degenerate simplices computed in extended precision
+    throughout (centre and |c|² - w), for values near zero that cancellation would spoil."""
+    wide = points.astype(np.longdouble)
+    wide_w = weights.astype(np.longdouble)
+    vec = wide[simplices[:, 1:]] - wide[simplices[:, :1]]
+    rhs = np.einsum("nid,nid->ni", vec, vec) - (wide_w[simplices[:, 1:]]
+                                                 - wide_w[simplices[:, :1]])
+    c0 = solve_centres(vec, DEGENERATE_RTOL, rhs)[0]
+    return (np.einsum("nd,nd->n", c0, c0) - wide_w[simplices[:, 0]]).astype(np.float64)
+
+
+def exact_power(corners: np.ndarray, weights: np.ndarray) -> float | None:
+    """Power of the smallest sphere orthogonal to (k+1, d) weighted points, in rational
+    arithmetic, rounded once to float64; None for affinely dependent points."""
+    from fractions import Fraction
+
+    p = [[Fraction(float(x)) for x in row] for row in corners]
+    w = [Fraction(float(x)) for x in weights]
+    vec = [[a - b for a, b in zip(row, p[0], strict=True)] for row in p[1:]]
+    gram = [[sum(a * b for a, b in zip(u, v, strict=True)) for v in vec] for u in vec]
+    rhs = [(sum(a * a for a in v) - (wi - w[0])) / 2 for v, wi in zip(vec, w[1:], strict=True)]
+    y = _solve_exactly(gram, rhs)
+    if y is None:
+        return None
+    centre = [sum(yi * v[j] for yi, v in zip(y, vec, strict=True)) for j in range(len(p[0]))]
+    return float(sum(c * c for c in centre) - w[0])
+
+
+def _solve_exactly(matrix: list, rhs: list) -> list | None:
+    """Gaussian elimination over Fractions; None when the matrix is singular."""
+    n = len(rhs)
+    rows = [[*row, b] for row, b in zip(matrix, rhs, strict=True)]
+    for col in range(n):
+        pivot = next((r for r in range(col, n) if rows[r][col] != 0), None)
+        if pivot is None:
+            return None
+        rows[col], rows[pivot] = rows[pivot], rows[col]
+        for r in range(n):
+            if r != col and rows[r][col] != 0:
+                factor = rows[r][col] / rows[col][col]
+                rows[r] = [a - factor * b for a, b in zip(rows[r], rows[col], strict=True)]
+    return [rows[i][n] / rows[i][i] for i in range(n)]
+
+
+def _refine(power: np.ndarray, size: np.ndarray, points: np.ndarray, weights: np.ndarray,
+            simplices: np.ndarray, skip: np.ndarray | None = None) -> None:
+    """Recompute in place the powers that cancellation made inaccurate (|p| small against
+    `size`, the magnitudes subtracted), except the `skip` ones: in extended precision, and
+    exactly where even that keeps too few digits."""
+    cancel = np.abs(power) < POWER_CANCEL_RTOL * size
+    if skip is not None:
+        cancel &= ~skip
+    if not cancel.any():
+        return
+    ids = np.flatnonzero(cancel)
+    power[ids] = _precise_powers(points, weights, simplices[ids])
+    for i in ids[np.abs(power[ids]) < POWER_EXACT_RTOL * size[ids]]:  # rare: near-zero ones
+        value = exact_power(points[simplices[i]], weights[simplices[i]])
+        if value is not None:
+            power[i] = value
+
+
 def _orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray):
     """One chunk: centre offsets, powers, determinants, degenerate flags and (d-simplices)
     attach bits, with extended precision and least squares where needed."""
@@ -53,7 +117,10 @@ def _orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray
         c0[bad], power[bad] = least_squares(vec[bad], rel[bad])
         if bits is not None:
             bits[bad] = 0
-    power -= np.take(weights, simplices[:, 0])
+    w0 = np.take(weights, simplices[:, 0])
+    size = power + np.abs(w0)
+    power -= w0
+    _refine(power, size, points, weights, simplices, skip=bad)
     return c0, power, det, bad, bits
 
 
@@ -89,7 +156,10 @@ def edge_powers(points: np.ndarray, weights: np.ndarray, edges: np.ndarray):
     t = (sq - (np.take(weights, edges[:, 1]) - w0)) / (2.0 * np.where(sq > 0, sq, 1.0))
     bits = ((1.0 - t) < -ON_SPHERE_RTOL).astype(np.uint8)
     bits |= (t < -ON_SPHERE_RTOL).astype(np.uint8) << 1
-    return t * t * sq - w0, a + t[:, None] * vec, bits
+    near = t * t * sq
+    power = near - w0
+    _refine(power, near + np.abs(w0), points, weights, edges, skip=sq == 0)
+    return power, a + t[:, None] * vec, bits
 
 
 def triangle_powers(points: np.ndarray, weights: np.ndarray, triangles: np.ndarray):

@@ -25,16 +25,18 @@ class AlphaShape:
     pass over the whole triangulation beyond the prefix of simplices that entered.
     """
 
-    def __init__(self, complex_: AlphaComplex, alpha: float) -> None:
+    def __init__(self, complex_: AlphaComplex, alpha: float, alpha2: float | None = None) -> None:
         self._ac = complex_
         self.alpha = float(alpha)
+        self._alpha2 = self.alpha * abs(self.alpha) if alpha2 is None else float(alpha2)
         self.dim = complex_.dim
         self.points = complex_.points
 
     @property
     def alpha2(self) -> float:
-        """The shape's alpha as a squared value (signed: negative below zero radius)."""
-        return self.alpha * abs(self.alpha)
+        """The shape's alpha as a squared value (signed: negative below zero radius); the
+        value asked for when the shape was made with alpha2=."""
+        return self._alpha2
 
     def _entered(self, k: int) -> int:
         """Number of k-simplices in the complex (they are a prefix: sorted by enter)."""

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .opening import opening_alpha_of
 from .topology import Topology, ascending, ascending_order
 
 #: Column order of `Signatures.counts`: the four classes of `AlphaComplex.classify`.
@@ -31,6 +32,7 @@ class Signatures:
     solid_components: np.ndarray  # (s,) int32
     measure: np.ndarray  # (s,) float64
     boundary_measure: np.ndarray  # (s,) float64
+    opening_alpha: float  # smallest alpha whose triangles join nearly all points (core.opening)
     intervals: tuple = field(repr=False)  # per k: the table's (n_k, 3) intervals
     _sorted: dict = field(default_factory=dict, repr=False)  # k -> sorted thresholds, lazily
 
@@ -74,6 +76,7 @@ def compute_signatures(ac, topology: Topology) -> Signatures:
         solid_components=_ro(topology.solid_components(alphas)),
         measure=_ro(measure[cells_in]),
         boundary_measure=_ro(boundary[cells_in]),
+        opening_alpha=opening_alpha_of(ac),
         intervals=tuple(ac.intervals(k) for k in range(dim + 1)),
     )
 

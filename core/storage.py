@@ -13,7 +13,8 @@ Weighted tables (tables without it are classic, so older files load unchanged) a
 
 Optional, written once computed, so re-opening skips the topology pass: `sig_alphas` (s,)
 float64 (the spectrum), `sig_betti` (s, dim) int32, `sig_solid` (s,) int32, `sig_measure`,
-`sig_boundary` (s,) float64; `topo_vertex_forest`, `topo_dual_forest` (float64),
+`sig_boundary` (s,) float64, `sig_opening` () float64 (the opening alpha; recomputed when
+absent); `topo_vertex_forest`, `topo_dual_forest` (float64),
 `topo_dual_edges` (fd, 2) int64, `topo_solid_forest` (float64).
 
 Optional, for a table built in a mode (core/modes.py; absent = classic): `mode_density` (int,
@@ -23,7 +24,6 @@ Optional, for a table built in a mode (core/modes.py; absent = classic): `mode_d
 from __future__ import annotations
 
 import os
-import zipfile
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -32,8 +32,17 @@ import numpy as np
 from .atomic import atomic_write
 from .errors import FileFormatError, InputError
 from .modes import Mode, make_mode
+from .npz import read_npz
 from .points import Frame
 from .table import Level, Table
+from .table_checks import (
+    Checker,
+    check_forests,
+    check_signature_arrays,
+    check_signatures,
+    check_table,
+    scalar,
+)
 
 if TYPE_CHECKING:
     from .complex import AlphaComplex
@@ -74,33 +83,31 @@ def _derived_arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
     sig, topo = ac.signatures(), ac._topology
     return {"sig_alphas": sig.alphas, "sig_betti": sig.betti, "sig_solid": sig.solid_components,
             "sig_measure": sig.measure, "sig_boundary": sig.boundary_measure,
+            "sig_opening": np.array(sig.opening_alpha),
             "topo_vertex_forest": topo.vertex_forest, "topo_dual_forest": topo.dual_forest,
             "topo_dual_edges": topo.dual_edges, "topo_solid_forest": topo.solid_forest}
 
 
-def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], path: Path) -> None:
-    """Hand saved signatures and topology to `ac` after checking their shapes."""
+def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], check: Checker) -> None:
+    """Hand saved signatures and topology to `ac` once they proved consistent with it."""
+    from .opening import opening_alpha_of
     from .signatures import Signatures
     from .topology import Topology, ascending
 
-    alphas = a["sig_alphas"]
-    s, dim = len(alphas), ac.dim
-    first = 0.0 if ac.weights is None else float(ac._table.levels[0].enter.min())
-    _check(alphas.ndim == 1 and s > 0 and alphas[0] == first
-           and bool(np.all(alphas[1:] > alphas[:-1])), path, "sig_alphas")
-    for name, shape in (("sig_betti", (s, dim)), ("sig_solid", (s,)), ("sig_measure", (s,)),
-                        ("sig_boundary", (s,))):
-        _check(a[name].shape == shape, path, name)
-    edges = a["topo_dual_edges"]
-    _check(edges.shape == (len(a["topo_dual_forest"]), 2), path, "topo_dual_edges")
+    dim = ac.dim
+    alphas = check_signature_arrays(check, a, dim)
+    check_forests(check, a, dim)
     levels = ac._table.levels
     topology = Topology(dim=dim, n_cells=len(levels[dim].enter),
                         enter_sorted=tuple(ascending(level.enter) for level in levels),
                         vertex_forest=a["topo_vertex_forest"], dual_forest=a["topo_dual_forest"],
-                        dual_edges=edges, solid_forest=a["topo_solid_forest"])
+                        dual_edges=a["topo_dual_edges"], solid_forest=a["topo_solid_forest"])
+    check_signatures(check, a, topology, np.cumsum(a["cell_measure"]))
     signatures = Signatures(dim=dim, alphas=alphas, betti=a["sig_betti"],
                             solid_components=a["sig_solid"], measure=a["sig_measure"],
                             boundary_measure=a["sig_boundary"],
+                            opening_alpha=(float(a["sig_opening"]) if "sig_opening" in a
+                                           else opening_alpha_of(ac)),
                             intervals=tuple(ac.intervals(k) for k in range(dim + 1)))
     for arr in (*topology.__dict__.values(), *signatures.__dict__.values()):
         if isinstance(arr, np.ndarray):
@@ -125,69 +132,35 @@ def save(ac: AlphaComplex, path: str | os.PathLike) -> None:
     atomic_write(path, lambda handle: np.savez(handle, **_arrays(ac)))
 
 
-def _check(condition: bool, path: Path, what: str) -> None:
-    if not condition:
-        raise FileFormatError(f"{path}: not a valid Alpha Scoop table ({what})")
-
-
 def _read(path: Path) -> dict[str, np.ndarray]:
-    try:  # our own handle: np.load leaks the one it opens when the zip is broken
-        with open(path, "rb") as fh:
-            data = np.load(fh, allow_pickle=False)
-            if not isinstance(data, np.lib.npyio.NpzFile):
-                raise ValueError("a single array, not an archive")
-            with data:
-                arrays = {name: data[name] for name in data.files}
-    except FileNotFoundError:
-        raise FileFormatError(f"{path}: no such file") from None
-    except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError) as exc:
-        raise FileFormatError(f"{path}: not a readable .npz table ({exc})") from None
-    _check(str(arrays.get("format", "")) == FORMAT, path, "missing format tag")
-    _check(int(arrays.get("version", -1)) == VERSION, path, "unknown version")
+    """The archive's arrays (declared sizes checked first), if it is one of our tables."""
+    arrays = read_npz(path)
+    check = Checker(path)
+    check.that(str(arrays.get("format", "")) == FORMAT, "missing format tag")
+    check.that(arrays.get("version", np.array(-1)).shape == ()
+               and str(arrays.get("version")) == str(VERSION), "unknown version")
     return arrays
 
 
 def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
-    """Read a table written by `save`, checking shapes so a damaged file fails clearly."""
+    """Read a table written by `save`; every array is checked (core.table_checks) so that a
+    damaged or crafted file is a FileFormatError, never a wrong shape or a crash later."""
     path = Path(path)
     a = _read(path)
+    check = Checker(path)
     try:
-        dim = int(a["dim"])
-        _check(dim in (2, 3), path, "dimension")
-        levels = []
-        for k in range(dim + 1):
-            simplices = a[f"simplices_{k}"]
-            n = len(simplices)
-            _check(simplices.ndim == 2 and simplices.shape[1] == k + 1, path, f"simplices_{k}")
-            level = Level(simplices, a[f"enter_{k}"], a[f"regular_{k}"], a[f"interior_{k}"],
-                          a.get(f"face_ids_{k}"))
-            for arr in (level.enter, level.regular, level.interior):
-                _check(arr.shape == (n,) and arr.dtype == np.float64, path, f"intervals_{k}")
-                _check(not np.isnan(arr).any(), path, f"NaN in intervals_{k}")
-            _check(k == 0 or (level.face_ids is not None and level.face_ids.shape == (n, k + 1)),
-                   path, f"face_ids_{k}")
-            levels.append(level)
-        points = a["points"]
-        _check(points.ndim == 2 and points.shape[1] == dim, path, "points")
-        for k, level in enumerate(levels):
-            s = level.simplices
-            _check(s.size == 0 or (s.min() >= 0 and s.max() < len(points)), path,
-                   f"vertex ids of simplices_{k} out of range")
-        _check(a["facet_cells"].shape == (len(levels[dim - 1].enter), 2), path, "facet_cells")
-        _check(a["cell_measure"].shape == (len(levels[dim].enter),), path, "cell_measure")
-        frame = (Frame(a["frame_origin"], a["frame_basis"]) if "frame_origin" in a else None)
-        order = a["facet_interior_order"]
-        n_facets = len(levels[dim - 1].enter)
-        _check(order.shape == (n_facets,) and (n_facets == 0 or (order.min() >= 0
-               and order.max() < n_facets)), path, "facet_interior_order")
-        table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"], order)
-        weights = a.get("weights")
-        _check(weights is None or (weights.shape == (len(points),)
-                                   and weights.dtype == np.float64), path, "weights")
-        ac = cls(points, a["input_index"], table, frame, int(a["ambient_dim"]), _mode(a, path),
-                 weights)
+        dim = scalar(check, a["dim"], "dim")
+        check.that(dim in (2, 3), "dimension")
+        check_table(check, a, dim)
+        levels = [Level(a[f"simplices_{k}"], a[f"enter_{k}"], a[f"regular_{k}"],
+                        a[f"interior_{k}"], a.get(f"face_ids_{k}")) for k in range(dim + 1)]
+        frame = Frame(a["frame_origin"], a["frame_basis"]) if "frame_origin" in a else None
+        table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"],
+                      a["facet_interior_order"])
+        ac = cls(a["points"], a["input_index"], table, frame, int(a["ambient_dim"]),
+                 _mode(a, path), a.get("weights"))
         if "sig_alphas" in a:
-            _adopt_derived(ac, a, path)
+            _adopt_derived(ac, a, check)
         return ac
     except KeyError as exc:
         raise FileFormatError(f"{path}: not a valid Alpha Scoop table (missing {exc})") from None

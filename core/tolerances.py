@@ -22,6 +22,14 @@ ILL_CONDITIONED_RTOL = 1e-5
 #: squared distances involved: cospherical points of lattices and scans count as on the sphere.
 ON_SPHERE_RTOL = 1e-13
 
+#: A power |c|² - w below this share of |c|² + |w| has lost digits to cancellation: it is
+#: recomputed in extended precision (values near zero must keep their relative accuracy).
+POWER_CANCEL_RTOL = 1e-3
+
+#: Below this share even extended precision keeps too few digits: the power is computed
+#: exactly (rational arithmetic; rare, a handful of simplices in real data).
+POWER_EXACT_RTOL = 1e-6
+
 #: A facet of the lifted points' hull is a cell of the regular triangulation when its unit
 #: outward normal points down by more than this (vertical facets are not cells).
 LOWER_FACET_COS = 1e-12

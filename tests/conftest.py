@@ -134,3 +134,16 @@ def open_and_wait(qtbot, win, path) -> None:
     """Open path the way a user does (window.open_path) and wait until it is shown."""
     with qtbot.waitSignal(win.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
         win.open_path(path)
+
+
+def fake_export_dialog(target, *, manifold: bool | None = None, seen: list | None = None):
+    """A stand-in for app.export_dialog.run_dialog: chooses `target` (and the manifold box,
+    if given) as a user would, records the dialog's default file name and box in `seen`."""
+    def run(dialog) -> bool:
+        if seen is not None:
+            seen.append((dialog.selectedFiles()[0], dialog.manifold.isChecked()))
+        if manifold is not None:
+            dialog.manifold.setChecked(manifold)
+        dialog.selectFile(str(target))
+        return True
+    return run

@@ -71,7 +71,7 @@ def test_clipping_survives_a_slider_step_and_a_new_dataset(opened, qtbot, tmp_pa
     win = opened
     win.menus["clip"].trigger()
     win.model.set_index(win.model.index - 10)
-    assert win.scene.layers["boundary"].actor.mapper.GetClippingPlanes().GetNumberOfItems() == 1
+    assert win.scene.layers["surface"].actor.mapper.GetClippingPlanes().GetNumberOfItems() == 1
     path = tmp_path / "other.npy"
     np.save(path, ball(800, seed=8) * 3.0)
     open_and_wait(qtbot, win, path)

@@ -57,7 +57,7 @@ def test_colour_by_enter_alpha_shows_the_tables_values(opened, qtbot) -> None:
     win.colourer.set_mode("enter")
     assert geometry(win) == before and win.scene.shape is shape
     for step in range(2):
-        for name in ("boundary", "interior", "singular_faces", "singular_edges"):
+        for name in ("surface", "interior", "singular_edges"):
             cells = win.scene.layers[name].cells
             values = drawn_values(win, name) if len(cells) else np.zeros(0)
             assert len(values) == len(cells)
@@ -65,7 +65,7 @@ def test_colour_by_enter_alpha_shows_the_tables_values(opened, qtbot) -> None:
                 k, found = find_simplex(ac, cells[row])
                 assert values[row] == ac.intervals(k)[found, 0]
             assert np.all(values <= win.model.alpha)
-        mapper = win.scene.layers["boundary"].actor.mapper
+        mapper = win.scene.layers["surface"].actor.mapper
         assert mapper.GetScalarVisibility() and mapper.GetLookupTable().GetScale() == 1  # log
         assert mapper.GetScalarRange()[1] == pytest.approx(win.model.alpha)
         if step == 0:
@@ -85,14 +85,17 @@ def test_colour_by_component_uses_the_cores_labels(opened) -> None:
     interior = drawn_values(win, "interior")
     np.testing.assert_array_equal(interior, labels[: len(interior)])
     assert set(np.unique(interior).tolist()) == {0.0, 1.0}
-    boundary = drawn_values(win, "boundary")
-    assert set(np.unique(boundary).tolist()) == {0.0, 1.0}
-    cells = win.scene.layers["boundary"].cells
+    boundary = drawn_values(win, "surface")  # regular triangles, then singular ones
+    assert set(np.unique(boundary[np.isfinite(boundary)]).tolist()) == {0.0, 1.0}
+    cells = win.scene.layers["surface"].cells
     sides = np.asarray(ac.facet_cells())
     for row in np.linspace(0, len(cells) - 1, 30).astype(int):
         _, facet = find_simplex(ac, cells[row])
         inside = [c for c in sides[facet] if 0 <= c < len(labels)]
-        assert len(inside) == 1 and boundary[row] == labels[inside[0]]
+        if inside:  # a regular triangle: its cell's component
+            assert len(inside) == 1 and boundary[row] == labels[inside[0]]
+        else:  # a singular triangle bounds no cell: no component (grey)
+            assert np.isnan(boundary[row])
 
 
 def test_colour_by_point_attributes(opened) -> None:
@@ -103,9 +106,9 @@ def test_colour_by_point_attributes(opened) -> None:
     keys = [mode.key for mode in win.colourer.modes]
     assert {"attribute:intensity", "attribute:colors"} <= set(keys)
     win.colourer.set_mode("attribute:intensity")
-    mesh = win.scene.meshes["boundary"]
+    mesh = win.scene.meshes["surface"]
     np.testing.assert_allclose(np.asarray(mesh.point_data[SCALARS])[ac.input_index], intensity)
-    assert win.scene.layers["boundary"].actor.mapper.GetScalarVisibility()
+    assert win.scene.layers["surface"].actor.mapper.GetScalarVisibility()
     assert "Intensity" in win.plotter.scalar_bars
     win.colourer.set_mode("attribute:colors")
     np.testing.assert_array_equal(np.asarray(mesh.point_data[SCALARS])[ac.input_index], rgb)

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import BUILD_TIMEOUT_MS, image_contrast, open_and_wait
+from conftest import BUILD_TIMEOUT_MS, fake_export_dialog, image_contrast, open_and_wait
 from PySide6.QtCore import Qt
+from reference import data_dir
 
 MIN_CONTRAST = 10.0
-REGULAR = 2
+SINGULAR, REGULAR = 1, 2
 
 
 def blobs_3d(n: int = 1200, seed: int = 1) -> np.ndarray:
@@ -107,14 +108,18 @@ def as_set(cells: np.ndarray) -> set[tuple[int, ...]]:
 def expected_layers(ac, alpha: float) -> dict[str, np.ndarray]:
     """Layer name -> simplices the core reports at alpha (shape and classify, independently)."""
     shape, dim = ac.shape(alpha), ac.dim
+    facet_classes = ac.classify(alpha, dim - 1)
     expected = {
         "interior": shape.cells,
-        "boundary": ac.simplices(dim - 1)[ac.classify(alpha, dim - 1) == REGULAR],
         "singular_edges": shape.singular(1),
         "singular_points": shape.singular(0).reshape(-1, 1),
     }
-    if dim == 3:
-        expected["singular_faces"] = shape.singular(2)
+    if dim == 3:  # one surface: regular and singular triangles; the singular ones highlighted
+        expected["surface"] = ac.simplices(2)[(facet_classes == REGULAR)
+                                              | (facet_classes == SINGULAR)]
+        expected["singular_highlight"] = ac.simplices(2)[facet_classes == SINGULAR]
+    else:
+        expected["boundary"] = ac.simplices(1)[facet_classes == REGULAR]
     return expected
 
 
@@ -135,13 +140,13 @@ def press(qtbot, win, key, times: int = 1) -> None:
     qtbot.waitUntil(lambda: win.model.index != before, timeout=5000)
 
 
-def test_opens_at_optimal_alpha_with_matching_layers(window, qtbot, points_file) -> None:
-    """A freshly opened file starts at the optimal alpha (not empty, not the hull)."""
+def test_opens_at_default_alpha_with_matching_layers(window, qtbot, points_file) -> None:
+    """A freshly opened file starts at the opening alpha (not empty, not the hull)."""
     open_and_wait(qtbot, window, points_file(blobs_3d(seed=3), "fresh.npy"))
     model = window.model
-    assert model.alpha == model.dataset.ac.optimal_alpha()
+    assert model.alpha == model.dataset.ac.default_alpha()
     assert 0 < model.index < model.hull_index()
-    assert window.alpha_panel.slider.value() == model.index
+    assert window.alpha_panel.slider.value() == window.alpha_panel.travel.position(model.index)
     assert len(model.shape.cells) > 0
     show_all_layers(window, window.layers_panel.styles)
     assert_layers_match(window)
@@ -158,15 +163,21 @@ def test_arrow_keys_step_one_critical_value(opened, qtbot, key, direction) -> No
 
 
 def test_page_keys_take_bigger_steps_and_layers_follow(opened, qtbot) -> None:
-    """PageDown/PageUp move a page of critical values; the meshes change and still match."""
-    model, page = opened.model, opened.alpha_panel.slider.pageStep()
-    assert page > 1
+    """PageDown divides alpha by PAGE_FACTOR (snapped to the critical value at or below),
+    PageUp multiplies it; the meshes change and still match."""
+    from app.log_travel import PAGE_FACTOR
+
+    model = opened.model
     start = model.index
     before = layer_cells(opened.scene.layers["interior"]).copy()
-    press(qtbot, opened, Qt.Key.Key_PageDown, times=3)
-    assert model.index == max(start - 3 * page, 0)
+    press(qtbot, opened, Qt.Key.Key_PageDown)
+    assert model.index < start - 1
+    assert model.alpha <= model.spectrum[start] / PAGE_FACTOR < model.spectrum[model.index + 1]
     assert len(layer_cells(opened.scene.layers["interior"])) < len(before)
     assert_layers_match(opened)
+    down = model.index
+    press(qtbot, opened, Qt.Key.Key_PageUp)
+    assert model.alpha <= model.spectrum[down] * PAGE_FACTOR < model.spectrum[model.index + 1]
 
 
 def test_slider_steps_keep_the_same_actors(opened, qtbot) -> None:
@@ -200,7 +211,7 @@ def test_hull_and_optimal_buttons(opened, qtbot) -> None:
 
 def test_toggling_a_layer_hides_its_actor(opened, qtbot) -> None:
     """Unchecking a layer hides its actor; checking it shows it again, up to date."""
-    row, actor = opened.layers_panel.rows["boundary"], opened.scene.layers["boundary"].actor
+    row, actor = opened.layers_panel.rows["surface"], opened.scene.layers["surface"].actor
     row.visible.setChecked(False)
     assert not actor.GetVisibility()
     press(qtbot, opened, Qt.Key.Key_Right)
@@ -232,7 +243,8 @@ def test_2d_data_gets_a_parallel_top_down_view(window, qtbot, points_file) -> No
     assert np.allclose(np.abs(window.plotter.camera.direction), [0, 0, 1])
     assert window.scene.layers["boundary"].kind == "lines"
     assert set(window.layers_panel.rows) == set(window.scene.layers)
-    assert "singular_faces" not in window.layers_panel.rows
+    assert "surface" not in window.layers_panel.rows
+    assert "singular_highlight" not in window.layers_panel.rows
     assert_layers_match(window)
 
 
@@ -351,6 +363,7 @@ def test_file_menu_writes_and_reports(opened, qtbot, tmp_path, monkeypatch, acti
     target = tmp_path / name
     monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
                         lambda *args, **kwargs: (str(target), ""))
+    monkeypatch.setattr("app.export_dialog.run_dialog", fake_export_dialog(target))
     warnings: list[str] = []
     monkeypatch.setattr("app.menus.QMessageBox.warning", lambda *args: warnings.append(args[-1]))
     run_file_action(qtbot, opened, action)
@@ -367,6 +380,7 @@ def test_file_menu_shows_any_writer_error_in_a_dialog(opened, qtbot, tmp_path, m
     """A writer failing with any exception gives one dialog naming it; nothing escapes."""
     monkeypatch.setattr("app.file_actions.QFileDialog.getSaveFileName",
                         lambda *args, **kwargs: (str(tmp_path / "out"), ""))
+    monkeypatch.setattr("app.export_dialog.run_dialog", fake_export_dialog(tmp_path / "out"))
 
     def broken(*args, **kwargs):
         raise RuntimeError("renderer fell over")
@@ -474,14 +488,14 @@ def test_layer_styles_persist_between_windows(opened, qtbot, points_file) -> Non
     """A colour/visibility change is saved and a new window starts with it."""
     from app.main_window import MainWindow
 
-    opened.layers_panel._edit("boundary", colour="#123456", visible=False)
-    assert opened.scene.layers["boundary"].actor.prop.color.hex_rgb == "#123456"
+    opened.layers_panel._edit("surface", colour="#123456", visible=False)
+    assert opened.scene.layers["surface"].actor.prop.color.hex_rgb == "#123456"
     again = MainWindow(opened.prefs.store)
     qtbot.addWidget(again)
     try:
         open_and_wait(qtbot, again, points_file(blobs_3d(), "again.npy"))
-        assert again.layers_panel.styles["boundary"].colour == "#123456"
-        assert not again.scene.layers["boundary"].actor.GetVisibility()
+        assert again.layers_panel.styles["surface"].colour == "#123456"
+        assert not again.scene.layers["surface"].actor.GetVisibility()
     finally:
         again.close()
 
@@ -517,6 +531,89 @@ def test_mouse_drag_moves_alpha_and_layers_follow(opened, qtbot) -> None:
     model.alphaChanged.connect(lambda: shown.append(model.index))
     drag_slider(qtbot, opened.alpha_panel.slider, -60)
     qtbot.waitUntil(lambda: model.index < start, timeout=5000)
-    assert model.index == opened.alpha_panel.slider.value()
+    panel = opened.alpha_panel
+    assert model.index == panel.travel.index_at(panel.slider.value())
     assert len(shown) == 1
     assert_layers_match(opened)
+
+
+def test_3d_surface_is_one_surface_with_an_optional_highlight(window, qtbot, points_file):
+    """By default a 3D shape is drawn as one surface: regular and singular triangles in one
+    colour, lit on both sides; the singular highlight is a layer that starts hidden."""
+    from app.palette import default_styles
+
+    styles = default_styles(3)
+    assert styles["surface"].visible and not styles["singular_highlight"].visible
+    open_and_wait(qtbot, window, points_file(blobs_3d(), "fresh.npy"))
+    assert window.plotter.renderer.GetTwoSidedLighting()
+    assert not window.layers_panel.rows["singular_highlight"].visible.isChecked()
+    assert not window.scene.layers["singular_highlight"].actor.GetVisibility()
+    window.layers_panel.rows["singular_highlight"].visible.setChecked(True)
+    assert window.scene.layers["singular_highlight"].actor.GetVisibility()
+    expected = expected_layers(window.model.dataset.ac, window.model.alpha)
+    assert len(expected["singular_highlight"]) > 0
+    for name in ("surface", "singular_highlight"):
+        assert as_set(layer_cells(window.scene.layers[name])) == as_set(expected[name])
+
+
+def test_back_and_forward_return_to_the_alphas_visited(opened, qtbot) -> None:
+    """Alt+Left goes back to the alpha before a jump, Alt+Right redoes it; so do the buttons."""
+    model, panel = opened.model, opened.alpha_panel
+    model.history.merge_seconds = 0.0
+    start = model.index
+    qtbot.mouseClick(panel.hull, Qt.MouseButton.LeftButton)
+    assert model.index == model.hull_index()
+    qtbot.keyClick(panel.slider, Qt.Key.Key_Left, Qt.KeyboardModifier.AltModifier)
+    assert model.index == start
+    qtbot.keyClick(panel.slider, Qt.Key.Key_Right, Qt.KeyboardModifier.AltModifier)
+    assert model.index == model.hull_index()
+    qtbot.mouseClick(panel.back, Qt.MouseButton.LeftButton)
+    assert model.index == start and panel.forward.isEnabled()
+
+
+def test_slider_marks_the_suggested_opening_and_optimal_alphas(opened) -> None:
+    """Ticks sit at the slider positions of the suggested alphas, the opening and the optimal."""
+    from app.log_travel import snap_index
+
+    panel, ds = opened.alpha_panel, opened.model.dataset
+    positions = {mark.position for mark in panel.slider.marks}
+    suggested = ds.ac.suggest_alphas(5)
+    assert suggested
+    for r in suggested:
+        assert panel.travel.position(snap_index(ds.spectrum, r.alpha)) in positions
+    assert panel.travel.position(opened.model.optimal_index()) in positions
+    assert panel.travel.position(opened.model.default_index()) in positions
+
+
+@pytest.mark.skipif(data_dir() is None, reason="shared real scans absent")
+def test_page_up_from_the_opening_stays_below_the_hull_on_a_real_scan(window, qtbot) -> None:
+    """milk.pcd (an RGB-D scan): PageUp from where it opens moves up, far from the hull."""
+    open_and_wait(qtbot, window, data_dir() / "milk.pcd")
+    model = window.model
+    assert model.index == model.default_index()
+    press(qtbot, window, Qt.Key.Key_PageUp)
+    assert model.default_index() < model.index < model.hull_index()
+    assert model.alpha < 2 * model.dataset.default_alpha
+
+
+def test_view_presets_and_reset_follow_the_data_frame(window, qtbot, points_file) -> None:
+    """T/F/S/I show the top, front, side and iso views of the data's frame (z up for a .npy),
+    centred on the data; R resets to the opening view."""
+    from app.camera import Z_UP
+
+    open_and_wait(qtbot, window, points_file(blobs_3d(), "frame.npy"))
+    camera = window.plotter.camera
+    opening = np.array(camera.direction)
+    bounds = np.array(window.scene.layers["points"].mesh.bounds).reshape(3, 2)
+    for key, preset in (("T", "top"), ("F", "front"), ("S", "side"), ("I", "iso")):
+        action = window.menus[f"view_{preset}"]
+        assert action.shortcut().toString() == key
+        action.trigger()
+        look, up = Z_UP.direction(preset)
+        assert np.allclose(camera.direction, look, atol=1e-6), preset
+        assert np.allclose(camera.up, up, atol=1e-6), preset
+        assert np.allclose(camera.focal_point, bounds.mean(axis=1)), preset
+    window.menus["view_top"].trigger()
+    assert window.menus["reset_view"].shortcut().toString() == "R"
+    window.menus["reset_view"].trigger()
+    assert np.allclose(camera.direction, opening, atol=1e-6)

@@ -33,6 +33,11 @@ def opened(request, window, qtbot, tmp_path):
     return window
 
 
+def surface(win) -> str:
+    """The layer that draws the shape's surface: triangles in 3D, boundary edges in 2D."""
+    return "surface" if win.model.dataset.ac.dim == 3 else "boundary"
+
+
 def display_point(win, world: np.ndarray) -> tuple[float, float]:
     """Display coordinates (pixels, origin bottom left) of a world point in the view."""
     renderer = win.plotter.renderer
@@ -84,12 +89,12 @@ def assert_shows_the_table(win, vertices_drawn: set[int] | None = None) -> None:
         assert set(item.vertices.tolist()) <= vertices_drawn
 
 
-@pytest.mark.parametrize("layer", ["boundary", "interior"])
+@pytest.mark.parametrize("layer", ["surface", "interior"])
 def test_a_click_shows_the_picked_simplex_from_the_table(opened, qtbot, layer) -> None:
     """Clicking a drawn cell fills the dock with its row of the table; the picked point lies
     on that simplex (so the cell id was mapped to the right vertices)."""
     win = opened
-    target = visible_target(win, layer)
+    target = visible_target(win, surface(win) if layer == "surface" else layer)
     click_view(win, qtbot, *display_point(win, target))
     item = win.inspect_panel.item
     assert item is not None and win.inspector.dock.isVisible()
@@ -122,7 +127,7 @@ def test_every_layer_cell_maps_to_its_table_row(opened) -> None:
 def test_class_follows_the_slider_and_clear_removes_the_highlight(opened, qtbot) -> None:
     """After a pick, alpha steps update the class shown; Clear removes the overlay."""
     win = opened
-    layer = win.scene.layers["boundary"]
+    layer = win.scene.layers[surface(win)]
     win.inspector.inspect_vertices(layer.cells[len(layer.cells) // 2])
     assert "inspect_simplex" in win.plotter.actors
     for index in (0, win.model.index // 2, win.model.hull_index()):
@@ -139,7 +144,7 @@ def test_spoon_is_drawn_through_the_simplex(opened, qtbot) -> None:
     from core.spheres import simplex_sphere
 
     win = opened
-    layer = win.scene.layers["boundary"]
+    layer = win.scene.layers[surface(win)]
     win.inspector.inspect_vertices(layer.cells[0])
     item = win.inspect_panel.item
     win.inspect_panel.spoon.setChecked(True)
@@ -157,7 +162,7 @@ def test_spoon_is_drawn_through_the_simplex(opened, qtbot) -> None:
 def test_a_drag_does_not_pick(opened, qtbot) -> None:
     """Press, move and release (a rotation) inspects nothing."""
     win = opened
-    x, y = display_point(win, visible_target(win, "boundary"))
+    x, y = display_point(win, visible_target(win, surface(win)))
     widget = win.plotter
     start = QPoint(round(x), round(widget.height() - 1 - y))
     qtbot.mousePress(widget, Qt.MouseButton.LeftButton, pos=start)

@@ -32,7 +32,8 @@ def dataset(tmp_path_factory) -> Dataset:
     points = np.random.default_rng(4).normal(size=(300, 3))
     ac = AlphaComplex.from_points(points)
     return Dataset(path=tmp_path_factory.mktemp("d") / "p.npy", ac=ac, spectrum=ac.spectrum(),
-                   optimal_alpha=ac.optimal_alpha(), signatures=ac.signatures(), n_input=300,
+                   optimal_alpha=ac.optimal_alpha(), default_alpha=ac.default_alpha(),
+                   signatures=ac.signatures(), n_input=300,
                    report=None,
                    load_seconds=0.0, build_seconds=0.0)
 
@@ -47,10 +48,13 @@ def model(dataset):
     return m
 
 
-def test_starts_at_the_optimal_alpha(model, dataset) -> None:
-    """A new dataset opens at its optimal alpha: inside the spectrum, not empty, not the hull."""
-    assert model.alpha == dataset.optimal_alpha
+def test_starts_at_the_opening_alpha(model, dataset) -> None:
+    """A new dataset opens at its opening alpha: inside the spectrum, not empty, not the hull,
+    never beyond the optimal one, which stays reachable."""
+    assert model.alpha == dataset.default_alpha <= dataset.optimal_alpha
     assert 0 < model.index < model.hull_index()
+    model.set_index(model.optimal_index())
+    assert model.alpha == dataset.optimal_alpha
 
 
 def test_signals_only_on_real_change(model) -> None:

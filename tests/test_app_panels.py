@@ -21,7 +21,8 @@ def make_dataset(points: np.ndarray, name: str) -> Dataset:
 
     ac = AlphaComplex.from_points(points)
     return Dataset(path=Path(name), ac=ac, spectrum=ac.spectrum(),
-                   optimal_alpha=ac.optimal_alpha(), signatures=ac.signatures(),
+                   optimal_alpha=ac.optimal_alpha(), default_alpha=ac.default_alpha(),
+                   signatures=ac.signatures(),
                    n_input=len(points), report=None, load_seconds=0.0, build_seconds=0.0)
 
 
@@ -79,8 +80,8 @@ def test_pending_slider_index_never_lands_on_a_new_dataset(panel, qtbot, dataset
     model.set_dataset(datasets[1])
     qtbot.wait(20)
     assert model.dataset is datasets[1]
-    assert model.index == model.optimal_index() != 5
-    assert panel.slider.value() == model.index
+    assert model.index == model.default_index() != 5
+    assert panel.slider.value() == panel.travel.position(model.index)
 
 
 @pytest.mark.parametrize(("dim", "kinds"), [(2, KINDS_2D), (3, KINDS_3D)])

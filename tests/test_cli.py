@@ -42,7 +42,7 @@ def test_info_json_airports_and_cache(capsys):
     code, out, _ = run(capsys, "info", DATA / "us_airports.csv", "--json")
     info = json.loads(out)
     assert code == 0 and info["load"]["n_points"] == 3376 and info["complex"]["dim"] == 2
-    assert info["alpha"] == info["optimal_alpha"] and info["area"] > 0
+    assert info["alpha"] == info["default_alpha"] <= info["optimal_alpha"] and info["area"] > 0
     assert not info["complex"]["from_cache"]
     edges = info["classes"]["edges"]
     assert sum(edges.values()) == info["complex"]["edges"]

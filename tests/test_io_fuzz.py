@@ -78,3 +78,102 @@ def test_corrupt_file_gives_format_error_or_points(tmp_path, originals, kind, ho
         assert "corrupt." in str(exc)
     else:
         assert ps.points.ndim == 2 and np.isfinite(ps.points).all()
+
+
+# --- every reader, deterministic mutations, memory measured; and `alphascoop info` -----------
+
+import re  # noqa: E402
+import time  # noqa: E402
+import tracemalloc  # noqa: E402
+import warnings  # noqa: E402
+
+from fuzz_inputs import MAKERS, cases, original, write_case  # noqa: E402
+
+from app.cli import main  # noqa: E402
+
+SEED = 17
+READ_CASES_PER_KIND = 35  # 7 mutations five times over, for each of the 20 kinds
+CLI_CASES_PER_KIND = 10
+BUDGET_S = 20.0  # CPU seconds per test: cases past it are skipped (each case is seeded)
+PEAK_BASE = 32 << 20  # bytes a reader may use beyond twice the file's size
+NOT_PLAIN = re.compile(r"Traceback|codec|Errno|please report|unexpected|\b\w+(Error|Exception)\b"
+                       r"|\(\w+: |dtype|ndarray|usecols")
+
+
+@pytest.fixture(scope="module")
+def valid_bytes(tmp_path_factory) -> dict[str, bytes]:
+    """Valid bytes of every kind; each must read as it is."""
+    folder = tmp_path_factory.mktemp("valid")
+    out = {}
+    for kind in MAKERS:
+        path = original(kind, folder)
+        assert len(read_points(path).points) >= 5, kind
+        out[kind] = path.read_bytes()
+    return out
+
+
+def assert_plain(message: str, path) -> None:
+    """One line naming the file, saying the problem in words (no library jargon)."""
+    assert message.startswith(f"{path}: ") and "\n" not in message, message
+    assert not NOT_PLAIN.search(message[len(str(path)):]), message
+
+
+@pytest.mark.timeout(120)
+def test_every_reader_fuzzed(tmp_path, valid_bytes):
+    deadline = time.process_time() + BUDGET_S
+    tracemalloc.start()
+    try:
+        for kind, how, seed in cases(list(MAKERS), READ_CASES_PER_KIND, SEED):
+            if time.process_time() > deadline:
+                break
+            path = write_case(valid_bytes[kind], MAKERS[kind][0], how, seed, tmp_path)
+            tracemalloc.reset_peak()
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                try:
+                    ps = read_points(path)
+                except FileFormatError as exc:
+                    assert_plain(str(exc), path)
+                else:
+                    assert ps.points.ndim == 2 and np.isfinite(ps.points).all()
+            peak = tracemalloc.get_traced_memory()[1]
+            assert peak < PEAK_BASE + 2 * path.stat().st_size, (kind, how, seed, peak)
+            assert not caught, (kind, how, seed, [str(w.message) for w in caught])
+            path.unlink()
+    finally:
+        tracemalloc.stop()
+
+
+@pytest.mark.timeout(120)
+def test_info_on_fuzzed_files_prints_one_line(tmp_path, valid_bytes, capfd, monkeypatch):
+    monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
+    deadline = time.process_time() + BUDGET_S
+    for kind, how, seed in cases(list(MAKERS), CLI_CASES_PER_KIND, SEED + 1):
+        if time.process_time() > deadline:
+            break
+        path = write_case(valid_bytes[kind], MAKERS[kind][0], how, seed, tmp_path)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            status = main(["info", str(path)])
+        out, err = capfd.readouterr()
+        assert not caught, (kind, how, seed, [str(w.message) for w in caught])
+        if status == 0:
+            assert err == "" and out.startswith(f"file        {path}"), (kind, how, seed)
+        else:
+            assert status == 1 and out == "", (kind, how, seed, status)
+            assert err.startswith("alphascoop: error: ") and err.count("\n") == 1, err
+            assert not NOT_PLAIN.search(err), err
+
+
+@pytest.mark.parametrize("ext", sorted({ext for ext, _ in MAKERS.values()}))
+@pytest.mark.parametrize("content", ["binary", "latin", "text"])
+def test_garbage_of_every_extension_is_named_in_words(tmp_path, ext, content):
+    rng = np.random.default_rng(3)
+    raw = {"binary": rng.integers(0, 256, 3000, dtype=np.uint8).tobytes(),
+           "latin": "\u00c2\u00e9 caf\u00e9 \u00ff\n".encode("latin-1") * 50,
+           "text": b"hello world, this is not a point file\n" * 20}[content]
+    path = tmp_path / f"garbage{ext}"
+    path.write_bytes(raw)
+    with pytest.raises(FileFormatError) as info:
+        read_points(path)
+    assert_plain(str(info.value), path)

@@ -140,3 +140,25 @@ def _meshio_bytes(tmp_path, mesh, ext: str) -> bytes:
     out = tmp_path / f"m{ext}"
     meshio.write(out, meshio.Mesh(mesh.vertices, [("triangle", mesh.faces)]))
     return out.read_bytes()
+
+
+@pytest.mark.skipif(not DATA_DIR.is_dir(), reason="shared/data is absent")
+def test_bunny_ply_report_counts_the_1113_unused_vertices():
+    ps = read_points(DATA_DIR / "bunny.ply")  # 1,113: shared/data/SOURCES.md (plyfile)
+    assert ps.report.n_points == 35_947 and "1,113 used by no face" in _note(ps)
+
+
+@pytest.mark.parametrize("binary", [False, True])
+def test_unstructured_grid_with_cells_meshio_refuses(tmp_path, binary):
+    pts = RNG.normal(size=(6, 3)).astype(np.float32)
+    head = (f"# vtk DataFile Version 4.2\nhand made\n{'BINARY' if binary else 'ASCII'}\n"
+            "DATASET UNSTRUCTURED_GRID\nPOINTS 6 float\n").encode()
+    body = pts.astype(">f4").tobytes() if binary else " ".join(map(repr, pts.ravel().tolist()
+                                                                   )).encode()
+    cells = (np.array([6, 0, 1, 2, 3, 4, 5], ">i4").tobytes() if binary
+             else b"6 0 1 2 3 4 5") + b"\nCELL_TYPES 1\n"
+    types = np.array([2], ">i4").tobytes() if binary else b"2"  # VTK_POLY_VERTEX
+    (tmp_path / "g.vtk").write_bytes(head + body + b"\nCELLS 1 7\n" + cells + types + b"\n")
+    ps = read_points(tmp_path / "g.vtk")
+    np.testing.assert_array_equal(ps.points, pts.astype(np.float64))
+    assert any("meshio cannot read its cells" in n for n in ps.report.notes)

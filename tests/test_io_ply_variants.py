@@ -99,3 +99,54 @@ def test_truncated_binary_list_vertex(tmp_path):
     path.write_bytes(path.read_bytes()[:-5])
     with pytest.raises(FileFormatError, match="truncated PLY"):
         read_points(path)
+
+
+@pytest.mark.parametrize("text", [True, False])
+def test_range_grid_of_mostly_empty_lists(tmp_path, text):
+    """Stanford's range scans: a grid element after the vertices, most cells an empty list."""
+    grid = np.empty(2000, dtype=[("vertex_indices", "O")])
+    for i in range(len(grid)):
+        grid["vertex_indices"][i] = np.array([i // 400], dtype=np.int32) if i % 400 == 0 \
+            else np.zeros(0, dtype=np.int32)
+    path = tmp_path / "grid.ply"
+    plyfile.PlyData([plyfile.PlyElement.describe(_vertex(None, False), "vertex"),
+                     plyfile.PlyElement.describe(grid, "range_grid",
+                                                 len_types={"vertex_indices": "u1"})],
+                    text=text).write(str(path))
+    np.testing.assert_array_equal(read_points(path).points, XYZ.astype(np.float64))
+
+
+def _mesh_ply(path, text: bool, polygons: list[list[int]], flag_first: bool) -> None:
+    """Six vertices and faces given as index lists (a uchar 'flags' before the list if asked)."""
+    fields = [("flags", "u1"), ("vertex_indices", "O")] if flag_first else [
+        ("vertex_indices", "O")]
+    faces = np.empty(len(polygons), dtype=fields)
+    for i, poly in enumerate(polygons):
+        faces["vertex_indices"][i] = np.array(poly, dtype=np.int32)
+    if flag_first:
+        faces["flags"] = 3
+    plyfile.PlyData([plyfile.PlyElement.describe(_vertex(None, False), "vertex"),
+                     plyfile.PlyElement.describe(faces, "face")], text=text).write(str(path))
+
+
+@pytest.mark.parametrize("text", [True, False])
+@pytest.mark.parametrize("flag_first", [False, True])
+@pytest.mark.parametrize(("polygons", "unused"), [
+    ([[0, 1, 2], [0, 2, 3]], 2),          # triangles: strided fast path
+    ([[0, 1, 2, 4], [0, 2, 3]], 1),       # mixed polygons: row by row
+])
+def test_report_counts_vertices_no_face_uses(tmp_path, text, flag_first, polygons, unused):
+    _mesh_ply(tmp_path / "m.ply", text, polygons, flag_first)
+    ps = read_points(tmp_path / "m.ply")
+    assert len(ps.points) == len(XYZ)
+    assert (f"mesh vertices: all 6 kept; {unused} used by no face ({len(polygons)} "
+            "faces/lines ignored)") in ps.report.notes
+
+
+def test_unreadable_faces_never_stop_the_points(tmp_path):
+    _mesh_ply(tmp_path / "m.ply", True, [[0, 1, 2], [0, 2, 3]], False)
+    data = tmp_path.joinpath("m.ply").read_bytes().replace(b"\n3 0 2 3", b"\nx 0 2 3")
+    tmp_path.joinpath("m.ply").write_bytes(data)
+    ps = read_points(tmp_path / "m.ply")
+    np.testing.assert_array_equal(ps.points, XYZ.astype(np.float64))
+    assert "PLY faces could not be read; which vertices they use is not known" in ps.report.notes

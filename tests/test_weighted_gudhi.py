@@ -129,3 +129,54 @@ def test_signatures_betti_equal_gudhi_on_the_spectrum() -> None:
     sq = signed_square(np.asarray(sig.alphas))
     mids = np.append(0.5 * (sq[1:] + sq[:-1]), sq[-1] + 1.0)  # entry i holds up to alphas[i+1]
     np.testing.assert_array_equal(sig.betti, gudhi_betti(ref["st"], 3, mids))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("values", [(0.0, 0.25), (0.0, 0.05, 0.2)])
+def test_lattice_with_mixed_weights_has_gudhis_measure_and_components(dim: int, values) -> None:
+    """Exact lattices with a few weight values are degenerate (co-orthospherical groups): the
+    regular triangulation is not unique, so simplices may differ from gudhi's, as for classic
+    lattices; the union of cells and the components must not."""
+    from reference import simplex_measures
+
+    axes = np.meshgrid(*[np.arange(5.0)] * dim, indexing="ij")
+    pts = np.column_stack([a.ravel() for a in axes])
+    w = np.random.default_rng(0).choice(values, len(pts))
+    ac = AlphaComplex.from_points(pts, weights=w)
+    ref = gudhi_weighted_table(pts, w)
+    at = between_values(ref)
+    cells, enter = ref[dim][0], ref[dim][1]
+    theirs = [simplex_measures(pts, cells[enter <= a]).sum() for a in at]
+    ours = [ac.shape(alpha2=float(a)).measure for a in at]
+    np.testing.assert_allclose(ours, theirs, rtol=1e-12, atol=1e-12)
+    components = [ac.betti(alpha2=float(a))[0] for a in at]
+    np.testing.assert_array_equal(components, gudhi_betti(ref["st"], dim, at)[:, 0])
+
+
+def test_planar_3d_weighted_input_equals_gudhi() -> None:
+    rng = np.random.default_rng(5)
+    u, v = rng.integers(0, 2**20, (2, 200)) / 2**20
+    pts = np.column_stack([u, u - 2 * v + 1, v])  # dyadic: exactly on one tilted plane
+    w = spacing_weights(rng, pts, 1.5)
+    ac = AlphaComplex.from_points(pts, weights=w)
+    assert (ac.dim, ac.ambient_dim) == (2, 3)
+    ref = gudhi_weighted_table(pts, w)
+    assert ref["dim"] == 2
+    assert_matches_gudhi(ac, ref, len(pts))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_values_near_zero_keep_their_relative_accuracy(dim: int) -> None:
+    """Balls that barely overlap their nearest neighbour give edges whose power |c|² - w is
+    a millionth of the terms subtracted: still equal to gudhi's exact values (rel. 1e-9)."""
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(31 + dim)
+    pts = uniform(rng, 2000, dim)
+    dist, _ = cKDTree(pts).query(pts, k=2)
+    w = dist[:, 1] ** 2 / 4 * (1 - 1e-6 * rng.choice([-1.0, 1.0], len(pts)))
+    ac = AlphaComplex.from_points(pts, weights=w)
+    ref = gudhi_weighted_table(pts, w)
+    small = np.abs(ref[1][1]) < 1e-5 * np.median(np.abs(ref[1][1]))
+    assert small.sum() > 50  # many edges with values near zero
+    assert_matches_gudhi(ac, ref, len(pts))

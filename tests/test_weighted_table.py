@@ -183,3 +183,14 @@ def test_classes_grow_monotonically_and_faces_come_first(data, values) -> None:
             faces = ac.face_ids(k)
             below = ac.intervals(k - 1)[faces, 0]
             assert (below <= ac.intervals(k)[:, [0]]).all()
+
+
+@pytest.mark.parametrize("k", [1, 2, 3])
+def test_exact_power_equals_the_linear_algebra_reference(k: int) -> None:
+    from core.power import exact_power
+
+    rng = np.random.default_rng(k)
+    corners, w = rng.random((k + 1, 3)), rng.uniform(0, 0.1, k + 1)
+    assert exact_power(corners, w) == pytest.approx(orthosphere(corners, w)[1], rel=1e-12)
+    flat = np.vstack([corners[:2], 2 * corners[1] - corners[0]])  # three collinear points
+    assert exact_power(flat, np.zeros(3)) is None

@@ -69,7 +69,9 @@ class ExportReport:
         if self.alpha is None:
             return f"wrote {self.path} (interval table, {self.n_faces:,} simplices)"
         metres = self.metadata.get("units") == "m"
-        parts = [f"wrote {self.path} ({self.format}, alpha {self.alpha:.6g}{' m' * metres}"]
+        at = (f"alpha² {self.metadata['alpha2']:.6g}" if self.metadata.get("weighted")
+              else f"alpha {self.alpha:.6g}{' m' * metres}")
+        parts = [f"wrote {self.path} ({self.format}, {at}"]
         if self.n_faces:
             parts.append(f", {self.n_vertices:,} vertices, {self.n_faces:,} faces")
         label = next((k for k in ("volume", "area") if k in self.metadata), "measure")
@@ -139,14 +141,16 @@ def _step(progress: Progress | None, fraction: float, stage: str) -> None:
         progress(fraction, stage)
 
 
-def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = False,
+def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: bool = True,
                 sidecar: bool = False, source: str | os.PathLike | None = None,
-                progress: Progress | None = None, georef: Georef | None = None
-                ) -> ExportReport:
-    """Write ac.shape(alpha) in the format of `path`'s extension (SHAPE_FORMATS).
+                progress: Progress | None = None, georef: Georef | None = None,
+                alpha2: float | None = None) -> ExportReport:
+    """Write ac.shape(alpha) (or, with alpha None, ac.shape(alpha2=alpha2): a squared value,
+    negative ones for weighted points) in the format of `path`'s extension (SHAPE_FORMATS).
 
-    3D: surfaces are the outward REGULAR facets (`manifold=True` splits where the shape
-    touches itself); 2D: polygon formats, or the filled triangles for surface formats.
+    3D: surfaces are the outward REGULAR facets, split where the shape touches itself so
+    that they form a closed 2-manifold (`manifold=False`: the raw boundary, which slicers and
+    CAD tools may reject); 2D: polygon formats, or the filled triangles for surface formats.
     `sidecar=True` also writes PATH.json with the metadata. A target (or sidecar) that is
     the `source` file itself is refused with an InputError before anything is written.
     `georef` (the load report's, for points read from longitude/latitude) puts GeoJSON, WKT
@@ -164,7 +168,7 @@ def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = F
         raise FileFormatError(f"{path}: {ext} holds 2D polygons, but this shape is 3D; "
                               f"use one of {' '.join(SURFACE_WRITERS)} .vtu")
     _step(progress, 0.0, "computing the shape")
-    shape = ac.shape(alpha)
+    shape = ac.shape(alpha) if alpha2 is None else ac.shape(alpha, alpha2=alpha2)
     meta = shape_metadata(ac, shape, source)
     if georef is not None:
         meta.update(geographic_metadata(ac, shape, georef))
@@ -186,7 +190,7 @@ def write_shape(ac, alpha: float, path: str | os.PathLike, *, manifold: bool = F
         side = str(path) + ".json"
         with _reported(Path(side)):
             atomic_write_text(side, sidecar_text(meta))
-    return ExportReport(path=str(path), format=ext.lstrip(".").upper(), alpha=float(alpha),
+    return ExportReport(path=str(path), format=ext.lstrip(".").upper(), alpha=float(shape.alpha),
                         measure=float(shape.measure), sidecar=side, metadata=meta, **fields)
 
 

@@ -19,21 +19,28 @@ def software() -> str:
 
 
 def betti_numbers(ac, alpha: float) -> list[int] | None:
-    """Betti numbers at alpha if the complex offers them (`ac.betti`), else None."""
+    """Betti numbers at alpha if the complex offers them (`ac.betti`), else None. A negative
+    alpha (a weighted table's signed radius) is asked for as its signed square."""
     betti = getattr(ac, "betti", None)
     if betti is None:
         return None
     try:
-        values = betti(alpha) if callable(betti) else betti
+        if not callable(betti):
+            values = betti
+        elif alpha < 0:
+            values = betti(alpha2=alpha * abs(alpha))
+        else:
+            values = betti(alpha)
         return [int(b) for b in np.asarray(values).ravel()]
     except (TypeError, ValueError):
         return None
 
 
 def squared(alpha: float) -> float | None:
-    """alpha² as a float, or None where it overflows float64 (alpha above ~1.34e154: any
-    such alpha gives the convex hull, and JSON has no infinity)."""
-    value = float(alpha) * float(alpha)  # float multiplication gives inf, never OverflowError
+    """alpha² as a float (signed, alpha * |alpha|, for a weighted table's negative values), or
+    None where it overflows float64 (alpha above ~1.34e154: any such alpha gives the convex
+    hull, and JSON has no infinity)."""
+    value = float(alpha) * abs(float(alpha))  # float products give inf, never OverflowError
     return value if math.isfinite(value) else None
 
 
@@ -52,6 +59,11 @@ def shape_metadata(ac, shape, source: str | os.PathLike | None = None) -> dict:
         "n_singular": [len(shape.singular(k)) for k in range(ac.dim)],
         "volume" if ac.dim == 3 else "area": float(shape.measure),
     }
+    if getattr(ac, "weights", None) is not None:  # weighted: values are squared radii
+        meta["weighted"] = True
+        meta["alpha2"] = shape.alpha2 if math.isfinite(shape.alpha2) else None
+        meta["alpha_sq"] = meta["alpha2"]
+        meta["hidden_points"] = int((np.asarray(ac.input_index) < 0).sum())
     if ac.dim < ac.ambient_dim:  # planar 3D input: 2D outputs are in the plane's frame
         origin = np.asarray(ac.to_ambient(np.zeros((1, ac.dim))))[0]
         axes = np.asarray(ac.to_ambient(np.eye(ac.dim))) - origin

@@ -5,6 +5,10 @@ NPZ layout (format "alphascoop-intervals", version 1): `points` (m, dim) float64
 (ascending within a row; rows ordered by enter) and `intervals_k` (n_k, 3) float64 columns
 enter <= regular <= interior (alpha radii; inf = never); `spectrum` (s,) float64.
 CSV: one row per simplex: k, v0, v1, v2, v3 (-1 = unused), enter, regular, interior.
+
+Weighted tables add `weights` (m,) float64 squared radii and `intervals_sq_k` (squared
+values, may be negative) to the NPZ (their `intervals_k` and `spectrum` are signed radii
+sign(a2) * sqrt(|a2|)); their CSV has the squared columns enter2, regular2, interior2.
 """
 
 from __future__ import annotations
@@ -17,6 +21,7 @@ from core.export.csvrows import write_rows
 
 FORMAT, VERSION = "alphascoop-intervals", 1
 CSV_HEADER = "k,v0,v1,v2,v3,enter,regular,interior\n"
+CSV_HEADER_SQ = "k,v0,v1,v2,v3,enter2,regular2,interior2\n"
 CSV_ROW = "%d,%d,%d,%d,%d,%.17g,%.17g,%.17g\n"  # %.17g reads back to the same float64
 
 
@@ -28,6 +33,10 @@ def table_arrays(ac) -> dict[str, np.ndarray]:
     for k in range(ac.dim + 1):
         out[f"simplices_{k}"] = np.asarray(ac.simplices(k), dtype=np.int32)
         out[f"intervals_{k}"] = np.asarray(ac.intervals(k), dtype=np.float64)
+        if ac.weights is not None:
+            out[f"intervals_sq_{k}"] = np.asarray(ac.intervals_sq(k), dtype=np.float64)
+    if ac.weights is not None:
+        out["weights"] = np.asarray(ac.weights)
     return out
 
 
@@ -40,10 +49,11 @@ def write_npz(path: Path, ac) -> None:
 def write_csv(path: Path, ac) -> None:
     """One line per simplex, all dimensions, vertices padded with -1 (written in chunks)."""
     with open(path, "w", encoding="utf-8", newline="\n") as fh:
-        fh.write(CSV_HEADER)
+        weighted = ac.weights is not None
+        fh.write(CSV_HEADER_SQ if weighted else CSV_HEADER)
         for k in range(ac.dim + 1):
             simp = np.asarray(ac.simplices(k), dtype=np.int64)
-            iv = np.asarray(ac.intervals(k), dtype=np.float64)
+            iv = np.asarray(ac.intervals_sq(k) if weighted else ac.intervals(k), dtype=np.float64)
             pad = np.full(len(simp), -1, dtype=np.int64)
             columns = [np.full(len(simp), k, dtype=np.int64), *simp.T, *[pad] * (3 - k), *iv.T]
             write_rows(fh, CSV_ROW, columns)

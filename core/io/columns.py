@@ -20,6 +20,7 @@ ATTRIBUTE_NAMES = {
                 ("nz", "normal_z", "normalz")),
     "colors": (("r", "red"), ("g", "green"), ("b", "blue")),
     "weights": (("w", "weight", "weights"),),
+    "radius": (("radius", "radii", "r"),),
     "intensity": (("intensity", "i"),),
 }
 
@@ -56,6 +57,8 @@ def named_attributes(names: list[str]) -> dict[str, list[int]]:
         idx = [_find(names, opts) for opts in parts]
         if all(i is not None for i in idx):
             found[attr] = idx
+    if "radius" in found and found["radius"][0] in found.get("colors", ()):
+        del found["radius"]  # 'r' of an r, g, b colour triple
     return found
 
 

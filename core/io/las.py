@@ -9,6 +9,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.las_checks import MAX_LAZ_RATIO, check_las_file
+from core.io.problems import unreadable
 
 BOUNDS_RTOL = 0.01  # points beyond the header's box by this fraction of its size are reported
 
@@ -20,7 +21,7 @@ def _open(path: Path):
     try:
         return laspy.open(str(path))
     except Exception as exc:  # laspy raises LaspyException, ValueError, OSError...
-        raise FileFormatError(f"{path}: not a readable LAS/LAZ file ({exc})") from None
+        raise unreadable(path, "LAS/LAZ", exc) from exc
 
 
 def _check_size(header, path: Path) -> None:
@@ -52,7 +53,7 @@ def read_las(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
         try:
             las = reader.read()
         except Exception as exc:  # truncated or corrupt point records
-            raise FileFormatError(f"{path}: bad LAS/LAZ point data ({exc})") from None
+            raise unreadable(path, "LAS/LAZ", exc) from exc
     points = np.column_stack([np.asarray(las.x), np.asarray(las.y), np.asarray(las.z)])
     attrs: dict[str, np.ndarray] = {
         "intensity": np.asarray(las.intensity, dtype=np.float64),

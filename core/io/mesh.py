@@ -13,7 +13,8 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.obj import read_obj, vertex_note
-from core.io.vtk_legacy import dataset_kind, read_polydata
+from core.io.problems import unreadable
+from core.io.vtk_legacy import POINT_DATASETS, dataset_kind, read_points_section
 
 TRIMESH_EXTS = {".stl", ".off", ".glb", ".gltf"}
 MESHIO_READERS = {".vtk": "vtk", ".vtu": "vtu"}  # meshio reads no VTP
@@ -33,7 +34,7 @@ def _trimesh_scene(path: Path):
     except OSError:
         raise
     except Exception as exc:  # trimesh raises anything from its many parsers
-        raise FileFormatError(f"{path}: unreadable mesh ({type(exc).__name__}: {exc})") from None
+        raise unreadable(path, ext.lstrip(".").upper(), exc) from exc
 
 
 def _geometry_part(geom) -> tuple[np.ndarray, np.ndarray | None, int, int]:
@@ -93,7 +94,7 @@ def _meshio_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tup
     except OSError:
         raise
     except Exception as exc:  # meshio raises ReadError, ValueError, KeyError...
-        raise FileFormatError(f"{path}: unreadable mesh ({type(exc).__name__}: {exc})") from None
+        raise unreadable(path, path.suffix.lstrip(".").upper(), exc) from exc
     vertices = np.asarray(mesh.points, dtype=np.float64)
     attrs = {}
     for name, values in mesh.point_data.items():
@@ -104,10 +105,19 @@ def _meshio_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tup
 
 
 def _vtk_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
-    """Legacy VTK: POLYDATA read here, the grid datasets by meshio."""
-    if dataset_kind(path) == "POLYDATA":
-        return read_polydata(path), {}, ("VTK POLYDATA points; polygons and point data ignored",)
-    return _meshio_vertices(path)
+    """Legacy VTK: POLYDATA read here; grids by meshio (with their point data), and here too
+    when meshio refuses their cells: the points never depend on the cells."""
+    kind = dataset_kind(path)
+    if kind == "POLYDATA":
+        return (read_points_section(path), {},
+                ("VTK POLYDATA points; polygons and point data ignored",))
+    try:
+        return _meshio_vertices(path)
+    except FileFormatError:
+        if kind not in POINT_DATASETS:
+            raise
+    return (read_points_section(path), {},
+            (f"VTK {kind} points; cells and point data ignored (meshio cannot read its cells)",))
 
 
 def read_mesh(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:

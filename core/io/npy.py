@@ -9,10 +9,12 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns
+from core.io.problems import unreadable
+from core.io.sizes import check_npy, check_npz_member
 
 POINT_KEYS = ("points", "xyz", "coords", "coordinates", "positions", "vertices")
 ATTRIBUTE_KEYS = {"normals": "normals", "colors": "colors", "colours": "colors",
-                  "weights": "weights"}
+                  "weights": "weights", "radius": "radius", "radii": "radius"}
 
 
 def _from_array(arr: np.ndarray, path: Path, columns=None) -> np.ndarray:
@@ -43,28 +45,38 @@ def _from_fields(arr: np.ndarray, path: Path, columns) -> np.ndarray:
     return np.column_stack([arr[a] for a in axes]).astype(np.float64)
 
 
-def read_npy(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
-    """Points (and for .npz any normals/colors/weights arrays of matching length)."""
+def read_npy(path: Path, columns=None, extra: tuple[str, ...] = ()
+             ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
+    """Points (and for .npz any normals/colors/weights/radius arrays of matching length, and
+    the arrays named in `extra` under their own names)."""
     with open(path, "rb") as fh:  # our handle: np.load leaks its own when a zip is broken
         try:
+            if path.suffix.lower() == ".npy":
+                check_npy(path, fh)
             data = np.load(fh, allow_pickle=False)
             if isinstance(data, np.ndarray):
                 return _from_array(data, path, columns), {}, ()
-            return _from_archive(data, path, columns)
+            return _from_archive(data, path, columns, extra)
         except FileFormatError:  # already says what is wrong (it is also a ValueError)
             raise
         except (ValueError, OSError, EOFError, KeyError, zipfile.BadZipFile) as exc:
-            raise FileFormatError(f"{path}: not a readable NumPy file ({exc})") from None
+            raise unreadable(path, "NumPy", exc) from exc
 
 
-def _from_archive(data, path: Path, columns) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
+def _from_archive(data, path: Path, columns, extra: tuple[str, ...] = ()
+                  ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """Points and attributes from an open NpzFile."""
     keys = list(data.files)
     key = next((k for k in POINT_KEYS if k in keys), keys[0] if len(keys) == 1 else None)
     if key is None:
         raise FileFormatError(f"{path}: no points array (looked for {', '.join(POINT_KEYS)};"
                               f" found {', '.join(keys) or 'nothing'})")
+    check_npz_member(path, data.zip, key)
     points = _from_array(data[key], path, columns)
+    for k in keys:
+        if k in ATTRIBUTE_KEYS:
+            check_npz_member(path, data.zip, k)
     attrs = {ATTRIBUTE_KEYS[k]: data[k] for k in keys if k in ATTRIBUTE_KEYS}
+    attrs.update({k: data[k] for k in extra if k in keys})
     attrs = {k: v for k, v in attrs.items() if len(v) == len(points)}
     return points, attrs, (f"points from array {key!r}",)

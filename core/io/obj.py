@@ -15,6 +15,7 @@ from core.errors import FileFormatError
 
 _RECORD = re.compile(rb"^[ \t]*(v|f|l)[ \t]+([^\r\n#]*)", re.M)
 _SLASHED = re.compile(rb"/\S*")
+MAX_NUMBER_CHARS = 64  # longer 'numbers' are junk (and would size a bytes array for every row)
 
 
 def _floats(rows: list[bytes], path: Path) -> np.ndarray:
@@ -23,6 +24,8 @@ def _floats(rows: list[bytes], path: Path) -> np.ndarray:
     width = min(map(len, fields))
     if width < 3:
         raise FileFormatError(f"{path}: OBJ vertex with fewer than 3 coordinates")
+    if max(len(t) for f in fields for t in f[:width]) > MAX_NUMBER_CHARS:  # bytes_ pads to it
+        raise FileFormatError(f"{path}: OBJ vertex with a value that is not a number")
     try:
         return np.array([f[:width] for f in fields], dtype=np.bytes_).astype(np.float64)
     except ValueError:
@@ -39,6 +42,8 @@ def _used(records: list[tuple[bytes, bytes]], n: int, path: Path) -> np.ndarray:
         return seen
     lengths = np.fromiter(map(len, map(bytes.split, bodies)), dtype=np.int64, count=len(bodies))
     refs = _SLASHED.sub(b"", b" ".join(bodies)).split()  # 'i/t/n' -> 'i'
+    if refs and max(map(len, refs)) > MAX_NUMBER_CHARS:
+        raise FileFormatError(f"{path}: OBJ face with an index that is not a number")
     try:
         idx = np.array(refs, dtype=np.bytes_).astype(np.int64)
     except ValueError:

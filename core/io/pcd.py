@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import io
-import os
 import re
 from pathlib import Path
 
 import numpy as np
 
 from core.errors import FileFormatError
+from core.io.pcd_checks import check_pcd_header
+from core.io.problems import unreadable
 
 NORMAL_FIELDS = ("normal_x", "normal_y", "normal_z")
 
@@ -21,44 +22,22 @@ def _unpack_rgb(packed: np.ndarray) -> np.ndarray:
     return np.column_stack([(as_int >> s) & 0xFF for s in (16, 8, 0)]).astype(np.uint8)
 
 
-MAX_LZF_RATIO = 200  # a compressed body claiming more than this expansion is bogus
-HEADER_LINES = 20
-
-
-def _check_size(path: Path) -> dict[str, list[str]]:
-    """Refuse headers whose POINTS x row size the body cannot hold (before any allocation);
-    returns the header's fields (upper-case keyword -> words)."""
-    fields: dict[str, list[str]] = {}
-    with open(path, "rb") as fh:
-        for _ in range(HEADER_LINES):
-            words = fh.readline().decode("ascii", "replace").split()
-            if words and not words[0].startswith("#"):
-                fields[words[0].upper()] = words[1:]
-            if words and words[0].upper() == "DATA":
-                break
-        body = os.fstat(fh.fileno()).st_size - fh.tell()
-    try:
-        n = int(fields["POINTS"][0])
-        row = sum(int(s) * int(c) for s, c in zip(fields["SIZE"], fields.get(
-            "COUNT", ["1"] * len(fields["SIZE"])), strict=False))
-        kind = fields["DATA"][0].lower()
-    except (KeyError, IndexError, ValueError):
-        raise FileFormatError(f"{path}: bad PCD header (POINTS, SIZE or DATA missing)") from None
-    limit = {"binary": body, "binary_compressed": body * MAX_LZF_RATIO}.get(kind, body * 64)
-    if n * row > limit or n < 0:
-        raise FileFormatError(f"{path}: truncated PCD (header claims {n:,} points, "
-                              f"the file holds {body:,} bytes of data)")
-    return fields
-
-
-def _with_count(path: Path, n_fields: int) -> io.BytesIO:
-    """The file with the optional COUNT line (1 per field) that pypcd4 requires added."""
+def _normalized(path: Path, fields: dict[str, list[str]]) -> io.BytesIO | None:
+    """The file with what pypcd4 requires of a header and older files lack: the optional COUNT
+    line (1 per field) and VERSION 0.7 for the v.5/v.6 headers (same data layout); None when
+    the file needs neither."""
+    version = (fields.get("VERSION") or [""])[0]
+    if "COUNT" in fields and version in ("0.7", ".7"):
+        return None
     data = path.read_bytes()
-    count = b"COUNT " + b" ".join([b"1"] * n_fields) + b"\n"
-    match = re.search(rb"^SIZE[^\n]*\n", data, re.M)
-    if match is None:
-        raise FileFormatError(f"{path}: bad PCD header (no SIZE line)")
-    return io.BytesIO(data[: match.end()] + count + data[match.end() :])
+    if "COUNT" not in fields:
+        count = b"COUNT " + b" ".join([b"1"] * len(fields["SIZE"])) + b"\n"
+        match = re.search(rb"^SIZE[^\n]*\n", data, re.M)
+        if match is None:
+            raise FileFormatError(f"{path}: bad PCD header (no SIZE line)")
+        data = data[: match.end()] + count + data[match.end() :]
+    data = re.sub(rb"^VERSION[^\n]*", b"VERSION 0.7", data, count=1, flags=re.M)
+    return io.BytesIO(data)
 
 
 def _load(path: Path, fields: dict[str, list[str]]):
@@ -66,31 +45,34 @@ def _load(path: Path, fields: dict[str, list[str]]):
     from pypcd4 import PointCloud
 
     try:
-        if "COUNT" not in fields:
-            return PointCloud.from_fileobj(_with_count(path, len(fields["SIZE"])))
-        return PointCloud.from_path(path)
+        fixed = _normalized(path, fields)
+        return PointCloud.from_path(path) if fixed is None else PointCloud.from_fileobj(fixed)
     except Exception as exc:  # pypcd4 raises many types (ValueError, struct.error, lzf...)
-        raise FileFormatError(f"{path}: unreadable PCD ({type(exc).__name__}: {exc})") from None
+        raise unreadable(path, "PCD", exc) from exc
 
 
 def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
     """(n, 3) xyz and normals/colours/intensity when the PCD has those fields."""
-    cloud = _load(path, _check_size(path))
-    fields = tuple(cloud.fields)
-    if not {"x", "y"}.issubset(fields):
-        raise FileFormatError(f"{path}: PCD has no x/y fields ({', '.join(fields)})")
-    axes = [a for a in ("x", "y", "z") if a in fields]
+    declared, fields = check_pcd_header(path)
+    cloud = _load(path, fields)
+    real = {f.lower(): f for f in reversed(cloud.fields)}  # 'X' (PDAL) is 'x'; first one wins
+    if not {"x", "y"}.issubset(real):
+        raise FileFormatError(f"{path}: PCD has no x/y fields ({', '.join(cloud.fields)})")
+    axes = [real[a] for a in ("x", "y", "z") if a in real]
     try:
         points = cloud.numpy(axes).astype(np.float64)
         attrs: dict[str, np.ndarray] = {}
-        if set(NORMAL_FIELDS).issubset(fields):
-            attrs["normals"] = cloud.numpy(NORMAL_FIELDS).astype(np.float64)
+        if set(NORMAL_FIELDS).issubset(real):
+            attrs["normals"] = cloud.numpy([real[n] for n in NORMAL_FIELDS]).astype(np.float64)
         for name in ("rgb", "rgba"):
-            if name in fields:
-                attrs["colors"] = _unpack_rgb(cloud.pc_data[name])
+            if name in real:
+                attrs["colors"] = _unpack_rgb(cloud.pc_data[real[name]])
                 break
-        if "intensity" in fields:
-            attrs["intensity"] = cloud.numpy(("intensity",))[:, 0].astype(np.float64)
+        if "intensity" in real:
+            attrs["intensity"] = cloud.numpy((real["intensity"],))[:, 0].astype(np.float64)
     except (ValueError, KeyError) as exc:
-        raise FileFormatError(f"{path}: bad PCD fields ({exc})") from None
+        raise unreadable(path, "PCD", exc) from exc
+    if len(points) != declared:
+        raise FileFormatError(f"{path}: truncated PCD (header declares {declared:,} points, "
+                              f"{len(points):,} read)")
     return points, attrs, (f"PCD {cloud.metadata.data.value}",)

@@ -11,6 +11,7 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.ply_body import read_ascii_rows, read_binary
+from core.io.ply_faces import face_note
 from core.io.ply_header import Element, Header, parse_header
 
 NORMAL_NAMES = ("nx", "ny", "nz")
@@ -26,7 +27,7 @@ def _check_size(header: Header, body: int, path: Path) -> None:
         if header.text:
             row = sum(1 if p.count is not None else 2 for p in el.properties)
         else:
-            row = sum((p.count or p.dtype).itemsize for p in el.properties)
+            row = sum((p.count or p.dtype).itemsize for p in el.properties)  # lists may be empty
         need += el.n * max(row, 1)
     if need > body:
         raise FileFormatError(f"{path}: truncated PLY (header promises more data than the "
@@ -42,6 +43,10 @@ def _vertex_table(fh, header: Header, path: Path) -> np.ndarray:
     before, vertex = header.elements[:pos], header.elements[pos]
     if header.text:
         return _read_ascii(fh, vertex, sum(e.n for e in before), path)
+    if not any(e.has_lists for e in before):  # seek past fixed-size rows, read only the vertices
+        fh.seek(sum(e.n * e.row_dtype().itemsize for e in before), os.SEEK_CUR)
+        size = -1 if vertex.has_lists else vertex.n * vertex.row_dtype().itemsize
+        return read_binary(memoryview(fh.read(size)), 0, vertex, str(path))[0]
     buf, at = memoryview(fh.read()), 0
     for element in before:
         _, at = read_binary(buf, at, element, str(path))
@@ -100,12 +105,14 @@ def read_ply(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
     """(n, 3) or (n, 2) vertex coordinates, vertex attributes, and header comments as notes."""
     with open(path, "rb") as fh:
         header = parse_header(fh, str(path))
-        _check_size(header, os.fstat(fh.fileno()).st_size - fh.tell(), path)
+        body_start = fh.tell()
+        _check_size(header, os.fstat(fh.fileno()).st_size - body_start, path)
         table = _vertex_table(fh, header, path)
+        faces = face_note(fh, body_start, header, len(table), str(path))
     names = table.dtype.names or ()
     axes = [a for a in ("x", "y", "z") if a in names]
     if axes[:2] != ["x", "y"]:
         raise FileFormatError(f"{path}: PLY vertices have no x/y properties ({', '.join(names)})")
     points = np.column_stack([table[a] for a in axes]).astype(np.float64)
-    notes = (*header.notes, *(f"comment {c}" for c in header.comments[:5]))
+    notes = (*faces, *header.notes, *(f"comment {c}" for c in header.comments[:5]))
     return points, _attributes(table), notes

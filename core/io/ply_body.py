@@ -129,3 +129,39 @@ def _ascii_scalars(tokens: list[bytes], element: Element, where: str) -> list[fl
         raise FileFormatError(f"{where}: bad PLY {element.name} row {b' '.join(tokens)[:60]!r}"
                               ) from None
     return vals
+
+
+def element_rows(buf: memoryview, pos: int, element: Element, name: str, where: str
+                 ) -> np.ndarray:
+    """(k,) int64: every item of list property `name` of a binary element, row after row."""
+    counts = _first_counts(buf, pos, element, where)
+    dtype = _fixed_dtype(element, counts)
+    at = [p.name for p in element.properties].index(name)
+    end = pos + element.n * dtype.itemsize
+    if end <= len(buf):
+        rows = np.frombuffer(buf, dtype=dtype, count=element.n, offset=pos)
+        count_names = [n for n in dtype.names if n.startswith("__count")]
+        if all(np.all(rows[c] == k) for c, k in zip(count_names, counts, strict=True)):
+            return rows[f"__items{at}"].astype(np.int64).ravel()
+    return _walk_items(buf, pos, element, at, where)
+
+
+def _walk_items(buf: memoryview, pos: int, element: Element, at: int, where: str
+                ) -> np.ndarray:
+    """element_rows for rows whose lists differ in length (mixed polygons), row by row."""
+    out = []
+    for _ in range(element.n):
+        for i, p in enumerate(element.properties):
+            if p.count is None:
+                pos += p.dtype.itemsize
+                continue
+            if pos + p.count.itemsize > len(buf):
+                raise FileFormatError(f"{where}: truncated PLY ({element.name} data)")
+            n = int(np.frombuffer(buf, p.count, 1, pos)[0])
+            pos += p.count.itemsize
+            if n < 0 or pos + n * p.dtype.itemsize > len(buf):
+                raise FileFormatError(f"{where}: truncated PLY ({element.name} data)")
+            if i == at:
+                out.append(np.frombuffer(buf, p.dtype, n, pos).astype(np.int64))
+            pos += n * p.dtype.itemsize
+    return np.concatenate(out) if out else np.zeros(0, dtype=np.int64)

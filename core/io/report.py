@@ -37,6 +37,7 @@ class LoadReport:
     subsample_method: str | None = None
     notes: tuple[str, ...] = ()
     georef: Georef | None = None
+    weights_from: str | None = None  # where the weights (squared radii) came from; None: none
 
     def to_dict(self) -> dict:
         """Plain JSON-ready dict (lists instead of tuples)."""
@@ -60,6 +61,8 @@ class LoadReport:
             f"spacing     {self.spacing:.6g} (median nearest-neighbour distance)",
             f"attributes  {', '.join(self.attributes) or 'none'}",
         ]
+        if self.weights_from is not None:
+            out.append(f"weights     {self.weights_from}")
         if self.subsampled_from is not None:
             out.append(f"subsampled  {self.subsample_method} from {self.subsampled_from:,}")
         if self.georef is not None:
@@ -75,6 +78,13 @@ class PointSet:
     points: np.ndarray
     attributes: dict[str, np.ndarray] = field(default_factory=dict)
     report: LoadReport | None = None
+
+    @property
+    def weights(self) -> np.ndarray | None:
+        """(n,) float64 squared radii of a weighted point set, else None."""
+        if self.report is None or self.report.weights_from is None:
+            return None
+        return self.attributes.get("weights")
 
 
 def _readonly(a: np.ndarray) -> np.ndarray:
@@ -116,6 +126,17 @@ def nonfinite_attributes(attributes: dict[str, np.ndarray]) -> tuple[str, ...]:
     return tuple(out)
 
 
+def _heaviest_unique(points: np.ndarray, weights: np.ndarray | None) -> np.ndarray:
+    """(n,) bool mask keeping one of each group of duplicate rows: the first, or for weighted
+    points the first of the heaviest (a lighter ball at the same place is hidden anyway)."""
+    if weights is None:
+        return first_unique(points)
+    order = np.argsort(-np.nan_to_num(weights, nan=-np.inf), kind="stable")
+    keep = np.empty(len(points), dtype=bool)
+    keep[order] = first_unique(points[order])
+    return keep
+
+
 def finish(
     path: Path,
     fmt: str,
@@ -127,6 +148,7 @@ def finish(
     seed: int = 0,
     notes: tuple[str, ...] = (),
     georef: Georef | None = None,
+    weights_from: str | None = None,
 ) -> PointSet:
     """Drop non-finite rows, merge duplicates, subsample, and measure: the common reader tail."""
     points = np.asarray(points, dtype=np.float64)
@@ -139,7 +161,7 @@ def finish(
     points = points[finite]
     attributes = {k: np.asarray(v)[finite] for k, v in attributes.items()}
     notes = tuple(notes) + nonfinite_attributes(attributes)
-    keep = first_unique(points)
+    keep = _heaviest_unique(points, attributes.get("weights") if weights_from else None)
     n_dup = int(len(points) - keep.sum())
     points = points[keep]
     attributes = {k: v[keep] for k, v in attributes.items()}
@@ -166,6 +188,7 @@ def finish(
         subsample_method=method if len(points) < before else None,
         notes=notes,
         georef=georef,
+        weights_from=weights_from,
     )
     return PointSet(
         points=_readonly(points),

@@ -2,10 +2,6 @@
 
 from __future__ import annotations
 
-import csv
-import itertools
-import re
-from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -14,12 +10,10 @@ import numpy as np
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns, named_attributes, named_coordinates
 from core.io.numbers import NumberStyle, number_style
+from core.io.text_rows import COMMENTS, is_number, pts_note, read_rows, split, uncomment
 
 SNIFF_BYTES = 1 << 16
 DELIMITERS = (",", ";", "\t", "|")
-MISSING = {"", "na", "nan", "null", "none", "n/a"}
-COMMENTS = ("#", "//", "%")
-PTS_COUNT = re.compile(r"^\s*\d+\s*$")  # a PTS scan's point count line
 
 
 @dataclass(frozen=True)
@@ -33,22 +27,6 @@ class Layout:
     first_row: list[str]
     style: NumberStyle = field(default_factory=NumberStyle)
     pts: bool = False
-
-
-def _split(line: str, delimiter: str | None) -> list[str]:
-    """Split one line like the csv module (quotes respected) or on runs of whitespace."""
-    if delimiter is None:
-        return line.split()
-    return next(csv.reader([line], delimiter=delimiter, skipinitialspace=True), [])
-
-
-def _is_number(token: str) -> bool:
-    """True when `token` parses as a float."""
-    try:
-        float(token)
-    except ValueError:
-        return False
-    return True
 
 
 def _head_lines(path: Path) -> list[str]:
@@ -73,20 +51,15 @@ def _delimiter(lines: list[str]) -> str | None:
     """The delimiter present with the same count on every sampled line, else whitespace."""
     sample = lines[:20]
     for d in DELIMITERS:
-        counts = {len(_split(ln, d)) for ln in sample}
+        counts = {len(split(ln, d)) for ln in sample}
         if len(counts) == 1 and counts.pop() > 1:
             return d
     return None
 
 
-def _uncomment(line: str) -> str:
-    """The line without a trailing '# comment'."""
-    return line.split("#", 1)[0] if "#" in line else line
-
-
 def _cells(line: str, delim: str | None) -> list[str]:
     """Cells of one line, without trailing empty cells (a trailing delimiter or tab)."""
-    row = _split(line, delim)
+    row = split(line, delim)
     while row and not row[-1].strip():
         row.pop()
     return row
@@ -96,7 +69,7 @@ def sniff(path: Path) -> Layout:
     """Find delimiter, header, number style and first data row from the head of the file."""
     raw = _head_lines(path)
     numbered = [(i, ln) for i, ln in enumerate(raw) if ln.strip()]
-    data = [(i, _uncomment(ln)) for i, ln in numbered if not ln.lstrip().startswith(COMMENTS)]
+    data = [(i, uncomment(ln)) for i, ln in numbered if not ln.lstrip().startswith(COMMENTS)]
     data = [(i, ln) for i, ln in data if ln.strip()]
     if not data:
         raise FileFormatError(f"{path}: empty file (no data lines)")
@@ -108,7 +81,7 @@ def sniff(path: Path) -> Layout:
     names, start = None, 0
     if len(rows) > 1 and len(rows[0][1]) == 1 and rows[0][1][0].strip().isdigit():
         start = 1  # PTS: a point count line before the data
-    elif not all(_is_number(t) for t in rows[0][1]):
+    elif not all(is_number(t) for t in rows[0][1]):
         names, start = [clean_name(t) for t in rows[0][1]], 1
     else:
         names = _comment_header(numbered, data[0][0], delim, len(rows[0][1]))
@@ -124,7 +97,7 @@ def _comment_header(numbered, first_data, delim, n_cols) -> list[str] | None:
     before = [ln for i, ln in numbered if i < first_data]
     if not before:
         return None
-    names = [clean_name(t) for t in _split(before[-1].lstrip("#/% "), delim)]
+    names = [clean_name(t) for t in split(before[-1].lstrip("#/% "), delim)]
     return names if len(names) == n_cols and named_coordinates(names) else None
 
 
@@ -136,83 +109,10 @@ def choose_columns(layout: Layout, columns, path: Path) -> tuple[list[int], dict
         coords = named_coordinates(layout.names)
         if coords is not None:
             return coords, named_attributes(layout.names)
-    numeric = [i for i, t in enumerate(layout.first_row) if _is_number(t)]
+    numeric = [i for i, t in enumerate(layout.first_row) if is_number(t)]
     if len(numeric) < 2:
         raise FileFormatError(f"{path}: fewer than 2 numeric columns in the first data row")
     return numeric[:3], {}
-
-
-def _lines(fh: Iterable[str], layout: Layout, counts: list[int]) -> Iterator[str]:
-    """Lines from the first data row on, in plain float syntax; a PTS file's count lines are
-    appended to `counts` and replaced by blank lines (so line numbers stay right)."""
-    lines: Iterator[str] = iter(fh) if layout.pts else itertools.islice(fh, layout.skiprows, None)
-    if layout.pts:
-        lines = _without_counts(lines, counts)
-    return lines if layout.style.plain else map(layout.style.fix(), lines)
-
-
-def _without_counts(lines: Iterator[str], counts: list[int]) -> Iterator[str]:
-    """PTS: each scan starts with a line holding only its point count."""
-    for line in lines:
-        if PTS_COUNT.match(line):
-            counts.append(int(line))
-            yield "\n"
-        else:
-            yield line
-
-
-def _read_fast(path: Path, layout: Layout, usecols: list[int]) -> tuple[np.ndarray, list[int]]:
-    """numpy's C parser; raises ValueError on anything unusual (missing values, ragged rows)."""
-    quoted = layout.delimiter is not None  # numpy allows quotes with one comment marker only
-    options = {"delimiter": layout.delimiter, "quotechar": '"' if quoted else None,
-               "usecols": usecols, "comments": "#" if quoted else COMMENTS, "ndmin": 2,
-               "dtype": np.float64}
-    counts: list[int] = []
-    if layout.style.plain and not layout.pts:
-        return np.loadtxt(path, skiprows=layout.skiprows, encoding="utf-8-sig", **options), counts
-    with open(path, encoding="utf-8-sig") as fh:
-        return np.loadtxt(_lines(fh, layout, counts), **options), counts
-
-
-def _read_careful(path: Path, layout: Layout, usecols: list[int]) -> tuple[np.ndarray, list[int]]:
-    """Line by line: missing values become NaN; a bad value is reported with its line."""
-    out, counts = [], []
-    first = 1 if layout.pts else layout.skiprows + 1
-    with open(path, encoding="utf-8-sig", errors="replace") as fh:
-        for lineno, line in enumerate(_lines(fh, layout, counts), first):
-            if not line.strip() or line.lstrip().startswith(COMMENTS):
-                continue
-            row = _split(_uncomment(line), layout.delimiter)
-            out.append(_parse_row(row, usecols, path, lineno))
-    return np.array(out, dtype=np.float64).reshape(-1, len(usecols)), counts
-
-
-def _pts_note(counts: list[int], n_rows: int) -> tuple[str, ...]:
-    """Report line for a PTS file: its scans, and any count that disagrees with the rows."""
-    if not counts:
-        return ()
-    note = f"PTS: {len(counts)} scan{'s' if len(counts) > 1 else ''}, {n_rows:,} points read"
-    if sum(counts) != n_rows:
-        note += f" (the count lines promise {sum(counts):,})"
-    return (note,)
-
-
-def _parse_row(row: list[str], usecols: list[int], path: Path, lineno: int) -> list[float]:
-    """Floats of the chosen cells of one row; missing cells are NaN."""
-    if len(row) <= max(usecols):
-        raise FileFormatError(f"{path}: line {lineno} has {len(row)} columns, "
-                              f"column {max(usecols) + 1} needed")
-    vals = []
-    for c in usecols:
-        cell = row[c].strip()
-        if cell.lower() in MISSING:
-            vals.append(np.nan)
-        elif _is_number(cell):
-            vals.append(float(cell))
-        else:
-            raise FileFormatError(f"{path}: non-numeric value {cell[:40]!r} at line {lineno}, "
-                                  f"column {c + 1}")
-    return vals
 
 
 def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray], tuple]:
@@ -220,16 +120,20 @@ def read_text(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarra
     return read_text_columns(path, columns)[:3]
 
 
-def read_text_columns(path: Path, columns=None
+def read_text_columns(path: Path, columns=None, extra: tuple[str, ...] = ()
                       ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, list[str] | None]:
-    """read_text's result and the coordinate columns' header names (None without a header)."""
+    """read_text's result and the coordinate columns' header names (None without a header).
+
+    `extra` names header columns to read too, each as an attribute of its (cleaned) name.
+    """
     layout = sniff(path)
     coords, attrs = choose_columns(layout, columns, path)
+    for name in extra:
+        if name not in attrs:
+            attrs[name] = explicit_columns([name, name], layout.names, layout.n_cols,
+                                           str(path))[:1]
     usecols = coords + [c for cols in attrs.values() for c in cols]
-    try:
-        table, counts = _read_fast(path, layout, usecols)
-    except ValueError:
-        table, counts = _read_careful(path, layout, usecols)
+    table, counts = read_rows(path, layout, usecols)
     if len(table) == 0:
         raise FileFormatError(f"{path}: no data rows")
     points, pos = table[:, : len(coords)], len(coords)
@@ -241,7 +145,7 @@ def read_text_columns(path: Path, columns=None
     names = layout.names or [str(i + 1) for i in range(layout.n_cols)]
     note = f"coordinates from columns {', '.join(names[c] for c in coords)}"
     coord_names = [layout.names[c] for c in coords] if layout.names else None
-    notes = (note, *layout.style.notes(), *_pts_note(counts, len(table)))
+    notes = (note, *layout.style.notes(), *pts_note(counts, len(table)))
     return points, attributes, notes, coord_names
 
 

@@ -1,7 +1,9 @@
-"""Legacy VTK POLYDATA (.vtk, ascii or binary): the POINTS section is the point set.
+"""Legacy VTK (.vtk, ascii or binary): the POINTS section is the point set.
 
-meshio reads only the grid datasets of the legacy format, and core must not import VTK, so the
-points of a POLYDATA file are read here: header, optional FIELD block, then `POINTS n type`.
+meshio reads no POLYDATA and refuses unstructured grids with cells it does not know (poly
+vertices, triangle strips...), and core must not import VTK, so the points of the datasets
+that list them (POLYDATA, UNSTRUCTURED_GRID, STRUCTURED_GRID) can be read here: header,
+optional FIELD block, then `POINTS n type`.
 """
 
 from __future__ import annotations
@@ -53,8 +55,8 @@ class _Cursor:
         tokens = self.data[self.pos :].split(None, count)
         if len(tokens) < count:
             raise FileFormatError(f"{self.path}: truncated VTK file")
-        try:
-            out = np.array(tokens[:count], dtype=np.bytes_).astype(np.float64)
+        try:  # values rounded to the declared type, as VTK stores them
+            out = np.array(tokens[:count], dtype=np.bytes_).astype(code).astype(np.float64)
         except ValueError:
             raise FileFormatError(f"{self.path}: a VTK value is not a number") from None
         self.pos = len(self.data) - (len(tokens[count]) if len(tokens) > count else 0)
@@ -79,8 +81,11 @@ def _skip_field(cursor: _Cursor, words: list[str]) -> None:
         cursor.values(int(comps) * int(tuples), vtk_type)
 
 
-def read_polydata(path: Path) -> np.ndarray:
-    """(n, 3) float64 points of a legacy POLYDATA file."""
+POINT_DATASETS = ("POLYDATA", "UNSTRUCTURED_GRID", "STRUCTURED_GRID")
+
+
+def read_points_section(path: Path) -> np.ndarray:
+    """(n, 3) float64 points of a legacy VTK dataset with a POINTS section."""
     data = path.read_bytes()
     head = _Cursor(data, False, path)
     if not head.line().startswith("# vtk DataFile"):
@@ -103,4 +108,4 @@ def read_polydata(path: Path) -> np.ndarray:
                 return cursor.values(3 * n, words[2]).reshape(n, 3)
     except (ValueError, IndexError):
         raise FileFormatError(f"{path}: bad VTK header line") from None
-    raise FileFormatError(f"{path}: VTK POLYDATA without a POINTS section")
+    raise FileFormatError(f"{path}: VTK dataset without a POINTS section")

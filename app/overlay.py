@@ -1,0 +1,151 @@
+"""What makes a picture explain itself: a legend of the visible layers, the alpha (r and r²),
+a scale bar in data units and an orientation marker, drawn over the scene (VTK, 2D actors).
+
+The scale bar follows the camera: it is resized before every render to a round length
+(1, 2 or 5 times a power of ten) about a sixth of the view wide at the focal point.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pyvista as pv
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.vtkRenderingCore import vtkActor2D, vtkPolyDataMapper2D, vtkTextActor
+
+from app.numbers import decimals_for, quantity, with_unit
+from app.palette import BACKGROUND, LAYER_TITLES, TEXT, LayerStyle
+
+BAR_SHARE = 1 / 6  # the scale bar's target width, as a share of the view's
+MARGIN = 12  # pixels from the view's edges
+FONT_SIZE = 14
+
+
+def round_length(target: float) -> float:
+    """The largest of 1, 2, 5 x 10^k not above target (target > 0)."""
+    power = 10.0 ** math.floor(math.log10(target))
+    return max(step * power for step in (1, 2, 5) if step * power <= target)
+
+
+def length_label(length: float, unit: str | None) -> str:
+    """A round length for the scale bar: '0.05', '2,000', or in metres '5,000 km', '20 m'."""
+    if unit == "m" and length >= 1000:
+        length, unit = length / 1000, "km"
+    places = decimals_for(length) if length < 1 else 0
+    return with_unit(f"{length:,.{places}f}", unit)
+
+
+def alpha_text(alpha: float, unit: str | None) -> str:
+    """'alpha: r 0.001105 m, r² 1.222e-06 m²' (weighted alphas may be negative: r² keeps the
+    sign of the squared value)."""
+    return (f"alpha: r {with_unit(quantity(alpha), unit)}, "
+            f"r² {with_unit(quantity(alpha * abs(alpha)), unit, 2)}")
+
+
+class Overlay:
+    """The annotations of one plotter; `visible=False` leaves a clean figure."""
+
+    def __init__(self, plotter: pv.BasePlotter) -> None:
+        """Create the alpha text, scale bar and orientation marker (legend on first layers)."""
+        self.plotter = plotter
+        self.unit: str | None = None
+        self.visible = True
+        self.alpha = vtkTextActor()
+        self._style_text(self.alpha)
+        self.alpha.SetPosition(MARGIN, MARGIN)
+        self.bar_label = vtkTextActor()
+        self._style_text(self.bar_label)
+        self.bar_label.GetTextProperty().SetJustificationToCentered()
+        self.bar_points = vtkPoints()
+        self.bar_points.SetNumberOfPoints(6)
+        self.bar = self._bar_actor()
+        for actor in (self.alpha, self.bar, self.bar_label):
+            plotter.renderer.AddViewProp(actor)
+        self.axes = plotter.add_axes(interactive=False, color=TEXT, line_width=2,
+                                     viewport=(0.9, 0.0, 1.0, 0.14))
+        self.legend = None
+        plotter.renderer.AddObserver("StartEvent", lambda *_: self.update_scale_bar())
+
+    @staticmethod
+    def _style_text(actor: vtkTextActor) -> None:
+        prop = actor.GetTextProperty()
+        prop.SetFontSize(FONT_SIZE)
+        prop.SetColor(pv.Color(TEXT).float_rgb)
+        prop.SetBackgroundColor(pv.Color(BACKGROUND).float_rgb)
+        prop.SetBackgroundOpacity(0.6)
+
+    def _bar_actor(self) -> vtkActor2D:
+        """A bar with end ticks: three line segments in display coordinates."""
+        lines = vtkCellArray()
+        for a, b in ((0, 1), (2, 3), (4, 5)):
+            lines.InsertNextCell(2)
+            lines.InsertCellPoint(a)
+            lines.InsertCellPoint(b)
+        data = vtkPolyData()
+        data.SetPoints(self.bar_points)
+        data.SetLines(lines)
+        mapper = vtkPolyDataMapper2D()
+        mapper.SetInputData(data)
+        actor = vtkActor2D()
+        actor.SetMapper(mapper)
+        actor.GetProperty().SetColor(pv.Color(TEXT).float_rgb)
+        actor.GetProperty().SetLineWidth(2)
+        return actor
+
+    def set_alpha(self, alpha: float) -> None:
+        """Show the current alpha (a radius; signed for weighted data)."""
+        self.alpha.SetInput(alpha_text(alpha, self.unit))
+
+    def set_layers(self, styles: dict[str, LayerStyle]) -> None:
+        """Legend of the visible layers, in their colours (only on a style change)."""
+        entries = [(LAYER_TITLES.get(name, name), style.colour)
+                   for name, style in styles.items() if style.visible]
+        if self.legend is not None:
+            self.plotter.remove_legend(render=False)
+            self.legend = None
+        if entries:
+            height = min(0.05 * len(entries), 0.4)
+            self.legend = self.plotter.add_legend(
+                labels=entries, bcolor=BACKGROUND, border=True, size=(0.22, height),
+                loc="upper left", face="rectangle", background_opacity=0.6)
+            self.legend.SetVisibility(self.visible)
+
+    def set_visible(self, visible: bool) -> None:
+        """Show or hide every annotation (--no-legend)."""
+        self.visible = visible
+        for actor in (self.alpha, self.bar, self.bar_label, self.axes, self.legend):
+            if actor is not None:
+                actor.SetVisibility(visible)
+
+    def update_scale_bar(self) -> None:
+        """Resize the scale bar to a round length in data units at the focal point."""
+        renderer = self.plotter.renderer
+        width, height = renderer.GetSize()
+        per_pixel = self._world_per_pixel(height)
+        if not self.visible or width <= 0 or not (per_pixel > 0 and math.isfinite(per_pixel)):
+            self.bar.SetVisibility(False)
+            self.bar_label.SetVisibility(False)
+            return
+        length = round_length(BAR_SHARE * width * per_pixel)
+        pixels = length / per_pixel
+        right = width - 0.12 * width - MARGIN
+        left, y = right - pixels, MARGIN + 4
+        for i, (x, dy) in enumerate(((left, 0), (right, 0), (left, -4), (left, 4),
+                                     (right, -4), (right, 4))):
+            self.bar_points.SetPoint(i, x, y + dy, 0.0)
+        self.bar_points.Modified()
+        self.bar_label.SetInput(length_label(length, self.unit))
+        self.bar_label.SetPosition((left + right) / 2, y + 8)
+        self.bar.SetVisibility(True)
+        self.bar_label.SetVisibility(True)
+
+    def _world_per_pixel(self, height: int) -> float:
+        """Data units per pixel at the camera's focal point."""
+        camera = self.plotter.renderer.GetActiveCamera()
+        if height <= 0:
+            return 0.0
+        if camera.GetParallelProjection():
+            return 2.0 * camera.GetParallelScale() / height
+        view = math.radians(camera.GetViewAngle())
+        return 2.0 * camera.GetDistance() * math.tan(view / 2) / height

@@ -1,0 +1,120 @@
+"""Weighted build (issue 11): ours vs gudhi's weighted precision="fast", and vs our classic
+build of the same points, in one run, each step in its own fresh interpreter.
+
+    .venv/bin/python benchmarks/bench_weighted.py --n 200000 [--seed 0] [--json out.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+from itertools import pairwise
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+from benchmarks.isolate import Probe, run_isolated
+
+GOALS = (("gudhi weighted fast", 0.8), ("our classic build", 2.0))
+
+
+def packing(n: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    """(n, 3) uniform points in the unit cube and (n,) weights: squared radii drawn uniformly
+    from 1 to 2 times the median nearest-neighbour spacing (a random packing of balls)."""
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(seed)
+    points = rng.random((n, 3))
+    dist, _ = cKDTree(points).query(points[: min(n, 20000)], k=2)
+    spacing = float(np.median(dist[:, 1]))
+    return points, (rng.uniform(1.0, 2.0, n) * spacing) ** 2
+
+
+def _tiny() -> tuple[np.ndarray, np.ndarray]:
+    """50 weighted points for first-call set-up before the baseline."""
+    return packing(50, 1)
+
+
+def gudhi_weighted(path: str) -> dict:
+    """gudhi.AlphaComplex(points, weights, precision='fast').create_simplex_tree()."""
+    import gudhi
+
+    pts, w = _tiny()
+    gudhi.AlphaComplex(points=pts, weights=w.tolist(), precision="fast").create_simplex_tree()
+    with np.load(path) as data:
+        points, weights = data["points"], data["weights"]
+    weight_list = weights.tolist()  # gudhi takes a Python sequence; not timed
+    probe = Probe()
+    tree = gudhi.AlphaComplex(points=points, weights=weight_list,
+                              precision="fast").create_simplex_tree()
+    return probe.result(simplices=int(tree.num_simplices()))
+
+
+def ours(path: str, weighted: bool) -> dict:
+    """AlphaComplex.from_points(points[, weights=w]) with the time of each build stage."""
+    from core import AlphaComplex
+
+    pts, w = _tiny()
+    AlphaComplex.from_points(pts, weights=w if weighted else None)
+    with np.load(path) as data:
+        points, weights = data["points"], data["weights"]
+    marks: list[tuple[float, float, str]] = []
+    probe = Probe()
+    ac = AlphaComplex.from_points(
+        points, weights=weights if weighted else None,
+        progress=lambda _f, stage: marks.append((time.perf_counter(), time.process_time(),
+                                                 stage)))
+    result = probe.result(counts=[len(ac.simplices(k)) for k in range(ac.dim + 1)],
+                          hidden=int((ac.input_index < 0).sum()))
+    marks.append((time.perf_counter(), time.process_time(), ""))
+    result["stages"] = [{"stage": stage, "seconds": t1 - t0, "cpu_seconds": c1 - c0}
+                        for (t0, c0, stage), (t1, c1, _) in pairwise(marks)]
+    return result
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n", type=int, default=200_000)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--json", help="write the figures to this file")
+    args = parser.parse_args(argv)
+    points, weights = packing(args.n, args.seed)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "packing.npz")
+        np.savez(path, points=points, weights=weights)
+        results = {"our weighted build": run_isolated(ours, path, True),
+                   "gudhi weighted fast": run_isolated(gudhi_weighted, path),
+                   "our classic build": run_isolated(ours, path, False)}
+    mine = results["our weighted build"]
+    print(f"{args.n:,} weighted points (radii 1-2 spacings), seed {args.seed}")
+    for name, figures in results.items():
+        if "error" in figures:
+            print(f"  {name:<22} ERROR {figures['error']}")
+            continue
+        print(f"  {name:<22} {figures['seconds']:7.2f} s wall {figures['cpu_seconds']:7.2f} s cpu"
+              f"  peak +{figures['extra_mib']:.0f} MiB")
+        for stage in figures.get("stages", []):
+            print(f"      {stage['stage']:<28} {stage['seconds']:6.2f} s")
+    if "hidden" in mine:
+        print(f"  hidden points: {mine['hidden']:,}; simplices {mine['counts']}")
+    for name, goal in GOALS:
+        other = results[name]
+        if "error" in other or "error" in mine:
+            continue
+        ratio = mine["seconds"] / other["seconds"]
+        cpu = mine["cpu_seconds"] / other["cpu_seconds"]
+        print(f"  weighted / {name}: {ratio:.2f}x wall, {cpu:.2f}x cpu (goal <= {goal}x): "
+              f"{'PASS' if ratio <= goal else 'FAIL'}")
+    if args.json:
+        with open(args.json, "w") as handle:
+            json.dump({"n": args.n, "seed": args.seed, "results": results}, handle, indent=2)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

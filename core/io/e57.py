@@ -1,0 +1,133 @@
+"""E57 (ASTM E2807) scans via pye57: every scan (or one), poses applied, Cartesian or spherical
+coordinates, invalid points dropped, intensity and colour (scaled by the file's limits) kept."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from core.errors import FileFormatError
+from core.io.problems import unreadable
+from core.io.sizes import check_memory
+
+CARTESIAN = ("cartesianX", "cartesianY", "cartesianZ")
+SPHERICAL = ("sphericalRange", "sphericalAzimuth", "sphericalElevation")
+COLOURS = ("colorRed", "colorGreen", "colorBlue")
+
+
+def _open(path: Path):
+    """The pye57 reader, or a clear error when the file (or the library) is missing or bad."""
+    try:
+        import pye57
+    except ImportError:  # pragma: no cover - pye57 is a dependency; a broken install says so
+        raise FileFormatError(f"{path}: reading E57 needs the 'pye57' package "
+                              "(pip install pye57)") from None
+    try:
+        return pye57.E57(str(path))
+    except Exception as exc:  # libE57Format raises its own exception types
+        raise unreadable(path, "E57", exc) from exc
+
+
+def spherical_to_cartesian(rae: np.ndarray) -> np.ndarray:
+    """(n, 3) xyz from (n, 3) range, azimuth, elevation (radians), as ASTM E2807 defines."""
+    r, azimuth, elevation = rae.T
+    flat = r * np.cos(elevation)
+    return np.column_stack([flat * np.cos(azimuth), flat * np.sin(azimuth), r * np.sin(elevation)])
+
+
+FLAG_FIELDS = ("cartesianInvalidState", "sphericalInvalidState")  # 0 valid, 1-2 invalid
+
+
+def _read_fields(e57, header, names: list[str], path: Path) -> dict[str, np.ndarray]:
+    """The named point fields of a scan, scaled, as float64 (flags as int8, as pye57 does:
+    64-bit integer buffers gave wrong flags for half the points of a real file)."""
+    from pye57 import libe57
+
+    n = header.point_count
+    check_memory(path, n * 8 * len(names), f"a scan of {n:,} points")  # bit-packed data
+    arrays, buffers = {}, libe57.VectorSourceDestBuffer()
+    for name in names:
+        arrays[name] = np.empty(n, dtype=np.int8 if name in FLAG_FIELDS else np.float64)
+        buffers.append(libe57.SourceDestBuffer(e57.image_file, name, arrays[name], n, True, True))
+    reader = header.points.reader(buffers)
+    try:
+        got = reader.read()
+    finally:
+        reader.close()
+    return {k: v[:got] for k, v in arrays.items()}
+
+
+def _colour_range(header, name: str) -> tuple[float, float]:
+    """A colour channel's limits: the scan's colorLimits, else the prototype's bounds."""
+    from pye57 import libe57
+    from pye57.utils import get_node
+
+    node = header.node
+    if node.isDefined("colorLimits") and node["colorLimits"].isDefined(name + "Maximum"):
+        box = node["colorLimits"]
+        return float(box[name + "Minimum"].value()), float(box[name + "Maximum"].value())
+    field = get_node(libe57.StructureNode(header.points.prototype()), name)
+    return float(field.minimum()), float(field.maximum())
+
+
+def _colours(header, raw: dict) -> np.ndarray:
+    """(n, 3) uint8 colours scaled from the channel limits to 0..255."""
+    out = []
+    for name in COLOURS:
+        lo, hi = _colour_range(header, name)
+        span = hi - lo if hi > lo else 1.0
+        out.append(np.clip((raw[name] - lo) * (255.0 / span), 0, 255).round())
+    return np.column_stack(out).astype(np.uint8)
+
+
+def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], int]:
+    """(valid points with the scan's pose applied, attributes, invalid count) of one scan."""
+    header = e57.get_header(index)
+    fields = set(header.point_fields)
+    system = CARTESIAN if fields.issuperset(CARTESIAN) else SPHERICAL
+    if not fields.issuperset(system):
+        raise FileFormatError(f"{path}: E57 scan {index} has neither Cartesian nor spherical "
+                              f"coordinates ({', '.join(sorted(fields))})")
+    state = "cartesianInvalidState" if system == CARTESIAN else "sphericalInvalidState"
+    extra = [f for f in (state, "intensity", *COLOURS) if f in fields]
+    raw = _read_fields(e57, header, [*system, *extra], path)
+    local = np.column_stack([raw[f] for f in system])
+    if system == SPHERICAL:
+        local = spherical_to_cartesian(local)
+    valid = raw[state] == 0 if state in raw else np.ones(len(local), dtype=bool)
+    points = local @ header.rotation_matrix.T + header.translation if header.has_pose() else local
+    attrs = {}
+    if "intensity" in raw:
+        attrs["intensity"] = raw["intensity"]
+    if fields.issuperset(COLOURS):
+        attrs["colors"] = _colours(header, raw)
+    return points[valid], {k: v[valid] for k, v in attrs.items()}, int((~valid).sum())
+
+
+def read_e57(path: Path, columns=None, *, scan: int | None = None) -> tuple:
+    """(n, 3) points of every scan (or scan number `scan`), attributes and notes."""
+    e57 = _open(path)
+    try:
+        count = e57.scan_count
+        if count == 0:
+            raise FileFormatError(f"{path}: E57 file holds no scans")
+        if scan is not None and not 0 <= scan < count:
+            raise FileFormatError(f"{path}: no scan {scan}; the file has scans 0..{count - 1}")
+        chosen = range(count) if scan is None else [scan]
+        parts = [_scan(e57, i, path) for i in chosen]
+    except FileFormatError:
+        raise
+    except Exception as exc:  # libE57Format: corrupt pages, bad prototypes...
+        raise unreadable(path, "E57", exc) from exc
+    finally:
+        e57.close()
+    points = np.concatenate([p[0] for p in parts])
+    shared = set.intersection(*(set(p[1]) for p in parts))
+    attrs = {k: np.concatenate([p[1][k] for p in parts]) for k in sorted(shared)}
+    label = f"scan {scan} of {count}" if scan is not None else f"{count} scan(s), poses applied"
+    notes = [f"E57: {label}"]
+    invalid = sum(p[2] for p in parts)
+    if invalid:
+        notes.append(f"E57: {invalid:,} points flagged invalid were dropped")
+    return points, attrs, tuple(notes)

@@ -1,0 +1,81 @@
+"""A molecule's measures from its weighted alpha complex: exact area and volume of the union
+of its balls, per-atom exposed area, and its cavities (voids) with their volumes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from core.errors import InputError
+
+from .cavities import void_cells, void_volumes
+from .measures import union_measures
+
+
+@dataclass(frozen=True, eq=False)
+class MoleculeMeasures:
+    """Measures of the union of atom balls at alpha² = `alpha2` (0: the balls themselves).
+
+    atom_area (n,) float64 exposed area of each input atom (0 for hidden ones); cavities (k,)
+    float64 volume of the empty space of each void, largest first (a seeded Monte Carlo
+    estimate; cavity_errors its standard errors); cavity_cells (n_cells,) int64 void label of
+    each cell of the complex (-1 = none).
+    """
+
+    atoms: int
+    probe: float
+    alpha2: float
+    surface_area: float
+    volume: float
+    atom_area: np.ndarray
+    cavities: np.ndarray
+    cavity_errors: np.ndarray
+    cavity_cells: np.ndarray
+
+    def to_dict(self) -> dict:
+        """The JSON `molecule` object of `alphascoop info`."""
+        return {"atoms": self.atoms, "probe": self.probe, "alpha2": self.alpha2,
+                "surface_area": self.surface_area, "volume": self.volume,
+                "cavities": [float(v) for v in self.cavities],
+                "cavity_errors": [float(e) for e in self.cavity_errors],
+                "atom_area": [round(float(a), 6) for a in self.atom_area]}
+
+
+def _in_complex(ac, k: int, alpha2: float) -> np.ndarray:
+    """(n_k,) bool: the k-simplices of the complex at alpha²."""
+    return ac.intervals_sq(k)[:, 0] <= alpha2
+
+
+def measure_molecule(ac, probe: float, alpha2: float = 0.0) -> MoleculeMeasures:
+    """Area, volume, per-atom area and cavities of a weighted 3D AlphaComplex's balls.
+
+    At alpha² = 0 the complex is the dual of the union of balls of radii sqrt(weights);
+    another alpha² measures the balls grown to squared radii weights + alpha².
+    """
+    if ac.weights is None or ac.dim != 3:
+        raise InputError("molecule measures need a weighted 3D complex (atoms as balls)")
+    if ac.weights.min() + alpha2 <= 0:
+        raise InputError(f"alpha2 {alpha2:g} leaves some balls with no radius")
+    radii = np.sqrt(ac.weights + alpha2)
+    simplices = [ac.simplices(k)[_in_complex(ac, k, alpha2)] for k in range(4)]
+    union = union_measures(ac.points, radii, *simplices[1:], vertices=simplices[0][:, 0])
+    labels = void_cells(~_in_complex(ac, 3, alpha2), ac.facet_cells(),
+                        ~_in_complex(ac, 2, alpha2))
+    volumes, errors = void_volumes(labels, ac.simplices(3), ac.points, radii,
+                                   ac.cell_measures())
+    order = np.argsort(-volumes, kind="stable")
+    relabel = np.full(len(order) + 1, -1)
+    relabel[order] = np.arange(len(order))
+    atom_area = np.where(ac.input_index >= 0, union.atom_area[np.maximum(ac.input_index, 0)], 0)
+    return MoleculeMeasures(
+        atoms=len(ac.input_index), probe=float(probe), alpha2=float(alpha2),
+        surface_area=union.area, volume=union.volume, atom_area=_frozen(atom_area),
+        cavities=_frozen(volumes[order]),
+        cavity_errors=_frozen(errors[order]), cavity_cells=_frozen(relabel[labels]))
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.ascontiguousarray(a)
+    a.flags.writeable = False
+    return a

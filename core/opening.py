@@ -1,0 +1,76 @@
+"""The opening alpha: the smallest alpha at which the shape's triangles make the object.
+
+CGAL's optimal alpha (every point in one solid) suits solids; on a surface scan it is a faceted
+blob tens of spacings wide. A scan looks like its object as soon as its triangles (regular,
+singular or interior: the surface and any solid behind it) join nearly every point into one
+piece. That alpha comes from one spanning forest: an edge joins its ends once its first
+triangle is in, and the largest component only grows, so a binary search over the forest's
+merges finds it with a few `connected_components` calls.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+from .forest import spanning_forest
+
+#: Share of the points the largest piece must hold: scans carry a few stray points (outliers,
+#: specks) that join only at alphas far beyond the object's own.
+OPENING_SHARE = 0.99
+
+
+def first_cofaces(face_ids: np.ndarray, coface_enter: np.ndarray, n_faces: int) -> np.ndarray:
+    """(n_faces,) float64 smallest enter among each face's cofaces (inf: none).
+
+    face_ids: (c, k + 1) int rows of the faces of c cofaces; coface_enter: (c,) float64.
+    """
+    first = np.full(n_faces, np.inf)
+    np.minimum.at(first, np.asarray(face_ids, dtype=np.int64).ravel(),
+                  np.repeat(np.asarray(coface_enter, dtype=np.float64), face_ids.shape[1]))
+    return first
+
+
+def joined_share(n_points: int, a: np.ndarray, b: np.ndarray) -> float:
+    """Share of n_points in the largest component of the graph with edges (a, b)."""
+    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(n_points, n_points))
+    _, labels = connected_components(graph, directed=False)
+    return float(np.bincount(labels).max()) / n_points
+
+
+def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndarray,
+                  share: float = OPENING_SHARE) -> float:
+    """Smallest alpha at which triangles join >= share of the n_points into one component.
+
+    edges: (e, 2) int vertex rows; edge_first_triangle: (e,) float64 enter of each edge's first
+    triangle (inf: none). Returns inf when no alpha reaches the share.
+    """
+    values = np.asarray(edge_first_triangle, dtype=np.float64)
+    finite = np.flatnonzero(np.isfinite(values))
+    order = finite[np.argsort(values[finite], kind="stable")]
+    edges = np.asarray(edges, dtype=np.int64)[order]
+    # ranks as weights: scipy needs them > 0, and weighted tables hold signed radii
+    ranks, a, b = spanning_forest(n_points, edges[:, 0], edges[:, 1],
+                                  np.arange(1.0, len(order) + 1))
+    weights = values[order[ranks.astype(np.int64) - 1]]
+    low, high = 0, len(weights)  # the first `high` merges reach the share; `low` do not
+    if n_points == 0 or joined_share(n_points, a, b) < share:
+        return float("inf")
+    while high - low > 1:
+        middle = (low + high) // 2
+        if joined_share(n_points, a[:middle], b[:middle]) >= share:
+            high = middle
+        else:
+            low = middle
+    return float(weights[high - 1]) if high > 0 else 0.0
+
+
+def opening_alpha_of(ac) -> float:
+    """`opening_alpha` of an AlphaComplex, from its public table; the largest critical alpha
+    (the whole triangulation) when no alpha reaches the share."""
+    last = float(ac.spectrum()[-1])
+    if len(ac.simplices(2)) == 0:
+        return last
+    edge_first = first_cofaces(ac.face_ids(2), ac.intervals(2)[:, 0], len(ac.simplices(1)))
+    return min(opening_alpha(len(ac.points), ac.simplices(1), edge_first), last)

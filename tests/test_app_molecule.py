@@ -1,0 +1,43 @@
+"""The window on a molecule: atoms as CPK-coloured balls, cavities at the current alpha, the
+exact measures in the info dock."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from conftest import open_and_wait
+
+from app.palette import cpk_rgb
+from core.molecule.cavities import cavity_cells
+from tests.molecule_reference import shared_molecule
+
+PDB = shared_molecule("1A8O.pdb")
+pytestmark = [pytest.mark.gui,
+              pytest.mark.skipif(PDB is None or not PDB.is_file(), reason="no shared data")]
+
+
+def test_cpk_colours():
+    rgb = cpk_rgb(np.array([6, 7, 8, 16, 99]))
+    assert rgb.tolist() == [[144, 144, 144], [48, 80, 248], [255, 13, 13], [255, 255, 48],
+                            [255, 20, 147]]
+
+
+def test_molecule_window(window, qtbot):
+    open_and_wait(qtbot, window, PDB)
+    ds, model = window.model.dataset, window.model
+    assert ds.molecule is not None and ds.molecule.atoms == 556
+    assert ds.molecule.surface_area == pytest.approx(4668.88, abs=0.01)
+    text = window.info_panel.data.text()
+    assert "4,668.88 Å²" in text and "2 cavities" in text
+    balls = window.scene.meshes["balls"]
+    colours = {tuple(c) for c in np.asarray(balls.point_data["rgb"])}
+    assert {(144, 144, 144), (255, 13, 13), (48, 80, 248)} <= colours  # C, O, N
+    assert window.scene.layers["balls"].actor.GetVisibility()
+    model.set_alpha2(0.0)
+    qtbot.wait(50)
+    cavities = window.scene.meshes["cavities"]
+    expected = cavity_cells(ds.ac, model.alpha2)
+    assert len(expected) > 0 and cavities.n_cells == len(expected)
+    model.set_index(len(model.spectrum) - 1)  # the hull: no cavities
+    qtbot.wait(50)
+    assert window.scene.meshes["cavities"].n_cells == 0

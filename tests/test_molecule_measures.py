@@ -1,0 +1,84 @@
+"""Union of balls: exact area against freesasa, volume against Monte Carlo, cavities against
+gudhi's b2 and a voxel flood-fill (all computed from gudhi's dual complex)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from core.molecule.cavities import void_cells, void_volumes
+from core.molecule.measures import union_measures
+from tests.molecule_reference import (
+    dual_at_zero,
+    facet_cells,
+    flood_fill_voids,
+    freesasa_area,
+    gudhi_betti2,
+    gudhi_dual,
+    monte_carlo_volume,
+    shell,
+)
+
+pytest.importorskip("gudhi")
+pytest.importorskip("freesasa")
+
+
+def tet_volumes(centres, tets):
+    e = centres[tets[:, 1:]] - centres[tets[:, :1]]
+    return np.abs(np.linalg.det(e)) / 6
+
+
+def measures(centres, radii):
+    k = dual_at_zero(gudhi_dual(centres, radii))
+    return union_measures(centres, radii, k[1], k[2], k[3], vertices=k[0][:, 0])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_random_balls_area_matches_freesasa(seed):
+    rng = np.random.default_rng(seed)
+    n = 200
+    centres, radii = rng.uniform(0, 9, size=(n, 3)), rng.uniform(0.8, 2.2, size=n)
+    m = measures(centres, radii)
+    total, per_atom = freesasa_area(centres, radii)
+    assert m.area == pytest.approx(total, rel=1e-3)
+    assert np.abs(m.atom_area - per_atom).max() < 2e-3 * per_atom.max()
+    volume, err = monte_carlo_volume(centres, radii, rng)
+    assert abs(m.volume - volume) < 5 * err
+
+
+def test_nested_ball_counts_nothing():
+    """A ball inside another adds no area and no volume (it leaves the dual complex)."""
+    centres = np.array([[0.0, 0, 0], [0.3, 0, 0], [2.5, 0, 0], [1.0, 1.8, 0.2]])
+    radii = np.array([2.0, 0.5, 1.0, 1.0])
+    m = measures(centres, radii)
+    total, _ = freesasa_area(centres, radii)
+    assert m.atom_area[1] == 0
+    assert m.area == pytest.approx(total, rel=1e-3)
+
+
+def test_two_and_three_balls_union_exact():
+    """Union volume of 2 balls from the lens formula; 3 balls from inclusion-exclusion."""
+    centres = np.array([[0.0, 0, 0], [1.5, 0, 0]])
+    radii = np.array([1.0, 1.2])
+    d, r1, r2 = 1.5, 1.0, 1.2
+    lens = (np.pi * (r1 + r2 - d) ** 2 * (d * d + 2 * d * (r1 + r2) - 3 * (r1 - r2) ** 2)
+            / (12 * d))
+    m = measures(centres, radii)
+    assert m.volume == pytest.approx(4 / 3 * np.pi * (r1 ** 3 + r2 ** 3) - lens, rel=1e-12)
+
+
+@pytest.mark.parametrize("shells", [1, 2])
+def test_hollow_shells_have_one_cavity_each(shells):
+    parts = [shell((12.0 * s, 0, 0), 5.0, 260, 1.0) for s in range(shells)]
+    centres = np.concatenate([p[0] for p in parts])
+    radii = np.concatenate([p[1] for p in parts])
+    table = gudhi_dual(centres, radii)
+    tets, tet_enter = table[3]
+    tris, tri_enter = table[2]
+    labels = void_cells(tet_enter > 0, facet_cells(tris, tets), tri_enter > 0)
+    assert labels.max() + 1 == shells == gudhi_betti2(centres, radii)
+    voxel = flood_fill_voids(centres, radii, step=0.15)
+    assert len(voxel) == shells
+    ours, err = void_volumes(labels, tets, centres, radii, tet_volumes(centres, tets))
+    order = np.argsort(ours)
+    assert np.all(np.abs(ours[order] - np.sort(voxel)) < 5 * err[order] + 0.02 * ours[order])
