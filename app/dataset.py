@@ -101,7 +101,26 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
         from_cache=cached, frame=frame_for(path, pointset.report), molecule=molecule,
         atomic_numbers=numbers,
+        attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )
+
+
+def aligned_attributes(attributes: dict[str, np.ndarray], input_index: np.ndarray,
+                       n_points: int) -> dict[str, np.ndarray]:
+    """Per-input-row attributes re-indexed to the complex's points (input_index maps input rows
+    to point rows, -1 = not a vertex); merged duplicates keep one row's value. Read-only."""
+    index = np.asarray(input_index, dtype=np.int64)
+    used = index >= 0
+    out = {}
+    for name, values in attributes.items():
+        values = np.asarray(values)
+        if len(values) != len(index):
+            continue
+        aligned = np.zeros((n_points, *values.shape[1:]), dtype=values.dtype)
+        aligned[index[used]] = values[used]
+        aligned.flags.writeable = False
+        out[name] = aligned
+    return out
 
 
 def _molecule(ac: AlphaComplex, pointset) -> tuple[MoleculeMeasures | None, np.ndarray | None]:

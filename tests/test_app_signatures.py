@@ -31,7 +31,8 @@ def make_dataset(points: np.ndarray) -> Dataset:
     """A built dataset of points (no file)."""
     ac = AlphaComplex.from_points(points)
     return Dataset(path=Path("p.npy"), ac=ac, spectrum=ac.spectrum(),
-                   optimal_alpha=ac.optimal_alpha(), signatures=ac.signatures(),
+                   optimal_alpha=ac.optimal_alpha(), default_alpha=ac.default_alpha(),
+                   signatures=ac.signatures(),
                    n_input=len(points), report=None, load_seconds=0.0, build_seconds=0.0)
 
 
