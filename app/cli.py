@@ -164,6 +164,15 @@ def _read(args):
     return read_molecule_pointset(args.file, probe=args.probe, keep_water=args.keep_water)[0]
 
 
+def _molecule_point_data(args, ac) -> dict | None:
+    """A molecule's per-atom exposed area as export point data ("atom_area"), else None."""
+    if not is_molecule(args) or not args.output.lower().endswith(".vtu"):
+        return None
+    from core.molecule.analysis import measure_molecule
+
+    return {"atom_area": measure_molecule(ac, args.probe).point_area}
+
+
 def molecule_summary(ac, probe: float) -> dict:
     """The `molecule` object of `info`: exact area and volume, per-atom area, cavities."""
     from core.molecule.analysis import measure_molecule
@@ -327,7 +336,7 @@ def cmd_export(args) -> int:
     at = chosen_alpha(args) or {"alpha2": ac.optimal_alpha2(args.optimal or 1)}
     report = write_shape(ac, at.get("alpha"), args.output, alpha2=at.get("alpha2"),
                          manifold=args.manifold, sidecar=args.sidecar, source=args.file,
-                         georef=ps.report.georef)
+                         georef=ps.report.georef, point_data=_molecule_point_data(args, ac))
     print(report.line())
     return 0
 

@@ -26,6 +26,8 @@ def data_lines(model: ExplorerModel) -> list[str]:
         lines.append(f"{report.n_duplicates:,} duplicates merged")
     if report is not None and getattr(report, "spacing", 0):
         lines.append(f"spacing {report.spacing:.4g}")
+    if report is not None and report.georef is not None:  # read from longitude/latitude
+        lines.append(f"lengths in metres: {html.escape(report.georef.name)}")
     flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
     lines.append(f"{ac.dim}D complex{flat}, {len(ac.simplices(ac.dim)):,} cells")
     if ac.weights is not None:

@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
+E57_SAMPLE = (Path(__file__).parent / "data" / "corpus" / "e57"
+              / "pye57_translationWithoutRotation.e57")
 SPARSE_BYTES = 64 << 20  # apparent size of a sparse file (holes cost no disk)
 ENDLESS_BYTES = 4 << 20  # junk appended without a line break
 
@@ -81,6 +83,7 @@ MAKERS: dict[str, tuple[str, Callable[[Path], None]]] = {
     "gltf": (".gltf", _trimesh),
     "vtk": (".vtk", _meshio),
     "vtu": (".vtu", _meshio),
+    "e57": (".e57", lambda p: p.write_bytes(E57_SAMPLE.read_bytes())),  # from the corpus
 }
 
 

@@ -96,3 +96,18 @@ def test_file_name_is_escaped_in_the_info_text(dataset) -> None:
     model = ExplorerModel()
     model.set_dataset(replace(dataset, path=dataset.path.with_name("a<b>&c.npy")))
     assert data_lines(model)[0] == "<b>a&lt;b&gt;&amp;c.npy</b>"
+
+
+def test_projection_of_lonlat_input_is_shown(dataset, tmp_path) -> None:
+    """Points read from longitude/latitude say in which projection their metres are."""
+    from dataclasses import replace
+
+    from core.io import read_points
+
+    rng = np.random.default_rng(0)
+    path = tmp_path / "rome.csv"
+    path.write_text("lon,lat\n" + "".join(f"{12.5 + a},{41.9 + b}\n"
+                                          for a, b in rng.uniform(-0.2, 0.2, (20, 2))))
+    model = ExplorerModel()
+    model.set_dataset(replace(dataset, report=read_points(path).report))
+    assert "lengths in metres: UTM zone 33N (EPSG:32633)" in data_lines(model)

@@ -47,3 +47,20 @@ def test_info_json_molecule_object(capsys):
 def test_info_molecule_rejects_columns(capsys):
     assert main(["info", str(PDB), "--columns", "x,y,z"]) == 2
     assert "--columns does not apply" in capsys.readouterr().err
+
+
+def test_export_vtu_carries_atom_area(tmp_path, capsys):
+    from core.io import read_points
+
+    out = tmp_path / "1a8o.vtu"
+    assert main(["export", str(PDB), "-o", str(out), "--alpha2", "0", "--no-cache"]) == 0
+    mol = json.loads(_info_json(capsys))["molecule"]
+    area = read_points(out).attributes["atom_area"]  # through meshio
+    assert len(area) == 556
+    assert area.sum() == pytest.approx(mol["surface_area"], rel=1e-9)
+
+
+def _info_json(capsys) -> str:
+    capsys.readouterr()
+    assert main(["info", str(PDB), "--json", "--no-cache"]) == 0
+    return capsys.readouterr().out

@@ -144,7 +144,8 @@ def _step(progress: Progress | None, fraction: float, stage: str) -> None:
 def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: bool = True,
                 sidecar: bool = False, source: str | os.PathLike | None = None,
                 progress: Progress | None = None, georef: Georef | None = None,
-                alpha2: float | None = None) -> ExportReport:
+                alpha2: float | None = None,
+                point_data: dict[str, np.ndarray] | None = None) -> ExportReport:
     """Write ac.shape(alpha) (or, with alpha None, ac.shape(alpha2=alpha2): a squared value,
     negative ones for weighted points) in the format of `path`'s extension (SHAPE_FORMATS).
 
@@ -156,6 +157,8 @@ def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: b
     `georef` (the load report's, for points read from longitude/latitude) puts GeoJSON, WKT
     and CSV back in WGS 84 longitude/latitude (WKT and CSV with a PATH.prj naming the CRS)
     and adds the projection and the ellipsoidal area and perimeter to the metadata.
+    `point_data` ((m,) arrays aligned with ac.points, e.g. a molecule's `atom_area`) goes
+    into formats that hold per-point values: .vtu.
     """
     path = Path(path)
     ext = _extension(path, SHAPE_FORMATS)
@@ -178,7 +181,7 @@ def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: b
         if ext in POLYGON_WRITERS:
             POLYGON_WRITERS[ext](tmp, ac, shape, meta, georef)
         elif ext == ".vtu":
-            write_vtu(tmp, ac, shape, meta)
+            write_vtu(tmp, ac, shape, meta, point_data)
         else:
             fields = _write_surface(tmp, ext, ac, shape, manifold, meta)
         _step(progress, 0.95, "replacing the file")

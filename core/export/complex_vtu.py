@@ -36,12 +36,13 @@ def complex_blocks(ac, shape) -> tuple[list[np.ndarray], dict[str, np.ndarray]]:
     return blocks, {k: np.concatenate(v) for k, v in data.items() if v}
 
 
-def write_vtu(path: Path, ac, shape, meta: dict) -> None:
-    """Write the complex at shape.alpha as VTU (points in the input's space)."""
+def write_vtu(path: Path, ac, shape, meta: dict, point_data: dict | None = None) -> None:
+    """Write the complex at shape.alpha as VTU (points in the input's space), with optional
+    point data ((m,) arrays aligned with ac.points, by name)."""
     blocks, data = complex_blocks(ac, shape)
     points = np.asarray(ac.to_ambient(ac.points), dtype=np.float64)
     if points.shape[1] == 2:
         points = np.column_stack([points, np.zeros(len(points))])
     if not blocks:
         blocks = [np.empty((0, 1), dtype=np.int64)]
-    path.write_bytes(vtu_bytes(points, blocks, data, meta))
+    path.write_bytes(vtu_bytes(points, blocks, data, meta, point_data))

@@ -81,16 +81,27 @@ def _points(points: np.ndarray) -> str:
     return f"<Points>{data_array('Points', np.asarray(points, dtype=np.float64))}</Points>"
 
 
-def vtu_bytes(points: np.ndarray, blocks: list[np.ndarray], cell_data: dict, meta: dict) -> bytes:
-    """Unstructured grid of (n, 3) points and cell blocks ((c_i, k_i) int with k_i in 1..4)."""
+def vtu_bytes(points: np.ndarray, blocks: list[np.ndarray], cell_data: dict, meta: dict,
+              point_data: dict | None = None) -> bytes:
+    """Unstructured grid of (n, 3) points and cell blocks ((c_i, k_i) int with k_i in 1..4),
+    with optional point data ((n,) arrays by name)."""
     conn = np.concatenate([b.ravel() for b in blocks]).astype(np.int64)
     sizes = np.concatenate([np.full(len(b), b.shape[1]) for b in blocks]).astype(np.int64)
     types = np.concatenate([np.full(len(b), CELL_TYPES[b.shape[1]]) for b in blocks])
     cells = (data_array("connectivity", conn) + data_array("offsets", np.cumsum(sizes))
              + data_array("types", types.astype(np.uint8)))
     body = (f'<Piece NumberOfPoints="{len(points)}" NumberOfCells="{len(sizes)}">'
-            f"{_points(points)}<Cells>{cells}</Cells>{_cell_data(cell_data)}</Piece>")
+            f"{_points(points)}<Cells>{cells}</Cells>{_cell_data(cell_data)}"
+            f"{_point_data(point_data or {})}</Piece>")
     return _document("UnstructuredGrid", body, meta)
+
+
+def _point_data(point_data: dict[str, np.ndarray]) -> str:
+    """<PointData> with one array per entry (nothing when there is none)."""
+    if not point_data:
+        return ""
+    return ("<PointData>" + "".join(data_array(k, np.asarray(v)) for k, v in point_data.items())
+            + "</PointData>")
 
 
 def vtp_bytes(points: np.ndarray, faces: np.ndarray, meta: dict) -> bytes:

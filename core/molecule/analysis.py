@@ -17,7 +17,8 @@ from .measures import union_measures
 class MoleculeMeasures:
     """Measures of the union of atom balls at alpha² = `alpha2` (0: the balls themselves).
 
-    atom_area (n,) float64 exposed area of each input atom (0 for hidden ones); cavities (k,)
+    atom_area (n,) float64 exposed area of each input atom (0 for hidden ones), point_area
+    (m,) the same aligned with the complex's points (exports' point data); cavities (k,)
     float64 volume of the empty space of each void, largest first (a seeded Monte Carlo
     estimate; cavity_errors its standard errors); cavity_cells (n_cells,) int64 void label of
     each cell of the complex (-1 = none).
@@ -29,6 +30,7 @@ class MoleculeMeasures:
     surface_area: float
     volume: float
     atom_area: np.ndarray
+    point_area: np.ndarray
     cavities: np.ndarray
     cavity_errors: np.ndarray
     cavity_cells: np.ndarray
@@ -71,6 +73,7 @@ def measure_molecule(ac, probe: float, alpha2: float = 0.0) -> MoleculeMeasures:
     return MoleculeMeasures(
         atoms=len(ac.input_index), probe=float(probe), alpha2=float(alpha2),
         surface_area=union.area, volume=union.volume, atom_area=_frozen(atom_area),
+        point_area=union.atom_area,
         cavities=_frozen(volumes[order]),
         cavity_errors=_frozen(errors[order]), cavity_cells=_frozen(relabel[labels]))
 
