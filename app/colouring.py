@@ -109,12 +109,15 @@ def point_values(mode: ColourMode, attributes: dict[str, np.ndarray]) -> np.ndar
 
 def value_range(mode: ColourMode, values: np.ndarray, alpha: float,
                 spectrum: np.ndarray) -> tuple[float, float]:
-    """The colour bar's range: first positive critical alpha to the current one (enter),
-    0..19 (categories), or the 1st-99th percentile (other attributes)."""
+    """The colour bar's range: the 2nd percentile of the shown alphas to the current one
+    (enter: most of a scan's surface enters within a small factor of alpha), 0..19
+    (categories), or the 1st-99th percentile (other attributes)."""
     if mode.log:
-        positive = spectrum[spectrum > 0]
-        low = float(positive[0]) if len(positive) else 1.0
-        return low, max(float(alpha), low * 10)
+        positive = values[np.isfinite(values) & (values > 0)]
+        if len(positive) == 0:
+            positive = spectrum[spectrum > 0]
+        low = float(np.percentile(positive, 2)) if len(positive) else 1.0
+        return low, max(float(alpha), low * 1.01)
     if mode.categorical:
         finite = values[np.isfinite(values)]
         high = float(finite.max()) if len(finite) else 0.0

@@ -59,4 +59,4 @@ def alpha_text(value: float) -> str:
     """An alpha as 'r 0.0123 (r² 0.000151)', or '∞ (never)'."""
     if not np.isfinite(value):
         return "∞ (never)"
-    return f"r {value:.6g} (r² {value * value:.6g})"
+    return f"r {value:.6g} (r² {value * abs(value):.6g})"  # signed: weighted values < 0

@@ -80,7 +80,7 @@ class InspectPanel(QWidget):
             f"{', '.join(f'{c:.6g}' for c in xyz)}" for xyz in item.coords))
         for column, name in enumerate(("enter", "regular", "interior")):
             self.fields[name].setText(alpha_text(item.intervals[column]))
-        self.spoon.setEnabled(item.k > 0)
+        self.spoon.setEnabled(item.k > 0 and self.model.dataset.ac.weights is None)
         self.clear_button.setEnabled(True)
         self.refresh()
 

@@ -39,5 +39,5 @@ class Inspector:
         item = self.panel.item
         if item is None:
             return
-        wanted = self.panel.spoon.isChecked() and item.k > 0
+        wanted = self.panel.spoon.isChecked() and self.panel.spoon.isEnabled()
         self.picker.show(item, spoon(self.model.dataset.ac, item) if wanted else None)

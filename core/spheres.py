@@ -65,6 +65,9 @@ def spoon_simplex(ac, k: int, row: int) -> tuple[int, int]:
 def simplex_sphere(ac, k: int, row: int) -> tuple[np.ndarray, float]:
     """The spoon of simplex (k, row): (ambient_dim,) float64 centre in input coordinates and
     its radius (= the simplex's enter alpha); for a vertex, the point itself and 0."""
+    if getattr(ac, "weights", None) is not None:
+        raise InputError("the spoon is drawn for classic complexes; a weighted simplex's ball "
+                         "is an orthogonal sphere")
     k, row = spoon_simplex(ac, k, row)
     simplex = ac.simplices(k)[row : row + 1]
     if k == 0:

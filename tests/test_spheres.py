@@ -74,3 +74,11 @@ def test_find_simplex_inverts_the_table(complex_) -> None:
     stranger = next(v for v in range(1, len(ac.points)) if v not in linked)
     with pytest.raises(InputError, match="no 1-simplex"):
         find_simplex(ac, [0, stranger])
+
+
+def test_weighted_complexes_have_no_spoon() -> None:
+    """A weighted simplex's ball is an orthogonal sphere: asking for its spoon is refused."""
+    rng = np.random.default_rng(3)
+    ac = AlphaComplex.from_points(rng.normal(size=(60, 3)), weights=rng.uniform(0, 0.05, 60))
+    with pytest.raises(InputError, match="weighted"):
+        simplex_sphere(ac, 1, 0)
