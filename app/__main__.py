@@ -10,7 +10,7 @@ import os
 import sys
 from collections.abc import Sequence
 
-from app.args import radius
+from app.args import add_mode_options, mode_of, radius
 
 SUBCOMMANDS = ("info", "export")
 NO_DISPLAY_MESSAGE = (
@@ -49,6 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--size", type=parse_size, metavar="WxH", help="window/image size")
     parser.add_argument("--no-legend", action="store_true",
                         help="screenshot without legend, alpha, scale bar and axes")
+    add_mode_options(parser)
     return parser
 
 
@@ -74,8 +75,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     if args_list and args_list[0] in SUBCOMMANDS:
         return run_subcommand(args_list)
+    parser = build_parser()
     try:
-        args = build_parser().parse_args(args_list)
+        args = parser.parse_args(args_list)
+        try:
+            args.mode = mode_of(args)
+        except ValueError as exc:
+            parser.error(str(exc))
     except SystemExit as exit_:
         return int(exit_.code or 0)
     os.environ["QT_API"] = "pyside6"

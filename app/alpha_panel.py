@@ -17,6 +17,7 @@ from PySide6.QtWidgets import (
     QLabel,
     QLineEdit,
     QPushButton,
+    QSizePolicy,
     QVBoxLayout,
     QWidget,
 )
@@ -59,6 +60,8 @@ class AlphaPanel(QWidget):
         self.squared.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
         self.squared.setToolTip("alpha squared: the value CGAL and gudhi use")
         self.step = QLabel()
+        for label in (self.squared, self.step):  # changing text never resizes the dock
+            label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
         self.optimal = QPushButton("Optimal")
         self.optimal.setToolTip("CGAL's optimal alpha: every point in one solid (Ctrl+1)")
         self.hull = QPushButton("Convex hull")

@@ -25,6 +25,51 @@ def radius(text: str) -> float:
     return value
 
 
+def neighbour_count(text: str) -> int:
+    """A whole number of neighbours, 1..1000."""
+    if not text.isdigit() or not 1 <= int(text) <= 1000:
+        raise argparse.ArgumentTypeError(f"K must be a whole number 1..1000, not {text!r}")
+    return int(text)
+
+
+def compression(text: str) -> float:
+    """An anisotropy factor tau in [0, 1) (0 = classic)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"TAU must be a number, not {text!r}") from None
+    if not 0.0 <= value < 1.0:
+        raise argparse.ArgumentTypeError(f"TAU must be in [0, 1) (0 = classic), not {text!r}")
+    return value
+
+
+def add_mode_options(parser: argparse.ArgumentParser) -> None:
+    """--density K [--combine mean|max], --anisotropic TAU [--normals estimate|file]."""
+    group = parser.add_argument_group("alpha modes (Teichmann & Capps 1998; see README)")
+    group.add_argument("--density", type=neighbour_count, metavar="K",
+                       help="density-scaled alpha: radii divided by the distance to the K-th "
+                            "nearest neighbour (alpha in local spacings)")
+    group.add_argument("--combine", choices=("mean", "max"),
+                       help="how a simplex combines its vertices' spacings (default mean)")
+    group.add_argument("--anisotropic", type=compression, metavar="TAU",
+                       help="anisotropic alpha: the ball compressed along the surface normal "
+                            "to 1-TAU of its radius, TAU in [0, 1)")
+    group.add_argument("--normals", choices=("estimate", "file"),
+                       help="normals for --anisotropic: estimated by PCA (default) or the file's")
+
+
+def mode_of(args: argparse.Namespace):
+    """The core.modes.Mode the options ask for; ValueError for options that need another."""
+    from core.modes import make_mode
+
+    if args.combine is not None and args.density is None:
+        raise ValueError("--combine needs --density K")
+    if args.normals is not None and args.anisotropic is None:
+        raise ValueError("--normals needs --anisotropic TAU")
+    return make_mode(args.density, args.combine or "mean", args.anisotropic or 0.0,
+                     args.normals == "file")
+
+
 def squared_radius(text: str) -> float:
     """A finite squared alpha (any sign: weighted points enter below zero)."""
     try:

@@ -22,6 +22,7 @@ import numpy as np
 from core import errors
 from core.cache import build_cached, load_cached, store
 from core.complex import AlphaComplex
+from core.modes import Mode, make_mode
 
 Progress = Callable[[float, str], None]
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
@@ -30,39 +31,45 @@ TABLE_SHARE, SAVE_START = 0.65, 0.95  # of the child's progress; the topology pa
 
 
 def build(points: np.ndarray, progress: Progress, cancel: threading.Event,
-          use_cache: bool = True, weights: np.ndarray | None = None) -> AlphaComplex:
-    """The complex of (n, d) points (weighted: with (n,) squared radii `weights`) with
-    signatures computed, from the cache when possible.
+          use_cache: bool = True, weights: np.ndarray | None = None, *,
+          mode: Mode | None = None, normals: np.ndarray | None = None) -> AlphaComplex:
+    """The complex of (n, d) points (weighted: with (n,) squared radii `weights`; in the
+    alpha `mode`, with `normals` if it takes given ones) with signatures computed, from the
+    cache when possible.
 
     Raises core.errors.Cancelled soon after `cancel` is set, and the errors of the build
     (InputError for point sets that make no complex) as they are.
     """
     points = np.asarray(points, dtype=np.float64)
+    mode = mode or Mode()
     if len(points) < IN_THREAD_BELOW:
         return build_cached(points, use_cache=use_cache, progress=progress, signatures=True,
-                            weights=weights)
-    if use_cache and (ac := load_cached(points, weights=weights)) is not None:
+                            weights=weights, mode=mode, normals=normals)
+    if use_cache and (ac := load_cached(points, mode, normals, weights)) is not None:
         progress(1.0, "loaded from cache")
         if "_signatures" not in ac.__dict__:  # an entry the command line left without them
             ac.signatures()
-            store(ac, points, weights=weights)
+            store(ac, points, normals, weights)
         return ac
     with tempfile.TemporaryDirectory(prefix="alphascoop-build-") as folder:
         source, target = Path(folder) / "points.npy", Path(folder) / "table.npz"
         np.save(source, points)
         if weights is not None:
             np.save(Path(folder) / "weights.npy", np.asarray(weights, dtype=np.float64))
-        written = _run_child(source, target, use_cache, progress, cancel)
+        if mode.normals == "given" and normals is not None:
+            np.save(Path(folder) / "normals.npy", np.asarray(normals, dtype=np.float64))
+        written = _run_child(source, target, use_cache, progress, cancel, mode)
         progress(1.0, "loading the table")
         return AlphaComplex.load(written)
 
 
 def _run_child(source: Path, target: Path, use_cache: bool, progress: Progress,
-               cancel: threading.Event) -> Path:
+               cancel: threading.Event, mode: Mode) -> Path:
     """Start the build process and follow it; the path it wrote, or its error raised here."""
     context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
     receiver, sender = context.Pipe(duplex=False)
-    child = context.Process(target=child_main, args=(str(source), str(target), use_cache, sender),
+    child = context.Process(target=child_main, args=(str(source), str(target), use_cache, sender,
+                                                     mode.to_dict()),
                             name="alphascoop-build", daemon=True)
     child.start()
     sender.close()
@@ -106,18 +113,28 @@ def _follow(child, receiver: Connection, progress: Progress, cancel: threading.E
                 "out of memory?)")
 
 
-def child_main(source: str, target: str, use_cache: bool, sender: Connection) -> None:
-    """Body of the build process: build, compute signatures, save, report where (or why not)."""
+def child_main(source: str, target: str, use_cache: bool, sender: Connection,
+               mode: dict | None = None) -> None:
+    """Body of the build process: build, compute signatures, save, report where (or why not).
+
+    `mode` is Mode.to_dict() (classic when None); given normals are in normals.npy beside
+    the points."""
     try:
         points = np.load(source, allow_pickle=False)
         weights_file = Path(source).with_name("weights.npy")
         weights = np.load(weights_file, allow_pickle=False) if weights_file.exists() else None
+        mode_ = Mode() if mode is None else make_mode(
+            mode["density"], mode["combine"], mode["anisotropy"], mode["normals"] == "given")
+        normals_path = Path(source).with_name("normals.npy")
+        normals = (np.load(normals_path, allow_pickle=False)
+                   if mode_.normals == "given" and normals_path.is_file() else None)
         ac = AlphaComplex.from_points(
-            points, lambda f, s: sender.send(("progress", TABLE_SHARE * f, s)), weights=weights)
+            points, lambda f, s: sender.send(("progress", TABLE_SHARE * f, s)), weights=weights,
+            **mode_.build_kwargs(normals))
         sender.send(("progress", TABLE_SHARE, "topology"))
         ac.signatures()
         sender.send(("progress", SAVE_START, "saving the table"))
-        written = store(ac, points, weights=weights) if use_cache else None
+        written = store(ac, points, normals, weights) if use_cache else None
         if written is None:
             ac.save(target)
             written = Path(target)

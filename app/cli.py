@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from app.args import probe_radius, radius, squared_radius
+from app.args import add_mode_options, mode_of, probe_radius, radius, squared_radius
 from core.errors import AlphaScoopError, InputError
 
 CLASS_NAMES = ("exterior", "singular", "regular", "interior")
@@ -70,6 +70,7 @@ def _common(sub: argparse.ArgumentParser) -> None:
                      help="molecules: solvent probe radius in Å added to every atom "
                      "(default 1.4; 0 = van der Waals surface)")
     sub.add_argument("--keep-water", action="store_true", help="molecules: keep water atoms")
+    add_mode_options(sub)
 
 
 def build_parser() -> Parser:
@@ -125,19 +126,31 @@ def _progress():
 def load(args) -> tuple:
     """(PointSet, AlphaComplex, seconds, from cache?) for the file and options."""
     from core.cache import build_cached, is_cached
+    from core.modes import file_normals
 
+    mode = _mode(args)
     ps = _read(args)
-    cached = not args.no_cache and is_cached(ps)
+    normals = file_normals(mode, ps.attributes, args.file)
+    cached = not args.no_cache and is_cached(ps, mode, normals)
     update, close = _progress()
     start = time.perf_counter()
     try:
         # Where the optimal alpha is needed, the topology is cached with the table too.
         needs_topology = args.command == "info" or chosen_alpha(args) is None
         ac = build_cached(ps, use_cache=not args.no_cache, progress=update,
-                          signatures=needs_topology and not getattr(args, "table", False))
+                          signatures=needs_topology and not getattr(args, "table", False),
+                          mode=mode, normals=normals)
     finally:
         close()
     return ps, ac, time.perf_counter() - start, cached
+
+
+def _mode(args):
+    """The alpha mode of the options (a UsageError for options that need another)."""
+    try:
+        return mode_of(args)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
 
 
 def is_molecule(args) -> bool:
@@ -207,8 +220,10 @@ def chosen_alpha(args) -> dict | None:
 def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
     """Everything `info` reports, as a JSON-ready dict (`at`: chosen_alpha's result; None:
     the opening alpha)."""
+    from core.complex import at_value
+
     optimal, opening = float(ac.optimal_alpha()), float(ac.default_alpha())
-    shape = ac.shape(**(at or {"alpha2": opening * abs(opening)}))
+    shape = ac.shape(**(at or at_value(opening)))
     alpha = shape.alpha
     spectrum = np.asarray(ac.spectrum())
     weighted = ac.weights is not None
@@ -218,6 +233,7 @@ def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
     first = 0 if weighted or len(spectrum) < 2 else 1  # classic: 0 (bare points) left out
     return {
         "load": ps.report.to_dict(),
+        "mode": ac.mode.to_dict(),
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
                     "from_cache": cached,
                     **{SIMPLEX_NAMES[k]: len(ac.simplices(k)) for k in range(ac.dim + 1)}},
@@ -267,6 +283,7 @@ def _text(info: dict, lines: list[str]) -> str:
     cx, sp = info["complex"], info["spectrum"]
     measure = "volume" if "volume" in info else "area"
     lines = [*lines,
+        f"mode        {info['mode_text']}",
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
@@ -306,7 +323,8 @@ def cmd_info(args) -> int:
     info = summary(ps, ac, seconds, cached, chosen_alpha(args))
     if is_molecule(args):
         info["molecule"] = molecule_summary(ac, args.probe)
-    text = None if args.json else _text(info, ps.report.lines())
+    text = None if args.json else _text({**info, "mode_text": ac.mode.describe()},
+                                        ps.report.lines())
     if text is not None and "molecule" in info:
         text += "\n" + "\n".join(_molecule_text(info["molecule"]))
     print(json.dumps(info, indent=2) if args.json else text)
@@ -333,7 +351,9 @@ def cmd_export(args) -> int:
     if args.table:
         print(write_table(ac, args.output, source=args.file).line())
         return 0
-    at = chosen_alpha(args) or {"alpha2": ac.optimal_alpha2(args.optimal or 1)}
+    from core.complex import at_value
+
+    at = chosen_alpha(args) or at_value(ac.optimal_alpha(args.optimal or 1))
     report = write_shape(ac, at.get("alpha"), args.output, alpha2=at.get("alpha2"),
                          manifold=args.manifold, sidecar=args.sidecar, source=args.file,
                          georef=ps.report.georef, point_data=_molecule_point_data(args, ac))

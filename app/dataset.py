@@ -12,21 +12,25 @@ import numpy as np
 from app.camera import Z_UP, ViewFrame, frame_for
 from core import AlphaComplex
 from core.cache import build_cached, is_cached
+from core.complex import at_value
 from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
+from core.modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=w])
+Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=, mode=, normals=])
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 
 
-def build_here(points: np.ndarray, progress: Progress,
-               weights: np.ndarray | None = None) -> AlphaComplex:
+def build_here(points: np.ndarray, progress: Progress, weights: np.ndarray | None = None,
+               mode: Mode | None = None, normals: np.ndarray | None = None) -> AlphaComplex:
     """The complex and its signatures, built in this thread (cached); weighted when
-    `weights` (squared radii) are given."""
-    return build_cached(points, progress=progress, signatures=True, weights=weights)
+    `weights` (squared radii) are given, in the alpha `mode` (with `normals` if it takes
+    given ones)."""
+    return build_cached(points, progress=progress, signatures=True, weights=weights,
+                        mode=mode, normals=normals)
 
 
 @dataclass(frozen=True)
@@ -64,13 +68,17 @@ class Dataset:
         return f"{how} in {self.build_seconds:.2f} s"
 
 
-def load_dataset(path: str | Path, progress: Progress, build: Build = build_here) -> Dataset:
-    """Read and build path, reporting progress(fraction, stage); Cancelled stops it.
+def load_dataset(path: str | Path, progress: Progress, build: Build = build_here,
+                 mode: Mode | None = None) -> Dataset:
+    """Read and build path in the alpha `mode` (default classic), reporting
+    progress(fraction, stage); Cancelled stops it.
 
     `build(points, progress)` makes the complex with its signatures (the window passes
     app.build_process.build, which can be cancelled mid-triangulation); weighted files
-    (core.io: weight or radius columns) call it with the keyword `weights` too.
+    (core.io: weight or radius columns) call it with the keyword `weights` too, a mode with
+    `mode` and its given `normals`.
     """
+    mode = mode or Mode()
     path = Path(path)
     started = time.perf_counter()
     progress(0.0, "reading")
@@ -80,16 +88,19 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     def build_progress(fraction: float, stage: str) -> None:
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
-    cached = is_cached(pointset)
+    normals = file_normals(mode, pointset.attributes, path.name)
     weights = pointset.weights
-    ac = (build(pointset.points, build_progress) if weights is None
-          else build(pointset.points, build_progress, weights=weights))
+    cached = is_cached(pointset, mode, normals)
+    options = {} if weights is None else {"weights": weights}
+    if mode.active:
+        options.update(mode=mode, normals=normals)
+    ac = build(pointset.points, build_progress, **options)
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     optimal, alpha = float(ac.optimal_alpha()), float(ac.default_alpha())
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
-    cursor.move(alpha2=alpha * abs(alpha))  # the table value itself, negative ones included
+    cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
     ac.persistence()  # for the signatures dock's diagram, computed here, not in the GUI thread
     molecule, numbers = _molecule(ac, pointset)

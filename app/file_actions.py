@@ -9,6 +9,7 @@ from PySide6.QtWidgets import QFileDialog, QWidget
 
 from app.settings import Preferences
 from core.atomic import atomic_path
+from core.complex import at_value
 from core.export import write_shape, write_table
 from core.io import READ_FORMATS
 
@@ -59,11 +60,9 @@ def export_shape(ac, alpha: float, path: Path, progress=None, source: Path | Non
     surfaces split to a 2-manifold unless `manifold` is False); returns what was written.
     `alpha` is the table's value (a signed radius for weighted points: written as its signed
     square, alpha2)."""
-    if ac.weights is not None:
-        return write_shape(ac, None, path, alpha2=alpha * abs(alpha), progress=progress,
-                           source=source, georef=georef, manifold=manifold).line()
-    return write_shape(ac, alpha, path, progress=progress, source=source, georef=georef,
-                       manifold=manifold).line()
+    at = at_value(alpha)
+    return write_shape(ac, at.get("alpha"), path, alpha2=at.get("alpha2"), progress=progress,
+                       source=source, georef=georef, manifold=manifold).line()
 
 
 def export_table(ac, path: Path, progress=None, source: Path | None = None) -> str:

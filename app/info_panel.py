@@ -1,39 +1,49 @@
-"""Info dock: facts about the data and about the shape at the current alpha."""
+"""Info dock: facts about the data and about the shape at the current alpha.
+
+Numbers are written for people (app.numbers): coordinates to a precision relative to the
+data's extent, measures with the file's unit when it declares one, words in the singular for
+one. The dock keeps its width whatever the text, so the 3D view beside it never moves.
+"""
 
 from __future__ import annotations
 
 import html
 
 import numpy as np
-from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
+from PySide6.QtCore import QSize, Qt
+from PySide6.QtWidgets import QLabel, QSizePolicy, QVBoxLayout, QWidget
 
 from app.model import ExplorerModel
+from app.numbers import coordinate, plural, quantity, with_unit
 from core.signatures import CLASSES
 
-BETTI_NAMES = {2: ("components", "holes"), 3: ("components", "tunnels", "voids")}
+BETTI_NAMES = {2: ("component", "hole"), 3: ("component", "tunnel", "void")}
+WIDTH_CHARACTERS = 34  # the dock's width, in average character widths
 SINGULAR, REGULAR, INTERIOR = (CLASSES.index(c) for c in ("singular", "regular", "interior"))
 
 
 def data_lines(model: ExplorerModel) -> list[str]:
-    """Lines describing the dataset: file, point counts, dimension, timings."""
+    """Lines describing the dataset: file, point counts, extent, spacing, dimension, timings."""
     ds = model.dataset
     ac = ds.ac
     lines = [f"<b>{html.escape(ds.path.name)}</b>",
-             f"{ds.n_input:,} points read, {len(ac.points):,} used"]
+             f"{plural(ds.n_input, 'point')} read, {len(ac.points):,} used"]
     report = ds.report
     if report is not None and getattr(report, "n_duplicates", 0):
-        lines.append(f"{report.n_duplicates:,} duplicates merged")
+        lines.append(f"{plural(report.n_duplicates, 'duplicate')} merged")
+    if report is not None:
+        lines.extend(box_lines(report.bbox, ds.unit))
     if report is not None and getattr(report, "spacing", 0):
-        lines.append(f"spacing {report.spacing:.4g}")
+        lines.append(f"spacing {with_unit(quantity(report.spacing), ds.unit)}")
     if report is not None and report.georef is not None:  # read from longitude/latitude
         lines.append(f"lengths in metres: {html.escape(report.georef.name)}")
     flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
-    lines.append(f"{ac.dim}D complex{flat}, {len(ac.simplices(ac.dim)):,} cells")
+    lines.append(f"{ac.dim}D complex{flat}, {plural(len(ac.simplices(ac.dim)), 'cell')}")
+    lines.append(f"alpha mode: {html.escape(ac.mode.describe())}")
     if ac.weights is not None:
         source = getattr(report, "weights_from", None) or "given weights"
         hidden = int((np.asarray(ac.input_index) < 0).sum())
-        lines.append(f"weighted: {html.escape(source)}; {hidden:,} hidden points")
+        lines.append(f"weighted: {html.escape(source)}; {plural(hidden, 'hidden point')}")
     lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}")
     return lines + molecule_lines(model)
 
@@ -51,6 +61,16 @@ def molecule_lines(model: ExplorerModel) -> list[str]:
             f"{len(m.cavities)} cavities" + (f": {cavities} Å³" if cavities else "")]
 
 
+def box_lines(bbox, unit: str | None) -> list[str]:
+    """One line per axis, 'x 636002.0 … 637179.1 (1177 m)': digits relative to the box's
+    largest side, so a LiDAR box at 4.9e6 keeps its metres."""
+    low, high = (np.asarray(corner, dtype=np.float64) for corner in bbox)
+    extent = float(np.max(high - low)) if len(low) else 0.0
+    return [f"{axis} {coordinate(lo, extent)} … {coordinate(hi, extent)} "
+            f"({with_unit(quantity(hi - lo), unit)})"
+            for axis, lo, hi in zip("xyz", low, high, strict=False)]
+
+
 def class_counts(model: ExplorerModel) -> tuple[int, int, list[int]]:
     """(cells, regular facets, singular k-simplices for k < dim) at the current alpha.
 
@@ -64,19 +84,24 @@ def class_counts(model: ExplorerModel) -> tuple[int, int, list[int]]:
 
 def shape_lines(model: ExplorerModel) -> list[str]:
     """Lines describing the shape at the current alpha: classes, topology, measures."""
-    sig, dim = model.dataset.signatures, model.dataset.ac.dim
+    sig, dim, unit = model.dataset.signatures, model.dataset.ac.dim, model.dataset.unit
     cells, facets, singular = class_counts(model)
-    at = (f"alpha² {model.alpha2:.6g}" + (f" (alpha {model.alpha:.6g})" if model.alpha >= 0
-                                          else "")
-          if model.weighted else f"alpha {model.alpha:.6g}")
-    lines = [f"<b>{at}</b>", f"{cells:,} cells, {facets:,} boundary facets",
+    radius = with_unit(quantity(model.alpha, 6), unit)
+    at = (f"alpha² {with_unit(quantity(model.alpha2, 6), unit, 2)}"
+          + (f" (alpha {radius})" if model.alpha >= 0 else "")
+          if model.weighted else f"alpha {radius}")
+    lines = [f"<b>{at}</b>",
+             f"{plural(cells, 'cell')}, {plural(facets, 'boundary facet')}",
              f"singular (points, edges{', triangles' if dim == 3 else ''}): "
              + ", ".join(f"{n:,}" for n in singular)]
     betti = sig.betti[model.index]
-    lines.append(", ".join(f"{int(b):,} {n}" for b, n in zip(betti, BETTI_NAMES[dim], strict=True)))
+    lines.append(", ".join(plural(int(b), n) for b, n in zip(betti, BETTI_NAMES[dim],
+                                                              strict=True)))
+    boundary, measure = (float(v[model.index]) for v in (sig.boundary_measure, sig.measure))
     lines.append(f"{'perimeter' if dim == 2 else 'area'} "
-                 f"{float(sig.boundary_measure[model.index]):.6g}")
-    lines.append(f"{'area' if dim == 2 else 'volume'} {float(sig.measure[model.index]):.6g}")
+                 f"{with_unit(quantity(boundary, 6), unit, dim - 1)}")
+    lines.append(f"{'area' if dim == 2 else 'volume'} "
+                 f"{with_unit(quantity(measure, 6), unit, dim)}")
     return lines
 
 
@@ -94,10 +119,21 @@ class InfoPanel(QWidget):
             label.setTextFormat(Qt.TextFormat.RichText)
             label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
             label.setWordWrap(True)
+            # the text never asks for width: the dock keeps its own (sizeHint below)
+            label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
             column.addWidget(label)
         column.addStretch(1)
         model.datasetChanged.connect(self.show_data)
         model.alphaChanged.connect(self.show_shape)
+
+    def sizeHint(self) -> QSize:
+        """A fixed width of WIDTH_CHARACTERS characters, whatever the text shows."""
+        return QSize(self.fontMetrics().averageCharWidth() * WIDTH_CHARACTERS,
+                     super().sizeHint().height())
+
+    def minimumSizeHint(self) -> QSize:
+        """As wide as sizeHint: text changes never narrow or widen the dock."""
+        return QSize(self.sizeHint().width(), super().minimumSizeHint().height())
 
     def show_data(self) -> None:
         """Refresh the data block."""

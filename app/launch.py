@@ -27,6 +27,8 @@ def run_window(args: argparse.Namespace) -> int:
         window.resize(1280, 800)
     if args.alpha is not None:
         window.start_alpha = args.alpha
+    if getattr(args, "mode", None) is not None:
+        window.set_mode(args.mode, rebuild=False)
     window.start_optimal = bool(args.optimal)
     window.show()
     window.open_path(args.file or SAMPLE_PATH)

@@ -28,6 +28,7 @@ from app.inspector import Inspector
 from app.jobs import JobRunner
 from app.layers_panel import LayersPanel
 from app.menus import build_menus
+from app.mode_panel import ModePanel
 from app.model import ExplorerModel
 from app.palette import ATOM_STYLE, CAVITY_STYLE, cpk_rgb
 from app.progress_widget import ProgressWidget
@@ -36,6 +37,7 @@ from app.scene import Scene, as_xyz
 from app.settings import Preferences
 from app.signatures_dock import SignaturesPanel
 from app.worker import Loader
+from core.modes import Mode
 
 CLOSE_WAIT_MS = 2000  # how long closing waits for a running build before leaving it behind
 
@@ -51,6 +53,7 @@ class MainWindow(QMainWindow):
         self.setAcceptDrops(True)
         self.prefs = Preferences(settings)
         self.start_alpha: float | None = None
+        self.mode = Mode()  # the alpha mode of the next open or rebuild
         self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
         self.model = ExplorerModel()
         self.loader = Loader(self)
@@ -63,6 +66,7 @@ class MainWindow(QMainWindow):
         self.layers_panel = LayersPanel()
         self.info_panel = InfoPanel(self.model)
         self.signatures_panel = SignaturesPanel(self.model)
+        self.mode_panel = ModePanel()
         self.progress = ProgressWidget()
         self.job_progress = ProgressWidget()
         self.status = QLabel("Open a point set: File → Open, or drop a file here.")
@@ -71,7 +75,10 @@ class MainWindow(QMainWindow):
         self.statusBar().addPermanentWidget(self.job_progress)
         self._add_dock("Alpha", self.alpha_panel, Qt.DockWidgetArea.RightDockWidgetArea)
         self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
-        self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
+        info = self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
+        mode = self._add_dock("Mode", self.mode_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
+        self.tabifyDockWidget(info, mode)  # a tab beside Info: the view keeps its room
+        info.raise_()
         self._add_dock("Signatures", self.signatures_panel, Qt.DockWidgetArea.BottomDockWidgetArea)
         left = Qt.DockWidgetArea.LeftDockWidgetArea
         self.inspect_panel = InspectPanel(self.model)
@@ -109,13 +116,26 @@ class MainWindow(QMainWindow):
         self.model.datasetChanged.connect(self._show_dataset)
         self.model.alphaChanged.connect(self._show_shape)
         self.layers_panel.styleChanged.connect(self._set_style)
+        self.mode_panel.modeChosen.connect(self.set_mode)
 
     def open_path(self, path: str | Path) -> int:
         """Load and build path in the worker (cancels any older open); returns the request id."""
         path = Path(path)
         self.prefs.set_last_dir(path)
         self.progress.start(f"opening {path.name}")
-        return self.loader.open(path)
+        return self.loader.open(path, self.mode)
+
+    def set_mode(self, mode: Mode, rebuild: bool = True) -> int | None:
+        """Use the alpha `mode` from now on; with `rebuild`, build the open file again in it
+        (in the background: the current shape stays until the new table is ready). Returns
+        the rebuild's request id, None when nothing was started."""
+        self.mode = mode
+        self.mode_panel.set_mode(mode)
+        dataset = self.model.dataset
+        if not rebuild or dataset is None:
+            return None
+        self.progress.start(f"rebuilding {dataset.path.name}: {mode.describe()}")
+        return self.loader.open(dataset.path, mode)
 
     def _on_job_done(self, title: str, message: str) -> None:
         """An export finished: say what it wrote."""
@@ -143,6 +163,7 @@ class MainWindow(QMainWindow):
             return
         self.progress.stop()
         self.prefs.add_recent(dataset.path)
+        self.mode_panel.show_built(dataset.ac.mode)
         self.model.set_dataset(dataset)
         if self.start_alpha is not None:
             self.model.set_alpha(self.start_alpha)
@@ -156,12 +177,16 @@ class MainWindow(QMainWindow):
         if request != self.loader.current:
             return
         self.progress.stop()
+        if self.model.dataset is not None:  # the shown table's mode stays the current one
+            self.set_mode(self.model.dataset.ac.mode, rebuild=False)
         QMessageBox.warning(self, "Could not open the file", message)
 
     def _on_cancelled(self, request: int) -> None:
         """Note a cancelled open in the status bar."""
         if request == self.loader.current:
             self.progress.stop()
+            if self.model.dataset is not None:
+                self.set_mode(self.model.dataset.ac.mode, rebuild=False)
             self.status.setText("Opening cancelled.")
 
     def _show_dataset(self) -> None:
@@ -194,7 +219,8 @@ class MainWindow(QMainWindow):
         self.status.setText(
             f"{len(ds.ac.points):,} points · {len(self.model.shape.cells):,} cells · "
             + (f"alpha² {self.model.alpha2:.6g}" if self.model.weighted
-               else f"alpha {self.model.alpha:.6g}") + f" · {ds.build_line()}"
+               else f"alpha {self.model.alpha:.6g}")
+            + (f" ({ds.ac.mode.name})" if ds.ac.mode.active else "") + f" · {ds.build_line()}"
         )
 
     def _set_style(self, name: str, style) -> None:

@@ -12,6 +12,7 @@ from PySide6.QtCore import QObject, Signal
 from app.dataset import Dataset
 from app.history import AlphaHistory
 from app.log_travel import snap_index
+from core.complex import at_value
 from core.molecule.cavities import cavity_cells
 
 __all__ = ["ExplorerModel", "snap_index"]
@@ -59,7 +60,7 @@ class ExplorerModel(QObject):
         """AlphaShape at the current alpha (queried once per index, by the dataset's cursor:
         a step costs what changed since the last shape)."""
         if self._shape is None and self.dataset is not None:
-            self._shape = self._cursor.move(alpha2=self.alpha2)
+            self._shape = self._cursor.move(**at_value(self.alpha))
         return self._shape
 
     def cavities(self) -> np.ndarray:

@@ -17,6 +17,7 @@ from app.palette import default_styles
 from app.resources import SAMPLE_PATH
 from app.scene import Scene, as_xyz
 from core.atomic import atomic_path
+from core.complex import at_value
 from core.errors import AlphaScoopError
 
 DEFAULT_SIZE = (1280, 800)
@@ -37,7 +38,7 @@ def render_png(dataset: Dataset, alpha: float, out: Path, size: tuple[int, int],
         scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1),
                           default_styles(ac.dim), frame=dataset.frame, unit=dataset.unit)
         scene.overlay.set_visible(legend)
-        scene.set_shape(ac.shape(alpha2=alpha * abs(alpha)))  # weighted: may be below zero
+        scene.set_shape(ac.shape(**at_value(alpha)))  # weighted: may be below zero
         with atomic_path(out) as tmp:
             save_png(plotter, tmp)
     finally:
@@ -58,7 +59,7 @@ def run_screenshot(args: argparse.Namespace) -> int:
     try:
         if not out.parent.is_dir():
             raise AlphaScoopError(f"{out.parent}: no such folder for the screenshot")
-        dataset = load_dataset(source, quiet_progress)
+        dataset = load_dataset(source, quiet_progress, mode=getattr(args, "mode", None))
         alpha = dataset.optimal_alpha if args.optimal else args.alpha
         alpha = dataset.default_alpha if alpha is None else alpha
         render_png(dataset, alpha, out, args.size or DEFAULT_SIZE, legend=not args.no_legend)

@@ -18,6 +18,7 @@ from app import build_process
 from app.dataset import load_dataset
 from app.jobs import cancellable
 from core.errors import AlphaScoopError, Cancelled
+from core.modes import Mode
 
 
 class Loader(QObject):
@@ -45,13 +46,14 @@ class Loader(QObject):
         """True while a request is queued or running."""
         return self._pool.activeThreadCount() > 0
 
-    def open(self, path: str | Path) -> int:
-        """Start loading path; cancels the previous request; returns the new request id."""
+    def open(self, path: str | Path, mode: Mode | None = None) -> int:
+        """Start loading path in the alpha `mode` (default classic); cancels the previous
+        request; returns the new request id."""
         self.cancel()
         self._current += 1
         request, cancel = self._current, threading.Event()
         self._cancel = cancel
-        self._pool.start(lambda: self._run(request, Path(path), cancel))
+        self._pool.start(lambda: self._run(request, Path(path), cancel, mode or Mode()))
         return request
 
     def cancel(self) -> None:
@@ -63,7 +65,7 @@ class Loader(QObject):
         """Block until the worker is idle (used on close); False on timeout."""
         return self._pool.waitForDone(msecs)
 
-    def _run(self, request: int, path: Path, cancel: threading.Event) -> None:
+    def _run(self, request: int, path: Path, cancel: threading.Event, mode: Mode) -> None:
         """Worker-thread body: emit exactly one of finished/failed/cancelled."""
         progress = cancellable(
             cancel, lambda fraction, stage: self.progress.emit(request, fraction, stage),
@@ -71,8 +73,9 @@ class Loader(QObject):
         try:
             dataset = load_dataset(
                 path, progress,
-                lambda points, report, **weights: build_process.build(points, report, cancel,
-                                                                      **weights))
+                lambda points, report, **options: build_process.build(points, report, cancel,
+                                                                      **options),
+                mode=mode)
         except Cancelled:
             self.cancelled.emit(request)
         except AlphaScoopError as error:

@@ -131,6 +131,18 @@ def test_slider_benchmark_end_to_end(tmp_path):
         assert f"{kind:10s} median" in done.stdout
 
 
+def test_bench_modes_end_to_end(tmp_path, capsys):
+    from bench_modes import main as modes_main
+
+    out = tmp_path / "modes.json"
+    assert modes_main(["--n", "2000", "--json", str(out)]) == 0
+    result = json.loads(out.read_text())
+    assert set(result["ratios"]) == {"density k=8", "anisotropic tau=0.5"}
+    assert all(r["wall"] > 0 and r["cpu"] > 0 for r in result["ratios"].values())
+    assert "neighbours" in result["builds"]["density k=8"]["stages"]
+    assert "ratio" in capsys.readouterr().out
+
+
 def test_weighted_packing_radii_span_one_to_two_spacings() -> None:
     from scipy.spatial import cKDTree
 
@@ -143,3 +155,20 @@ def test_weighted_packing_radii_span_one_to_two_spacings() -> None:
     assert points.shape == (2000, 3) and weights.shape == (2000,)
     assert radii.min() >= 0.9 * spacing and radii.max() <= 2.1 * spacing
     assert radii.max() / radii.min() > 1.8
+
+
+def test_molecule_benchmark_small_run(tmp_path) -> None:
+    pytest.importorskip("freesasa")
+    from benchmarks.bench_molecule import ROOT, synthetic_protein
+    from benchmarks.bench_molecule import main as bench_main
+
+    if not (ROOT.parent / "shared" / "data" / "1A8O.pdb").is_file():
+        pytest.skip("no shared data")
+    centres, radii = synthetic_protein(2)
+    assert centres.shape == (1112, 3) and radii.shape == (1112,)
+    assert np.ptp(centres[556:].mean(0) - centres[:556].mean(0)) > 0  # the copy moved
+    out = tmp_path / "m.json"
+    assert bench_main(["--copies", "2", "--json", str(out)]) == 0
+    figures = json.loads(out.read_text())
+    assert figures["atoms"] == 1112 and figures["build_s"] > 0
+    assert figures["surface_area"] == pytest.approx(figures["freesasa_lr200_area"], rel=1e-3)

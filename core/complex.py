@@ -69,6 +69,14 @@ def _point_normals(normals: np.ndarray, input_index: np.ndarray, m: int,
     return unit_rows(out if frame is None else out @ frame.basis.T)
 
 
+def at_value(value: float) -> dict[str, float]:
+    """Keyword arguments that make any query select the table value `value` (a spectrum
+    entry, say): alpha=value where it is >= 0 (exact for every table), else alpha2=its
+    signed square (weighted tables below zero radius)."""
+    value = float(value)
+    return {"alpha": value} if value >= 0 else {"alpha2": value * abs(value)}
+
+
 class AlphaComplex:
     """Alpha complex of a 2D or 3D point set over all alphas (radii) at once.
 

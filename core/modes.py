@@ -173,10 +173,8 @@ def _repair(table: Table, own: list[np.ndarray]) -> list[tuple[np.ndarray, ...]]
     return out[::-1]
 
 
-def _renumber(ids: np.ndarray, inverse: np.ndarray | None) -> np.ndarray:
-    """Apply a new numbering to ids (-1 = none kept); None: unchanged."""
-    if inverse is None:
-        return ids
+def _renumber(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
+    """Apply a new numbering to ids (-1 = none kept)."""
     return np.where(ids >= 0, inverse[np.maximum(ids, 0)], -1).astype(np.int32)
 
 
@@ -225,6 +223,17 @@ def scaled_table(table: Table, points: np.ndarray, mode: Mode, normals: np.ndarr
     own = _own_values(table, points, mode, spacing_, normals)
     step(0.8, "filtration repair")
     return _resorted(table, _repair(table, own))
+
+
+def file_normals(mode: Mode, attributes: dict, source: str) -> np.ndarray | None:
+    """The point file's normals when `mode` wants given normals (None otherwise); an
+    InputError naming `source` when the file has none."""
+    if mode.normals != "given":
+        return None
+    normals = attributes.get("normals")
+    if normals is None:
+        raise InputError(f"{source}: the file has no normals; estimate them instead")
+    return np.asarray(normals, dtype=np.float64)
 
 
 def check_normals(normals: object, n: int, dim: int) -> np.ndarray:

@@ -443,7 +443,7 @@ def test_closing_does_not_wait_for_a_build_that_cannot_stop(qtbot, tmp_path, mon
 
     release, started = threading.Event(), threading.Event()
 
-    def stuck_build(path, progress, build=None):
+    def stuck_build(path, progress, build=None, mode=None):
         started.set()
         release.wait(30)  # like a Delaunay build: never looks at the cancel flag
 
@@ -617,3 +617,29 @@ def test_view_presets_and_reset_follow_the_data_frame(window, qtbot, points_file
     assert window.menus["reset_view"].shortcut().toString() == "R"
     window.menus["reset_view"].trigger()
     assert np.allclose(camera.direction, opening, atol=1e-6)
+
+
+def test_the_view_does_not_move_when_alpha_changes(opened, qtbot) -> None:
+    """The docks keep their widths whatever their text says, so the 3D view's geometry stays
+    put from the first critical value to the hull."""
+    model = opened.model
+    qtbot.wait(20)
+    before = opened.plotter.geometry()
+    for index in (0, 1, model.default_index(), model.optimal_index(), model.hull_index() - 1,
+                  model.hull_index(), 2):
+        model.set_index(index)
+        qtbot.wait(20)
+        assert opened.plotter.geometry() == before, index
+
+
+def test_info_dock_prints_for_people(opened) -> None:
+    """Singular words for one, extent-relative coordinates (no e-notation), and the axes."""
+    from app.info_panel import box_lines, data_lines
+
+    assert box_lines(((4918340.5, 636002.25, 406.26), (4918380.25, 637179.5, 520.51)), "m") == [
+        "x 4918340.5 … 4918380.2 (39.75 m)",  # to 1/10,000 of the largest side
+        "y 636002.2 … 637179.5 (1,177 m)",
+        "z 406.3 … 520.5 (114.2 m)",
+    ]
+    text = "\n".join(data_lines(opened.model))
+    assert "e+0" not in text and "x " in text and "spacing" in text

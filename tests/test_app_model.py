@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from app.dataset import Dataset
 from app.info_panel import class_counts, data_lines, shape_lines
 from app.model import ExplorerModel, snap_index
+from app.numbers import quantity
 from core import AlphaComplex
 
 finite = st.floats(0.0, 1e6, allow_nan=False)
@@ -86,7 +87,7 @@ def test_info_counts_match_the_shape(model, dataset, step) -> None:
     assert cells == len(shape.cells)
     assert facets == len(shape.regular_facets)
     assert singular == [len(shape.singular(k)) for k in range(dataset.ac.dim)]
-    assert shape_lines(model)[-1] == f"volume {shape.measure:.6g}"
+    assert shape_lines(model)[-1] == f"volume {quantity(shape.measure, 6)}"
 
 
 def test_file_name_is_escaped_in_the_info_text(dataset) -> None:

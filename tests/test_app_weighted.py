@@ -36,7 +36,7 @@ def test_weighted_csv_opens_with_alpha2_everywhere(window, qtbot, balls_csv) -> 
     assert window.alpha_panel.squared.text() == f"{model.alpha2:.6g}"
     assert window.alpha_panel.radius.text() == ""
     assert "alpha²" in window.info_panel.shape.text()
-    assert "hidden points" in window.info_panel.data.text()
+    assert "hidden point" in window.info_panel.data.text()
     assert "alpha²" in window.status.text()
 
 

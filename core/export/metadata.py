@@ -36,6 +36,12 @@ def betti_numbers(ac, alpha: float) -> list[int] | None:
         return None
 
 
+def mode_metadata(ac) -> dict:
+    """The alpha mode the table was built in (core.modes; classic when `ac` has none)."""
+    mode = getattr(ac, "mode", None)
+    return {"name": "classic"} if mode is None else mode.to_dict()
+
+
 def squared(alpha: float) -> float | None:
     """alpha² as a float (signed, alpha * |alpha|, for a weighted table's negative values), or
     None where it overflows float64 (alpha above ~1.34e154: any such alpha gives the convex
@@ -51,6 +57,7 @@ def shape_metadata(ac, shape, source: str | os.PathLike | None = None) -> dict:
         "alpha": float(shape.alpha),
         "alpha_sq": squared(shape.alpha),
         "source": None if source is None else os.fspath(source),
+        "mode": mode_metadata(ac),
         "dim": int(ac.dim),
         "ambient_dim": int(ac.ambient_dim),
         "n_points": len(ac.points),

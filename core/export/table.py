@@ -3,7 +3,8 @@
 NPZ layout (format "alphascoop-intervals", version 1): `points` (m, dim) float64; `dim`,
 `ambient_dim` scalars; for each k in 0..dim: `simplices_k` (n_k, k+1) int32 vertex rows
 (ascending within a row; rows ordered by enter) and `intervals_k` (n_k, 3) float64 columns
-enter <= regular <= interior (alpha radii; inf = never); `spectrum` (s,) float64.
+enter <= regular <= interior (alpha radii; inf = never); `spectrum` (s,) float64; `mode`
+the alpha mode as JSON text (core.modes: its name and parameters; alpha is in its units).
 CSV: one row per simplex: k, v0, v1, v2, v3 (-1 = unused), enter, regular, interior.
 
 Weighted tables add `weights` (m,) float64 squared radii and `intervals_sq_k` (squared
@@ -13,11 +14,13 @@ sign(a2) * sqrt(|a2|)); their CSV has the squared columns enter2, regular2, inte
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
 
 from core.export.csvrows import write_rows
+from core.export.metadata import mode_metadata
 
 FORMAT, VERSION = "alphascoop-intervals", 1
 CSV_HEADER = "k,v0,v1,v2,v3,enter,regular,interior\n"
@@ -29,7 +32,8 @@ def table_arrays(ac) -> dict[str, np.ndarray]:
     """The arrays the NPZ holds (see the module docstring)."""
     out = {"format": np.array(FORMAT), "version": np.array(VERSION),
            "points": np.asarray(ac.points), "dim": np.array(ac.dim),
-           "ambient_dim": np.array(ac.ambient_dim), "spectrum": np.asarray(ac.spectrum())}
+           "ambient_dim": np.array(ac.ambient_dim), "spectrum": np.asarray(ac.spectrum()),
+           "mode": np.array(json.dumps(mode_metadata(ac)))}
     for k in range(ac.dim + 1):
         out[f"simplices_{k}"] = np.asarray(ac.simplices(k), dtype=np.int32)
         out[f"intervals_{k}"] = np.asarray(ac.intervals(k), dtype=np.float64)
