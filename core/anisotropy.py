@@ -33,17 +33,19 @@ def combined_normals(corner_normals: np.ndarray) -> np.ndarray:
     """(n, d) unit normal of each simplex from its (n, k+1, d) vertex normals (0 where they
     cancel): their sum with the signs (the first fixed) that make it longest."""
     n, width, _ = corner_normals.shape
-    gram = np.einsum("nid,njd->nij", corner_normals, corner_normals)
-    best, best_value = np.zeros(n, dtype=np.int64), np.full(n, -np.inf)
+    best, best_value = corner_normals[:, 0].copy(), np.full(n, -np.inf)
     for combo in range(2 ** (width - 1)):  # sign patterns, not simplices
-        signs = np.array([1.0] + [-1.0 if combo >> j & 1 else 1.0 for j in range(width - 1)])
-        value = np.einsum("nij,i,j->n", gram, signs, signs)
+        total = corner_normals[:, 0].copy()
+        for j in range(1, width):
+            if combo >> (j - 1) & 1:
+                total -= corner_normals[:, j]
+            else:
+                total += corner_normals[:, j]
+        value = np.einsum("nd,nd->n", total, total)
         better = value > best_value
-        best[better], best_value[better] = combo, value[better]
-    signs = np.where((best[:, None] >> np.arange(width - 1)) & 1, -1.0, 1.0)
-    total = corner_normals[:, 0] + np.einsum("nj,njd->nd", signs, corner_normals[:, 1:])
-    length = np.sqrt(np.einsum("nd,nd->n", total, total))
-    return total / np.where(length > 0, length, 1.0)[:, None]
+        best[better], best_value[better] = total[better], value[better]
+    length = np.sqrt(np.maximum(best_value, 0.0))
+    return best / np.where(length > 0, length, 1.0)[:, None]
 
 
 def _stretch(vectors: np.ndarray, normal: np.ndarray, extra: float) -> np.ndarray:

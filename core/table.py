@@ -20,7 +20,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import CHUNK, any_point_inside, cell_spheres, circumspheres, facet_radii2
+from .geometry import (
+    CHUNK,
+    any_point_inside,
+    cell_spheres,
+    circumspheres,
+    edge_vectors,
+    facet_radii2,
+)
 from .power import (
     any_point_below,
     cell_orthospheres,
@@ -29,6 +36,7 @@ from .power import (
     signed_sqrt,
     triangle_powers,
 )
+from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
 
 Progress = Callable[[float, str], None]
 
@@ -119,6 +127,45 @@ def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> N
         ids = ids[grow]
 
 
+def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: np.ndarray,
+            flat: np.ndarray) -> np.ndarray:
+    """(n,) bool: non-flat cells on a fold, i.e. on the same side of a facet as a non-flat
+    neighbour.
+
+    Qhull fills exactly flat groups (decimal lattices) with cells whose float64 volume is
+    rounding noise; two such cells may then overlap across their shared facet. Their signs
+    are noise, so they are flat: the thinner of each pair (both if both ill-conditioned).
+    Only pairs with a nearly flat cell are examined (a fold needs one).
+    """
+    n = len(cells)
+    extent = float(np.ptp(points, axis=0).max())
+    thin = (np.abs(det) <= FOLD_CANDIDATE_RTOL * extent ** points.shape[1]) & ~flat
+    if not thin.any():
+        return np.zeros(n, dtype=bool)
+    real = neighbors >= 0
+    pair = real & (neighbors > np.arange(n, dtype=np.int32)[:, None])
+    pair &= thin[:, None] | thin[np.maximum(neighbors, 0)]
+    pair &= ~flat[:, None] & ~flat[np.maximum(neighbors, 0)]
+    t, i = np.nonzero(pair)
+    u = neighbors[t, i]
+    j = np.argmax(neighbors[u] == t[:, None], axis=1)
+    # facets listed in ascending vertex order: opposite sides <=> parities of i+j and of
+    # the two signs differ
+    fold = ((i + j) % 2 == 1) == ((det[t] < 0) ^ (det[u] < 0))
+    t, u = t[fold], u[fold]
+    ids = np.unique(np.concatenate((t, u)))
+    vec = edge_vectors(points, cells[ids])
+    scale = np.sqrt(np.prod(np.einsum("nid,nid->ni", vec, vec), axis=1))
+    shape = np.zeros(n)
+    shape[ids] = np.abs(det[ids]) / np.where(scale > 0, scale, 1.0)
+    thin_t = shape[t] <= shape[u]
+    both = (shape[t] <= ILL_CONDITIONED_RTOL) & (shape[u] <= ILL_CONDITIONED_RTOL)
+    out = np.zeros(n, dtype=bool)
+    out[t[thin_t | both]] = True
+    out[u[~thin_t | both]] = True
+    return out
+
+
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
            weights: np.ndarray | None = None):
     """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
@@ -130,6 +177,8 @@ def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
         power, det, flat, bits = cell_orthospheres(points, weights, cells)
         enter = signed_sqrt(power)
     measure = np.abs(det) / math.factorial(points.shape[1])
+    flat |= _folded(points, cells, neighbors, det, flat)
+    bits[flat] = 0  # flat cells' facets get the global attachment test
     if flat.any():
         det[flat] = 0.0  # orientation unknown: the facets use the other side or the hull
         _delay_flat(enter, flat, neighbors)

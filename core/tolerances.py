@@ -18,6 +18,11 @@ EXTENDED_DEGENERATE_RTOL = 1e-17
 #: extended precision: thin slivers of near-cospherical scans would lose digits otherwise.
 ILL_CONDITIONED_RTOL = 1e-5
 
+#: Cells whose |determinant| is below this times the data's extent**d are checked for folds
+#: (overlapping a neighbour): float64 rounding of exactly flat groups leaves determinants
+#: around 1e-16 of that, genuine cells of even huge scans stay far above it.
+FOLD_CANDIDATE_RTOL = 1e-9
+
 #: A point is strictly inside a sphere only if its power is below -ON_SPHERE_RTOL times the
 #: squared distances involved: cospherical points of lattices and scans count as on the sphere.
 ON_SPHERE_RTOL = 1e-13
