@@ -10,7 +10,7 @@ import os
 import sys
 from collections.abc import Sequence
 
-from app.args import add_mode_options, mode_of, radius
+from app.args import add_mode_options, count, mode_of, radius
 
 SUBCOMMANDS = ("info", "export")
 NO_DISPLAY_MESSAGE = (
@@ -34,7 +34,8 @@ def parse_size(text: str) -> tuple[int, int]:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The window's command line: [FILE] [--alpha R | --optimal] [--screenshot OUT] [--size WxH]."""
+    """The window's command line: [FILE] [--alpha R | --optimal] [--columns A,B[,C]]
+    [--subsample N] [--screenshot OUT] [--size WxH]."""
     parser = argparse.ArgumentParser(
         prog="alphascoop",
         description="Explore alpha shapes of 2D/3D point sets. "
@@ -45,6 +46,9 @@ def build_parser() -> argparse.ArgumentParser:
     choice.add_argument("--alpha", type=radius, metavar="R", help="alpha radius to show")
     choice.add_argument("--optimal", action="store_true", help="open at CGAL's optimal alpha "
                         "(default: the opening alpha, where the shape looks like the object)")
+    parser.add_argument("--columns", metavar="A,B[,C]",
+                        help="coordinate columns of a text or NumPy file (names or 0-based)")
+    parser.add_argument("--subsample", type=count, metavar="N", help="thin to at most N points")
     parser.add_argument("--screenshot", metavar="OUT.png", help="render, save an image, exit")
     parser.add_argument("--size", type=parse_size, metavar="WxH", help="window/image size")
     parser.add_argument("--no-legend", action="store_true",

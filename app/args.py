@@ -90,3 +90,10 @@ def probe_radius(text: str) -> float:
     if not (value >= 0.0 and math.isfinite(value)):
         raise argparse.ArgumentTypeError(f"expected a finite radius >= 0, not {text!r}")
     return value
+
+
+def count(text: str) -> int:
+    """A positive whole number (a point count, a number of components)."""
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive whole number, not {text!r}")
+    return int(text)

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from app.args import add_mode_options, mode_of, probe_radius, radius, squared_radius
+from app.args import add_mode_options, count, mode_of, probe_radius, radius, squared_radius
 from core.errors import AlphaScoopError, InputError
 
 CLASS_NAMES = ("exterior", "singular", "regular", "interior")
@@ -35,13 +35,6 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str):
         raise UsageError(message)
-
-
-def count(text: str) -> int:
-    """A positive whole number."""
-    if not text.isdigit() or int(text) < 1:
-        raise argparse.ArgumentTypeError(f"expected a positive whole number, not {text!r}")
-    return int(text)
 
 
 def index(text: str) -> int:

@@ -68,10 +68,25 @@ class Dataset:
         return f"{how} in {self.build_seconds:.2f} s"
 
 
+@dataclass(frozen=True)
+class ImportOptions:
+    """How to read a file: coordinate columns ('x,y,z', names or 0-based indices; None =
+    detected) and thinning to at most `subsample` points by 'voxel' or 'random'."""
+
+    columns: str | None = None
+    subsample: int | None = None
+    subsample_method: str = "voxel"
+
+    def read_kwargs(self) -> dict:
+        """Keywords for core.io.read_points."""
+        return {"columns": self.columns or None, "subsample": self.subsample,
+                "subsample_method": self.subsample_method}
+
+
 def load_dataset(path: str | Path, progress: Progress, build: Build = build_here,
-                 mode: Mode | None = None) -> Dataset:
-    """Read and build path in the alpha `mode` (default classic), reporting
-    progress(fraction, stage); Cancelled stops it.
+                 mode: Mode | None = None, options: ImportOptions | None = None) -> Dataset:
+    """Read (with `options`: columns, subsampling) and build path in the alpha `mode`
+    (default classic), reporting progress(fraction, stage); Cancelled stops it.
 
     `build(points, progress)` makes the complex with its signatures (the window passes
     app.build_process.build, which can be cancelled mid-triangulation); weighted files
@@ -82,7 +97,7 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     path = Path(path)
     started = time.perf_counter()
     progress(0.0, "reading")
-    pointset = read_points(path)
+    pointset = read_points(path, **(options or ImportOptions()).read_kwargs())
     read_done = time.perf_counter()
 
     def build_progress(fraction: float, stage: str) -> None:

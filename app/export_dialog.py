@@ -5,9 +5,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtWidgets import QCheckBox, QDialog, QFileDialog, QWidget
+from PySide6.QtWidgets import QCheckBox, QFileDialog, QWidget
 
 from app.file_actions import filter_extension, name_filters
+from app.modal import run_dialog
 from app.settings import Preferences
 from core.export import SHAPE_FORMATS
 
@@ -49,11 +50,6 @@ class ExportShapeDialog(QFileDialog):
             path = path.with_name(path.name + filter_extension(self.selectedNameFilter(),
                                                                SHAPE_FORMATS))
         return path
-
-
-def run_dialog(dialog: QDialog) -> bool:
-    """Show the dialog modally; True when the user accepted it."""
-    return dialog.exec() == QDialog.DialogCode.Accepted
 
 
 def ask_export_shape(parent: QWidget, prefs: Preferences, stem: str,

@@ -21,7 +21,9 @@ from app import file_actions
 from app.alpha_panel import AlphaPanel
 from app.clipping import Clipper
 from app.colour_view import Colourer
+from app.dataset import ImportOptions
 from app.help import ExplainPanel
+from app.import_dialog import ask_import_options
 from app.info_panel import InfoPanel
 from app.inspect_panel import InspectPanel
 from app.inspector import Inspector
@@ -54,6 +56,7 @@ class MainWindow(QMainWindow):
         self.prefs = Preferences(settings)
         self.start_alpha: float | None = None
         self.mode = Mode()  # the alpha mode of the next open or rebuild
+        self.last_options: ImportOptions | None = None  # how the last file was read
         self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
         self.model = ExplorerModel()
         self.loader = Loader(self)
@@ -118,24 +121,32 @@ class MainWindow(QMainWindow):
         self.layers_panel.styleChanged.connect(self._set_style)
         self.mode_panel.modeChosen.connect(self.set_mode)
 
-    def open_path(self, path: str | Path) -> int:
-        """Load and build path in the worker (cancels any older open); returns the request id."""
+    def open_path(self, path: str | Path, options: ImportOptions | None = None) -> int:
+        """Load and build path in the worker (cancels any older open), read with `options`
+        (columns, subsampling); returns the request id."""
         path = Path(path)
         self.prefs.set_last_dir(path)
         self.progress.start(f"opening {path.name}")
-        return self.loader.open(path, self.mode)
+        self.last_options = options
+        return self.loader.open(path, self.mode, options)
+
+    def open_asking(self, path: str | Path) -> int | None:
+        """Open path as a user does (File → Open, a drop): text and big files first show the
+        import dialog (columns, subsampling); None when the user cancels it."""
+        options = ask_import_options(self, Path(path), self.prefs)
+        return None if options is None else self.open_path(path, options)
 
     def set_mode(self, mode: Mode, rebuild: bool = True) -> int | None:
         """Use the alpha `mode` from now on; with `rebuild`, build the open file again in it
-        (in the background: the current shape stays until the new table is ready). Returns
-        the rebuild's request id, None when nothing was started."""
+        (in the background: the current shape stays until the new table is ready), read as
+        it was. Returns the rebuild's request id, None when nothing was started."""
         self.mode = mode
         self.mode_panel.set_mode(mode)
         dataset = self.model.dataset
         if not rebuild or dataset is None:
             return None
         self.progress.start(f"rebuilding {dataset.path.name}: {mode.describe()}")
-        return self.loader.open(dataset.path, mode)
+        return self.loader.open(dataset.path, mode, self.last_options)
 
     def _on_job_done(self, title: str, message: str) -> None:
         """An export finished: say what it wrote."""
@@ -240,7 +251,7 @@ class MainWindow(QMainWindow):
         """Open the first dropped local file."""
         files = [url.toLocalFile() for url in event.mimeData().urls() if url.isLocalFile()]
         if files:
-            self.open_path(files[0])
+            self.open_asking(files[0])
             event.acceptProposedAction()
 
     def _restore_layout(self) -> None:
@@ -278,4 +289,4 @@ class MainWindow(QMainWindow):
         """File → Open."""
         path = file_actions.ask_open_path(self, self.prefs)
         if path:
-            self.open_path(path)
+            self.open_asking(path)

@@ -37,7 +37,7 @@ def fill_recent(window, menu: QMenu) -> None:
     menu.clear()
     files = window.prefs.recent_files()
     for path in files:
-        add_action(menu, Path(path).name, partial(window.open_path, path)).setToolTip(path)
+        add_action(menu, Path(path).name, partial(window.open_asking, path)).setToolTip(path)
     menu.setEnabled(bool(files))
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pyvista as pv
 
-from app.dataset import Dataset, load_dataset
+from app.dataset import Dataset, ImportOptions, load_dataset
 from app.palette import default_styles
 from app.resources import SAMPLE_PATH
 from app.scene import Scene, as_xyz
@@ -59,7 +59,9 @@ def run_screenshot(args: argparse.Namespace) -> int:
     try:
         if not out.parent.is_dir():
             raise AlphaScoopError(f"{out.parent}: no such folder for the screenshot")
-        dataset = load_dataset(source, quiet_progress, mode=getattr(args, "mode", None))
+        dataset = load_dataset(source, quiet_progress, mode=getattr(args, "mode", None),
+                               options=ImportOptions(columns=args.columns,
+                                                     subsample=args.subsample))
         alpha = dataset.optimal_alpha if args.optimal else args.alpha
         alpha = dataset.default_alpha if alpha is None else alpha
         render_png(dataset, alpha, out, args.size or DEFAULT_SIZE, legend=not args.no_legend)

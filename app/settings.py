@@ -37,6 +37,21 @@ class Preferences:
         files = [path, *(f for f in self.recent_files() if f != path)]
         self.store.setValue("recent_files", files[:MAX_RECENT])
 
+    def import_options(self, ext: str) -> tuple[str, int, str]:
+        """(columns, subsample count (0 = all points), method) last chosen for files of `ext`
+        ('.csv', '.las'...): the import dialog's defaults."""
+        key = f"import/{ext.lower().lstrip('.')}"
+        return (str(self.store.value(f"{key}/columns", "", type=str)),
+                int(self.store.value(f"{key}/subsample", 0, type=int)),
+                str(self.store.value(f"{key}/method", "voxel", type=str)))
+
+    def set_import_options(self, ext: str, columns: str, subsample: int, method: str) -> None:
+        """Remember the import dialog's choices for files of `ext`."""
+        key = f"import/{ext.lower().lstrip('.')}"
+        self.store.setValue(f"{key}/columns", columns)
+        self.store.setValue(f"{key}/subsample", int(subsample))
+        self.store.setValue(f"{key}/method", method)
+
     def export_manifold(self) -> bool:
         """Whether Export shape splits surfaces to a 2-manifold (default True)."""
         return bool(self.store.value("export/manifold", True, type=bool))

@@ -15,7 +15,7 @@ from pathlib import Path
 from PySide6.QtCore import QObject, QThreadPool, Signal
 
 from app import build_process
-from app.dataset import load_dataset
+from app.dataset import ImportOptions, load_dataset
 from app.jobs import cancellable
 from core.errors import AlphaScoopError, Cancelled
 from core.modes import Mode
@@ -46,14 +46,15 @@ class Loader(QObject):
         """True while a request is queued or running."""
         return self._pool.activeThreadCount() > 0
 
-    def open(self, path: str | Path, mode: Mode | None = None) -> int:
-        """Start loading path in the alpha `mode` (default classic); cancels the previous
-        request; returns the new request id."""
+    def open(self, path: str | Path, mode: Mode | None = None,
+             options: ImportOptions | None = None) -> int:
+        """Start loading path (read with `options`) in the alpha `mode` (default classic);
+        cancels the previous request; returns the new request id."""
         self.cancel()
         self._current += 1
         request, cancel = self._current, threading.Event()
         self._cancel = cancel
-        self._pool.start(lambda: self._run(request, Path(path), cancel, mode or Mode()))
+        self._pool.start(lambda: self._run(request, Path(path), cancel, mode or Mode(), options))
         return request
 
     def cancel(self) -> None:
@@ -65,7 +66,8 @@ class Loader(QObject):
         """Block until the worker is idle (used on close); False on timeout."""
         return self._pool.waitForDone(msecs)
 
-    def _run(self, request: int, path: Path, cancel: threading.Event, mode: Mode) -> None:
+    def _run(self, request: int, path: Path, cancel: threading.Event, mode: Mode,
+             options: ImportOptions | None = None) -> None:
         """Worker-thread body: emit exactly one of finished/failed/cancelled."""
         progress = cancellable(
             cancel, lambda fraction, stage: self.progress.emit(request, fraction, stage),
@@ -73,9 +75,9 @@ class Loader(QObject):
         try:
             dataset = load_dataset(
                 path, progress,
-                lambda points, report, **options: build_process.build(points, report, cancel,
-                                                                      **options),
-                mode=mode)
+                lambda points, report, **kwargs: build_process.build(points, report, cancel,
+                                                                     **kwargs),
+                mode=mode, options=options)
         except Cancelled:
             self.cancelled.emit(request)
         except AlphaScoopError as error:

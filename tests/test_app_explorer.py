@@ -443,7 +443,7 @@ def test_closing_does_not_wait_for_a_build_that_cannot_stop(qtbot, tmp_path, mon
 
     release, started = threading.Event(), threading.Event()
 
-    def stuck_build(path, progress, build=None, mode=None):
+    def stuck_build(path, progress, build=None, mode=None, options=None):
         started.set()
         release.wait(30)  # like a Delaunay build: never looks at the cancel flag
 
