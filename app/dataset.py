@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -49,6 +49,7 @@ class Dataset:
     build_seconds: float
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
     from_cache: bool = False  # the table was loaded from the cache, not built
+    attributes: dict = field(default_factory=dict)  # name -> per-point values, rows of ac.points
     frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
     #: Molecules: the measures of the atoms' union at alpha² = 0, and (m,) int16 atomic
     #: numbers aligned with ac.points (None for other point sets).
@@ -116,6 +117,7 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     cursor = ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
+    ac.persistence()  # for the signatures dock's diagram, computed here, not in the GUI thread
     molecule, numbers = _molecule(ac, pointset)
     progress(1.0, "done")
     return Dataset(
@@ -125,7 +127,26 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
         from_cache=cached, frame=frame_for(path, pointset.report), molecule=molecule,
         atomic_numbers=numbers,
+        attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )
+
+
+def aligned_attributes(attributes: dict[str, np.ndarray], input_index: np.ndarray,
+                       n_points: int) -> dict[str, np.ndarray]:
+    """Per-input-row attributes re-indexed to the complex's points (input_index maps input rows
+    to point rows, -1 = not a vertex); merged duplicates keep one row's value. Read-only."""
+    index = np.asarray(input_index, dtype=np.int64)
+    used = index >= 0
+    out = {}
+    for name, values in attributes.items():
+        values = np.asarray(values)
+        if len(values) != len(index):
+            continue
+        aligned = np.zeros((n_points, *values.shape[1:]), dtype=values.dtype)
+        aligned[index[used]] = values[used]
+        aligned.flags.writeable = False
+        out[name] = aligned
+    return out
 
 
 def _molecule(ac: AlphaComplex, pointset) -> tuple[MoleculeMeasures | None, np.ndarray | None]:

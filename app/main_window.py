@@ -19,9 +19,14 @@ from pyvistaqt import QtInteractor
 
 from app import file_actions
 from app.alpha_panel import AlphaPanel
+from app.clipping import Clipper
+from app.colour_view import Colourer
 from app.dataset import ImportOptions
+from app.help import ExplainPanel
 from app.import_dialog import ask_import_options
 from app.info_panel import InfoPanel
+from app.inspect_panel import InspectPanel
+from app.inspector import Inspector
 from app.jobs import JobRunner
 from app.layers_panel import LayersPanel
 from app.menus import build_menus
@@ -78,6 +83,15 @@ class MainWindow(QMainWindow):
         self.tabifyDockWidget(info, mode)  # a tab beside Info: the view keeps its room
         info.raise_()
         self._add_dock("Signatures", self.signatures_panel, Qt.DockWidgetArea.BottomDockWidgetArea)
+        left = Qt.DockWidgetArea.LeftDockWidgetArea
+        self.inspect_panel = InspectPanel(self.model)
+        self.inspector = Inspector(self.model, self.plotter, self.scene, self.inspect_panel,
+                                   self._add_dock("Inspect", self.inspect_panel, left))
+        self.explain_dock = self._add_dock("Help", ExplainPanel(), left)
+        self.explain_dock.setWindowTitle("What am I looking at?")
+        self.explain_dock.hide()
+        self.colourer = Colourer(self.plotter, self.scene, self.model)
+        self.clipper = Clipper(self.plotter, self.scene)
         self.menus = build_menus(self)
         self._connect()
         self._restore_layout()
@@ -199,6 +213,8 @@ class MainWindow(QMainWindow):
             rgb = cpk_rgb(ds.atomic_numbers)
         self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
                                radii, ds.frame, ds.unit, rgb)
+        self.colourer.set_dataset(ds.attributes)
+        self.clipper.set_enabled(self.clipper.enabled)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
@@ -206,6 +222,7 @@ class MainWindow(QMainWindow):
     def _show_shape(self) -> None:
         """New alpha: swap layer connectivity, one render, status line."""
         self.scene.set_shape(self.model.shape)
+        self.colourer.update()
         if self.model.dataset.atomic_numbers is not None:
             self.scene.set_cells("cavities", self.model.cavities())
         self.scene.render()
@@ -220,6 +237,7 @@ class MainWindow(QMainWindow):
     def _set_style(self, name: str, style) -> None:
         """Apply and remember one layer's style; render once."""
         self.scene.set_style(name, style)
+        self.colourer.update()
         if self.model.dataset is not None:
             self.prefs.set_style(self.model.dataset.ac.dim, name, style)
         self.scene.render()

@@ -9,7 +9,10 @@ from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QDockWidget, QMainWindow, QMenu, QMessageBox
 
 from app import file_actions
+from app.clipping import add_clip_action
+from app.colour_view import add_colour_menu
 from app.export_dialog import ask_export_shape
+from app.help import add_help_actions
 from core.errors import InputError
 from core.export import TABLE_FORMATS
 from core.export.targets import refuse_source
@@ -142,6 +145,9 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
     actions["reset_view"] = add_action(view, "&Reset view",
                                        lambda: (window.scene.fit_view(), window.scene.render()),
                                        "R")
+    view.addSeparator()
+    actions["colour_by"] = add_colour_menu(view, window.colourer).menuAction()
+    actions["clip"] = add_clip_action(view, window.clipper)
     shape = bar.addMenu("&Shape")
     model = window.model
     actions["optimal"] = add_action(shape, "&Optimal alpha",
@@ -152,5 +158,6 @@ def build_menus(window: QMainWindow) -> dict[str, QAction]:
     actions["back"] = add_action(shape, "&Back to the previous alpha", model.go_back, "Alt+Left")
     actions["forward"] = add_action(shape, "&Forward", model.go_forward, "Alt+Right")
     help_menu = bar.addMenu("&Help")
+    actions.update(add_help_actions(window, help_menu))
     add_action(help_menu, "&About Alpha Scoop", lambda: QMessageBox.about(window, "About", ABOUT))
     return actions

@@ -15,7 +15,7 @@ from .errors import InputError
 from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
 from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
 from .power import signed_sqrt, signed_square
-from .shape import AlphaShape, readonly
+from .shape import AlphaShape, readonly, threshold
 from .table import Level, Progress, Table, build_table
 from .weights import as_weights, hide_light_duplicates
 
@@ -282,8 +282,9 @@ class AlphaComplex:
     # --- queries ---------------------------------------------------------------------------
     def classify(self, alpha: float | None = None, k: int | None = None, *,
                  alpha2: float | None = None) -> np.ndarray:
-        """(n_k,) int8 class of every k-simplex: 0 exterior, 1 singular, 2 regular, 3 interior."""
-        alpha = table_value(alpha, alpha2)
+        """(n_k,) int8 class of every k-simplex: 0 exterior, 1 singular, 2 regular, 3 interior
+        (alpha = inf is the convex hull: hull simplices stay REGULAR, never INTERIOR)."""
+        alpha = threshold(table_value(alpha, alpha2))
         if k is None:
             raise InputError("classify needs k, the dimension of the simplices")
         level = self._level(k)
@@ -357,7 +358,7 @@ class AlphaComplex:
     def betti(self, alpha: float | None = None, *, alpha2: float | None = None
               ) -> tuple[int, ...]:
         """Betti numbers at alpha: (components, holes) in 2D, (components, tunnels, voids) in 3D."""
-        at = np.array([table_value(alpha, alpha2)], dtype=np.float64)
+        at = np.array([threshold(table_value(alpha, alpha2))], dtype=np.float64)
         return tuple(int(b) for b in self._topology.betti_many(at)[0])
 
     def signatures(self):
@@ -417,6 +418,6 @@ class AlphaComplex:
         from .locate import contains
         from .locate import query_points as checked
 
-        value = table_value(alpha, alpha2)
+        value = threshold(table_value(alpha, alpha2))
         queries = checked(query_points, self.dim, self.ambient_dim, self.to_ambient)
         return contains(self._locator, queries, value, self.intervals(self.dim)[:, 0])

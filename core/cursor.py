@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .parallel import halves, place, select, together
-from .shape import AlphaShape, readonly
+from .shape import AlphaShape, readonly, threshold
 from .table import argsort_radii
 
 if TYPE_CHECKING:
@@ -211,13 +211,13 @@ class ShapeCursor:
         """The shape at alpha (a radius) or alpha2 (squared), from the previous one by the
         simplices that changed."""
         shape = self._ac.shape(alpha, alpha2=alpha2)
-        alpha = shape.alpha
+        at = threshold(shape.alpha)  # inf (the hull) keeps hull facets REGULAR
         for tracked in self._sets():
             if self.alpha is None:
-                tracked.reset(alpha)
+                tracked.reset(at)
             else:
-                tracked.go(self.alpha, alpha)
-        self.alpha = alpha
+                tracked.go(threshold(self.alpha), at)
+        self.alpha = shape.alpha
         singular = {k: tracked.snapshot() for k, tracked in self.singular.items()}
         return shape._seed(self.regular.snapshot(), singular)
 

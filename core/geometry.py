@@ -196,7 +196,13 @@ def cell_spheres(
 def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
     """(n,) squared radii of the smallest circumspheres of edges or triangles, from side
     lengths; for triangles also (n,) uint8 obtuse bits (bit j: vertex j lies strictly inside
-    the diametral sphere of the opposite edge, so it attaches that edge)."""
+    the diametral sphere of the opposite edge, so it attaches that edge).
+
+    Every side is its own difference of points and every angle's dot product uses that
+    angle's own sides: deriving a side from the other two (|b - a|² = |a|² + |b|² - 2 a.b)
+    cancels catastrophically on a needle (two long sides, a short one) and can go negative.
+    The area comes from the two shortest sides, the best conditioned cross product.
+    """
     if facets.shape[1] == 2:
         diff = np.take(points, facets[:, 1], 0) - np.take(points, facets[:, 0], 0)
         return 0.25 * np.einsum("nd,nd->n", diff, diff), None
@@ -206,16 +212,21 @@ def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np
     for lo in range(0, len(facets), CHUNK):
         sl = slice(lo, lo + CHUNK)
         vec = edge_vectors(points, facets[sl])
-        a, b = vec[:, 0], vec[:, 1]
-        n = _cross(a, b)
-        saa, sbb, nn, ab = _dot(a, a), _dot(b, b), _dot(n, n), _dot(a, b)
-        s12 = saa + sbb - 2.0 * ab
-        bad = nn <= (DEGENERATE_RTOL ** 2) * saa * sbb
-        out[sl] = saa * sbb * s12 / (4.0 * np.where(bad, 1.0, nn))
+        a, b = vec[:, 0], vec[:, 1]  # p1 - p0, p2 - p0
+        c = np.take(points, facets[sl, 2], 0) - np.take(points, facets[sl, 1], 0)  # p2 - p1
+        saa, sbb, scc = _dot(a, a), _dot(b, b), _dot(c, c)
+        # the longest side is left out of the cross product: a x b = a x c = b x c exactly
+        longest_a = (saa >= sbb) & (saa >= scc)
+        first = np.where(longest_a[:, None], b, a)
+        second = np.where(((sbb >= saa) & (sbb >= scc) | longest_a)[:, None], c, b)
+        n = _cross(first, second)
+        nn, short = _dot(n, n), _dot(first, first) * _dot(second, second)
+        bad = nn <= (DEGENERATE_RTOL ** 2) * short
+        out[sl] = saa * sbb * scc / (4.0 * np.where(bad, 1.0, nn))
         if bad.any():
             out[sl][bad] = least_squares(vec[bad])[1]
-        chunk = (ab < -tol * (saa + sbb)).astype(np.uint8)
-        chunk |= ((saa - ab) < -tol * (saa + s12)).astype(np.uint8) << 1
-        chunk |= ((sbb - ab) < -tol * (sbb + s12)).astype(np.uint8) << 2
+        chunk = (_dot(a, b) < -tol * (saa + sbb)).astype(np.uint8)  # angle at p0
+        chunk |= (_dot(a, c) > tol * (saa + scc)).astype(np.uint8) << 1  # p1: (-a).c < 0
+        chunk |= (_dot(b, c) < -tol * (sbb + scc)).astype(np.uint8) << 2  # p2: (-b).(-c)
         bits[sl] = chunk
     return out, bits

@@ -12,6 +12,18 @@ if TYPE_CHECKING:
     from .complex import AlphaComplex
 
 
+#: The largest float64: what an infinite alpha is compared with (see `threshold`).
+LARGEST = float(np.finfo(np.float64).max)
+
+
+def threshold(alpha: float) -> float:
+    """The value a query at `alpha` compares the table with: +inf (the convex hull) is taken
+    as the largest float. It is above every finite table value but below inf, which in the
+    table means never (the `interior` of a simplex on the hull), so `value <= threshold`
+    keeps hull simplices from turning interior, exactly as at any alpha past the spectrum."""
+    return min(float(alpha), LARGEST)
+
+
 def readonly(arr: np.ndarray) -> np.ndarray:
     """`arr` with its writeable flag cleared (a widget must not corrupt the table)."""
     arr.flags.writeable = False
@@ -29,6 +41,7 @@ class AlphaShape:
         self._ac = complex_
         self.alpha = float(alpha)
         self._alpha2 = self.alpha * abs(self.alpha) if alpha2 is None else float(alpha2)
+        self._at = threshold(self.alpha)  # compared with the table (inf: the hull)
         self.dim = complex_.dim
         self.points = complex_.points
 
@@ -40,7 +53,7 @@ class AlphaShape:
 
     def _entered(self, k: int) -> int:
         """Number of k-simplices in the complex (they are a prefix: sorted by enter)."""
-        return int(np.searchsorted(self._ac._level(k).enter, self.alpha, side="right"))
+        return int(np.searchsorted(self._ac._level(k).enter, self._at, side="right"))
 
     @cached_property
     def cell_ids(self) -> np.ndarray:
@@ -63,12 +76,12 @@ class AlphaShape:
         count = self._entered(self.dim - 1)
         order = self._ac._table.facet_interior_order
         by_interior, enter_by_interior = self._ac._facets_by_interior
-        first = int(np.searchsorted(by_interior, self.alpha, "right"))
+        first = int(np.searchsorted(by_interior, self._at, "right"))
         if 4 * (len(order) - first) < count:  # gathers cost about 4x a contiguous pass
-            ids = np.sort(order[first:][enter_by_interior[first:] <= self.alpha])
+            ids = np.sort(order[first:][enter_by_interior[first:] <= self._at])
         else:
-            ids = np.flatnonzero(level.interior[:count] > self.alpha)
-        regular = np.take(level.regular, ids) <= self.alpha
+            ids = np.flatnonzero(level.interior[:count] > self._at)
+        regular = np.take(level.regular, ids) <= self._at
         return ids, ids[regular], ids[~regular]
 
     @cached_property
@@ -110,7 +123,7 @@ class AlphaShape:
         elif k not in cache:
             level = self._ac._level(k)
             count = self._entered(k)
-            cache[k] = readonly(np.flatnonzero(level.regular[:count] > self.alpha))
+            cache[k] = readonly(np.flatnonzero(level.regular[:count] > self._at))
         return cache[k]
 
     def singular(self, k: int) -> np.ndarray:

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .opening import opening_alpha_of
+from .shape import threshold
 from .topology import Topology, ascending, ascending_order
 
 #: Column order of `Signatures.counts`: the four classes of `AlphaComplex.classify`.
@@ -46,7 +47,7 @@ class Signatures:
 
     def counts_at(self, alpha: float) -> np.ndarray:
         """(dim + 1, 4) int64 numbers of k-simplices per class at one alpha."""
-        at = np.array([alpha], dtype=np.float64)
+        at = np.array([threshold(alpha)], dtype=np.float64)  # inf: the hull stays REGULAR
         return np.concatenate([class_counts(self._thresholds(k), at) for k in range(self.dim + 1)])
 
     def _thresholds(self, k: int) -> tuple[np.ndarray, ...]:

@@ -107,3 +107,18 @@ def test_table_valid_on_random_input() -> None:
     rng = np.random.default_rng(2)
     for dim in (2, 3):
         assert_valid_table(AlphaComplex.from_points(clustered(rng, 500, dim)))
+
+
+# Found by hypothesis: triangle 0-2-3 is a needle (sides 6e-8, 55.6, 55.6).
+NEEDLE = np.array([[0, 0, 0], [0, 0, 1], [0, 0.85, -55.5880345], [0, -5.96046448e-08, 0],
+                   [1, 0, 0]])
+
+
+@pytest.mark.parametrize("shift", range(len(NEEDLE)))
+def test_needle_triangle_equals_gudhi_exact(shift: int) -> None:
+    """A needle's circumradius must not come from |b - a|² = |a|² + |b|² - 2 a.b (it cancels to
+    a negative square and a NaN radius); every input order puts another vertex first."""
+    pts = np.roll(NEEDLE, shift, axis=0)
+    ac = AlphaComplex.from_points(pts)
+    assert_valid_table(ac)
+    assert_matches_gudhi(ac, gudhi_table(pts, precision="exact"))

@@ -54,7 +54,7 @@ def shape_metadata(ac, shape, source: str | os.PathLike | None = None) -> dict:
     """JSON-ready facts about `shape` (an AlphaShape of `ac`) for file headers and sidecars."""
     meta = {
         "software": software(),
-        "alpha": float(shape.alpha),
+        "alpha": float(shape.alpha) if math.isfinite(shape.alpha) else None,  # inf: hull
         "alpha_sq": squared(shape.alpha),
         "source": None if source is None else os.fspath(source),
         "mode": mode_metadata(ac),

@@ -130,7 +130,7 @@ def write_svg(path: Path, ac, shape, meta: dict, georef=None) -> None:
     lines = [f"M {pts(line.coords)}" for line in singular_lines(ac, shape).geoms]
     box = (lo[0] - pad, -hi[1] - pad, hi[0] - lo[0] + 2 * pad, hi[1] - lo[1] + 2 * pad)
     view = " ".join(repr(float(v)) for v in box)
-    title = f"alpha shape, alpha={meta['alpha']:.6g}, area={meta.get('area', 0.0):.6g}"
+    title = f"alpha shape, alpha={float(shape.alpha):.6g}, area={meta.get('area', 0.0):.6g}"
     body = "".join(f'<path d="{d}" fill="#4c8bd6" fill-rule="evenodd" stroke="#1d3f73" '
                    f'stroke-width="{width!r}"/>' for d in paths)
     body += "".join(f'<path d="{d}" fill="none" stroke="#d1495b" stroke-width="{width!r}"/>'

@@ -1,0 +1,177 @@
+"""The signatures dock: labelled log-alpha axes, a readout of the values under the mouse,
+clickable optimal/suggested markers, and a persistence diagram with the current alpha."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from matplotlib.backend_bases import MouseEvent
+from PySide6.QtCore import QPoint, Qt
+
+from app.alpha_panel import AlphaPanel
+from app.dataset import Dataset
+from app.model import ExplorerModel, snap_index
+from app.signatures_dock import SignaturesPanel, markers_of
+from core import AlphaComplex
+
+
+def ring_and_ball(n: int = 700, seed: int = 3) -> np.ndarray:
+    """(n, 3) a noisy ring (a tunnel) beside a ball: several suggestions, varied Betti numbers."""
+    rng = np.random.default_rng(seed)
+    angle = rng.uniform(0, 2 * np.pi, n // 2)
+    ring = np.column_stack([np.cos(angle), np.sin(angle), np.zeros(n // 2)])
+    ring += rng.normal(scale=0.12, size=ring.shape)
+    ball = rng.normal(scale=0.3, size=(n - n // 2, 3)) + np.array([3.0, 0.0, 0.0])
+    return np.concatenate([ring, ball])
+
+
+def make_dataset(points: np.ndarray) -> Dataset:
+    """A built dataset of points (no file)."""
+    ac = AlphaComplex.from_points(points)
+    return Dataset(path=Path("p.npy"), ac=ac, spectrum=ac.spectrum(),
+                   optimal_alpha=ac.optimal_alpha(), default_alpha=ac.default_alpha(),
+                   signatures=ac.signatures(),
+                   n_input=len(points), report=None, load_seconds=0.0, build_seconds=0.0)
+
+
+@pytest.fixture(scope="module", params=[3, 2], ids=["3d", "2d"])
+def dataset(request) -> Dataset:
+    """A 3D ring and ball, or its 2D projection."""
+    return make_dataset(ring_and_ball()[:, : request.param])
+
+
+@pytest.fixture
+def panels(qtbot, dataset):
+    """A shown SignaturesPanel and an AlphaPanel on one model holding dataset."""
+    model = ExplorerModel()
+    signatures, alpha = SignaturesPanel(model), AlphaPanel(model)
+    for widget in (signatures, alpha):
+        qtbot.addWidget(widget)
+    signatures.resize(1300, 320)
+    signatures.show()
+    qtbot.waitExposed(signatures)
+    model.set_dataset(dataset)
+    signatures.canvas.draw()
+    return signatures, alpha
+
+
+def display_to_qt(canvas, x: float, y: float) -> QPoint:
+    """A matplotlib display point (pixels, origin bottom left) as a Qt widget position."""
+    ratio = canvas.device_pixel_ratio
+    return QPoint(round(x / ratio), round((canvas.figure.bbox.height - y) / ratio))
+
+
+def marker_position(panel: SignaturesPanel, alpha: float, plot: int = 0) -> tuple[float, float]:
+    """Display coordinates of the marker at alpha on signature plot `plot`."""
+    line, _ = next(entry for entry in panel.marker_lines
+                   if entry[0].axes is panel.figure.axes[plot]
+                   and alpha in [m.alpha for m in entry[1]])
+    return tuple(line.get_transform().transform((alpha, 1.0)))
+
+
+def test_axes_are_log_alpha_with_units(panels, dataset) -> None:
+    """The three signature plots share a log alpha axis labelled in data units."""
+    panel, _ = panels
+    axes = panel.figure.axes
+    for ax in axes[:3]:
+        assert ax.get_xscale() == "log"
+        assert "alpha" in ax.get_xlabel() and "data units" in ax.get_xlabel()
+        assert ax.get_ylabel()
+    unit = "units³" if dataset.ac.dim == 3 else "units²"
+    assert unit in axes[1].get_ylabel() or unit in axes[1].get_title()
+
+
+def test_readout_gives_the_signatures_under_the_mouse(panels, dataset) -> None:
+    """Moving the mouse over the Betti plot shows r, r² and the Betti numbers at that alpha."""
+    panel, _ = panels
+    sig = dataset.signatures
+    ax = panel.figure.axes[0]
+    for row in (len(sig.alphas) // 3, len(sig.alphas) // 2):
+        alpha = float(np.sqrt(sig.alphas[row] * sig.alphas[row + 1]))  # inside entry row
+        x, y = ax.transData.transform((alpha, 1.0))
+        panel.canvas.callbacks.process(
+            "motion_notify_event", MouseEvent("motion_notify_event", panel.canvas, x, y))
+        text = panel.readout.text()
+        assert f"r {alpha:.4g}" in text and f"r² {alpha * alpha:.4g}" in text
+        for k, value in enumerate(sig.betti[row]):
+            assert f"b{k} {int(value):,}" in text
+        assert f"{sig.measure[row]:.4g}" in text
+
+
+def test_markers_are_the_optimal_and_suggested_alphas(panels, dataset) -> None:
+    """Each signature plot carries one optimal marker and the core's suggestions."""
+    panel, _ = panels
+    ac = dataset.ac
+    optimal, suggested = markers_of(ac)
+    assert optimal.alpha == ac.optimal_alpha()
+    assert [m.alpha for m in suggested] == [r.alpha for r in ac.suggest_alphas(5)]
+    assert len(suggested) >= 2
+    drawn = sorted(a for line, _ in panel.marker_lines for a in line.get_xdata())
+    assert drawn == sorted([optimal.alpha, *[m.alpha for m in suggested]] * 3)
+
+
+@pytest.mark.parametrize("which", ["optimal", 0, 1])
+def test_clicking_a_marker_moves_the_slider(panels, dataset, qtbot, which) -> None:
+    """A left click on a marker moves the model and the slider to that alpha's shape."""
+    panel, alpha_panel = panels
+    optimal, suggested = markers_of(dataset.ac)
+    target = optimal if which == "optimal" else suggested[which]
+    panel.model.set_index(0)
+    before = alpha_panel.slider.value()
+    x, y = marker_position(panel, target.alpha, plot=1)
+    qtbot.mouseClick(panel.canvas, Qt.MouseButton.LeftButton, pos=display_to_qt(panel.canvas, x, y))
+    spectrum = dataset.spectrum
+    assert spectrum[panel.model.index] <= target.alpha < np.append(spectrum, np.inf)[
+        panel.model.index + 1]
+    assert alpha_panel.slider.value() != before
+    if which == "optimal":
+        assert panel.model.alpha == dataset.ac.optimal_alpha()
+    assert panel.cursors[0].get_xdata()[0] == pytest.approx(panel.model.alpha)
+
+
+def test_clicking_a_plot_away_from_markers_goes_to_that_alpha(panels, dataset, qtbot) -> None:
+    """A click in a plot's body (not on a marker) moves alpha to the value under the mouse."""
+    panel, _ = panels
+    sig = dataset.signatures
+    row = len(sig.alphas) // 4
+    alpha = float(np.sqrt(sig.alphas[row] * sig.alphas[row + 1]))
+    ax = panel.figure.axes[1]
+    x, y = ax.transData.transform((alpha, 0.0))
+    pos = display_to_qt(panel.canvas, x, y + 20)
+    qtbot.mouseClick(panel.canvas, Qt.MouseButton.LeftButton, pos=pos)
+    clicked = ax.transData.inverted().transform((pos.x() * panel.canvas.device_pixel_ratio, y))[0]
+    assert panel.model.index == snap_index(dataset.spectrum, clicked)
+    assert abs(panel.model.index - row) < len(sig.alphas) // 20
+
+
+def test_persistence_diagram_and_its_alpha_lines(panels, dataset) -> None:
+    """The diagram shows ac.persistence()'s pairs; the pairs left of / above the current-alpha
+    lines (birth <= alpha < death) number b0 components and b_{d-1} holes/voids."""
+    panel, _ = panels
+    ac = dataset.ac
+    persistence = ac.persistence()
+    np.testing.assert_array_equal(panel.drawn_pairs[0].pairs, persistence.diagram(0))
+    np.testing.assert_array_equal(panel.drawn_pairs[1].pairs, persistence.diagram(ac.dim - 1))
+    assert panel.drawn_pairs[1].name == ("voids" if ac.dim == 3 else "holes")
+    for index in np.linspace(1, len(dataset.spectrum) - 2, 7).astype(int):
+        panel.model.set_index(int(index))
+        alpha = panel.model.alpha
+        assert panel.cursors[-1].get_xdata()[0] == alpha
+        assert panel.death_cursor.get_ydata()[0] == alpha
+        betti = ac.betti(alpha)
+        for series, k in zip(panel.drawn_pairs, (0, ac.dim - 1), strict=True):
+            alive = (series.pairs[:, 0] <= alpha) & (alpha < series.pairs[:, 1])
+            assert int(alive.sum()) == betti[k]
+
+
+def test_readout_names_the_pair_under_the_mouse(panels, dataset) -> None:
+    """Hovering a point of the diagram names its series, birth and death."""
+    panel, _ = panels
+    ax = panel.persistence_ax
+    birth, death = panel.drawn_pairs[1].pairs[0]
+    x, y = ax.transData.transform((birth, death))
+    event = MouseEvent("motion_notify_event", panel.canvas, x, y)
+    text = panel.readout_text(event)
+    assert f"born at r {birth:.4g}" in text and f"dies at r {death:.4g}" in text
