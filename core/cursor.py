@@ -236,7 +236,9 @@ def _regular_set(ac: AlphaComplex) -> IntervalSet:
 def _singular_set(ac: AlphaComplex, k: int) -> IntervalSet:
     """The SINGULAR k-simplices: candidates (enter < regular) ranked by enter, ended by regular."""
     level = ac._level(k)
-    by_enter = np.flatnonzero(level.enter < level.regular)  # sorted by enter already
+    by_enter = np.flatnonzero(level.enter < level.regular)
+    if k == 0:  # levels k >= 1 are sorted by enter; weighted vertices keep the points' order
+        by_enter = by_enter[argsort_radii(np.take(level.enter, by_enter))]
     by_ended = by_enter[argsort_radii(np.take(level.regular, by_enter))]
     return IntervalSet(level.enter, level.regular, by_enter, by_ended,
                        np.take(level.regular, by_ended), np.take(level.simplices, by_enter, 0))

@@ -120,6 +120,10 @@ class AlphaShape:
             cache[k] = readonly(seeded[k]())
         elif k not in cache and k == self.dim - 1:
             cache[k] = readonly(self._facet_ids[2])
+        elif k not in cache and k == 0:  # weighted vertices are not sorted by enter
+            level = self._ac._level(0)
+            cache[k] = readonly(np.flatnonzero((level.enter <= self._at)
+                                               & (level.regular > self._at)))
         elif k not in cache:
             level = self._ac._level(k)
             count = self._entered(k)
