@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import CHUNK, circumspheres
+from .geometry import CHUNK, circumspheres, edge_vectors, solve_centres
+from .parallel import halves
 from .tolerances import ON_SPHERE_RTOL
 
 
@@ -31,20 +32,24 @@ class Spheres:
 
 def combined_normals(corner_normals: np.ndarray) -> np.ndarray:
     """(n, d) unit normal of each simplex from its (n, k+1, d) vertex normals (0 where they
-    cancel): their sum with the signs (the first fixed) that make it longest."""
+    cancel): their sum with the signs (the first fixed) that make it longest. The squared
+    length of a signed sum is constant + 2 sum s_i s_j n_i.n_j, so the pairwise dots and one
+    small product pick the signs (the first longest pattern, as a loop over them would)."""
     n, width, _ = corner_normals.shape
-    best, best_value = corner_normals[:, 0].copy(), np.full(n, -np.inf)
-    for combo in range(2 ** (width - 1)):  # sign patterns, not simplices
-        total = corner_normals[:, 0].copy()
+    best = corner_normals[:, 0].copy()
+    if width > 1:
+        pairs = [(i, j) for i in range(width) for j in range(i + 1, width)]
+        dots = np.empty((n, len(pairs)))
+        for p, (i, j) in enumerate(pairs):
+            dots[:, p] = np.einsum("nd,nd->n", corner_normals[:, i], corner_normals[:, j])
+        signs = np.array([[1.0] + [-1.0 if combo >> (j - 1) & 1 else 1.0
+                                   for j in range(1, width)]
+                          for combo in range(2 ** (width - 1))])  # (patterns, width)
+        products = np.array([[s[i] * s[j] for i, j in pairs] for s in signs]).T
+        chosen = signs[np.argmax(np.einsum("np,pc->nc", dots, products), axis=1)]
         for j in range(1, width):
-            if combo >> (j - 1) & 1:
-                total -= corner_normals[:, j]
-            else:
-                total += corner_normals[:, j]
-        value = np.einsum("nd,nd->n", total, total)
-        better = value > best_value
-        best[better], best_value[better] = total[better], value[better]
-    length = np.sqrt(np.maximum(best_value, 0.0))
+            best += chosen[:, j, None] * corner_normals[:, j]
+    length = np.sqrt(np.einsum("nd,nd->n", best, best))
     return best / np.where(length > 0, length, 1.0)[:, None]
 
 
@@ -59,40 +64,70 @@ def _stretch(vectors: np.ndarray, normal: np.ndarray, extra: float) -> np.ndarra
 def stretched_spheres(points: np.ndarray, simplices: np.ndarray, normals: np.ndarray,
                       tau: float) -> Spheres:
     """Smallest spheres of (n, k+1) simplices of `points` stretched by 1 / (1 - tau) along
-    their combined normals (from (m, d) point `normals`)."""
-    n, width = simplices.shape
-    d = points.shape[1]
+    their combined normals (from (m, d) point `normals`). The closed-form centres of the
+    stretched edge vectors serve all but the ill-conditioned few, which go through
+    circumspheres (extended precision, least squares) as whole simplices."""
+    n, d = len(simplices), points.shape[1]
     extra = 1.0 / (1.0 - tau) - 1.0
     centres, radii2, unit = np.empty((n, d)), np.empty(n), np.empty((n, d))
-    for lo in range(0, n, CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        chunk = simplices[sl]
-        unit[sl] = combined_normals(normals[chunk])
-        corners = points[chunk]
-        corners -= corners[:, :1]
-        _stretch(corners[:, 1:], unit[sl], extra)
-        if width == 2:
-            centres[sl] = 0.5 * corners[:, 1]
-            radii2[sl] = np.einsum("nd,nd->n", centres[sl], centres[sl])
-            continue
-        flat = corners.reshape(-1, d)
-        ids = np.arange(len(flat), dtype=np.int64).reshape(-1, width)
-        centres[sl], radii2[sl] = circumspheres(flat, ids)[:2]
+
+    def part(start: int, stop: int) -> None:
+        for lo in range(start, stop, CHUNK):
+            _sphere_chunk(points, simplices, normals, extra, slice(lo, min(lo + CHUNK, stop)),
+                          (centres, radii2, unit))
+
+    halves(part, n)
     return Spheres(centres, radii2, unit)
+
+
+def _sphere_chunk(points: np.ndarray, simplices: np.ndarray, normals: np.ndarray,
+                  extra: float, sl: slice, out: tuple[np.ndarray, ...]) -> None:
+    """stretched_spheres on the rows `sl`, written into out = (centres, radii2, unit)."""
+    centres, radii2, unit = out
+    width, d = simplices.shape[1], points.shape[1]
+    chunk = simplices[sl]
+    unit[sl] = combined_normals(normals[chunk])
+    vec = _stretch(edge_vectors(points, chunk), unit[sl], extra)
+    if width == 2:
+        centres[sl] = 0.5 * vec[:, 0]
+        radii2[sl] = np.einsum("nd,nd->n", centres[sl], centres[sl])
+        return
+    c0, _, _, poor, _ = solve_centres(vec)
+    radii2[sl] = np.einsum("nd,nd->n", c0, c0)
+    if poor.any():  # as whole simplices (first vertex at 0) for the exact fallbacks
+        redo = np.concatenate((np.zeros((int(poor.sum()), 1, d)), vec[poor]), axis=1)
+        ids = np.arange(redo.shape[0] * width, dtype=np.int64).reshape(-1, width)
+        c0[poor], radii2[sl][poor] = circumspheres(redo.reshape(-1, d), ids)[:2]
+    centres[sl] = c0
 
 
 def attached(points: np.ndarray, faces: np.ndarray, spheres: Spheres, cofaces: np.ndarray,
              face_ids: np.ndarray, tau: float) -> np.ndarray:
     """(n_faces,) bool: some cofacet's opposite vertex, stretched with the face, lies strictly
     inside the face's stretched sphere. `cofaces` (c, k+2) and `face_ids` (c, k+2): the
-    cofacet level's simplices and the row in `faces` opposite each of their vertices."""
+    cofacet level's simplices and the row in `faces` opposite each of their vertices.
+
+    The stretch S is linear, so |S(p - v0) - c| = |S(p - o)| with o = v0 + S^-1 c, the sphere's
+    centre in the original coordinates: |p - o|² + ((1 + extra)² - 1) (n.(p - o))²."""
     extra = 1.0 / (1.0 - tau) - 1.0
+    normals = spheres.normals
+    along = np.einsum("nd,nd->n", spheres.centres, normals) * (extra / (1.0 + extra))
+    origins = points[faces[:, 0]] + spheres.centres - along[:, None] * normals
+    gain = (1.0 + extra) ** 2 - 1.0
+    limit = spheres.radii2 * (1 - 2 * ON_SPHERE_RTOL)
     out = np.zeros(len(faces), dtype=bool)
-    for lo in range(0, len(cofaces), CHUNK):
-        face = face_ids[lo:lo + CHUNK].ravel()
-        vec = points[cofaces[lo:lo + CHUNK].ravel()] - points[faces[face, 0]]
-        vec = _stretch(vec[:, None, :], spheres.normals[face], extra)[:, 0]
-        vec -= spheres.centres[face]
-        inside = np.einsum("nd,nd->n", vec, vec) < spheres.radii2[face] * (1 - 2 * ON_SPHERE_RTOL)
-        out[face[inside]] = True
+
+    def part(start: int, stop: int) -> None:  # the halves only ever set True: no race
+        for lo in range(start, stop, CHUNK):
+            hi = min(lo + CHUNK, stop)
+            face = face_ids[lo:hi].ravel()
+            vec = points[cofaces[lo:hi].ravel()]
+            vec -= origins[face]
+            dist2 = np.einsum("nd,nd->n", vec, normals[face])
+            dist2 *= dist2
+            dist2 *= gain
+            dist2 += np.einsum("nd,nd->n", vec, vec)
+            out[face[dist2 < limit[face]]] = True
+
+    halves(part, len(cofaces))
     return out
