@@ -11,6 +11,8 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components, minimum_spanning_tree
 from scipy.spatial import cKDTree
 
+from .parallel import halves
+
 #: Weight added to every edge of the orientation graph: csgraph drops explicit zeros, and two
 #: parallel normals (weight 0) must still be joined.
 _EDGE_FLOOR = 1e-9
@@ -30,12 +32,20 @@ def spacing(dist: np.ndarray) -> np.ndarray:
 
 
 def pca_normals(points: np.ndarray, ids: np.ndarray) -> np.ndarray:
-    """(m, d) unit normals: the least-variance direction of each point with its neighbours."""
-    group = np.concatenate((points[:, None, :], points[ids]), axis=1)
-    group -= group.mean(axis=1, keepdims=True)
-    cov = np.einsum("mki,mkj->mij", group, group)
-    _, vectors = np.linalg.eigh(cov)  # eigenvalues ascending: column 0 is the normal
-    return np.ascontiguousarray(vectors[:, :, 0])
+    """(m, d) unit normals: the least-variance direction of each point with its neighbours
+    (batched eigh of the covariances, in halves: the gathers are memory-bound)."""
+    out = np.empty_like(points)
+
+    def part(start: int, stop: int) -> None:
+        group = np.concatenate((points[start:stop, None, :], points[ids[start:stop]]), axis=1)
+        group -= group.mean(axis=1, keepdims=True)
+        cov = np.einsum("mki,mkj->mij", group, group)
+        _, vectors = np.linalg.eigh(cov)  # eigenvalues ascending: column 0 is the normal
+        out[start:stop] = vectors[:, :, 0]
+
+    width = max(ids.shape[1], 1)  # split by gathered neighbours, cut between whole rows
+    halves(lambda start, stop: part(start // width, stop // width), len(ids) * width)
+    return out
 
 
 def orient(points: np.ndarray, normals: np.ndarray, ids: np.ndarray) -> np.ndarray:
