@@ -19,6 +19,10 @@ from .geometry import CHUNK, circumspheres, edge_vectors, solve_centres
 from .parallel import halves
 from .tolerances import ON_SPHERE_RTOL
 
+#: Sign patterns whose squared sums differ by at most this (of the order of width² = 16) are
+#: near-ties, settled by the explicit loop as rounding settled them before the fast path.
+_NEAR_TIE = 1e-9
+
 
 @dataclass(frozen=True)
 class Spheres:
@@ -33,24 +37,49 @@ class Spheres:
 def combined_normals(corner_normals: np.ndarray) -> np.ndarray:
     """(n, d) unit normal of each simplex from its (n, k+1, d) vertex normals (0 where they
     cancel): their sum with the signs (the first fixed) that make it longest. The squared
-    length of a signed sum is constant + 2 sum s_i s_j n_i.n_j, so the pairwise dots and one
-    small product pick the signs (the first longest pattern, as a loop over them would)."""
+    length of a signed sum is constant + 2 sum s_i s_j n_i.n_j, so the pairwise dots pick the
+    signs; near-ties (e.g. perpendicular normals) take the loop over the sign patterns, whose
+    rounding decides which of the equally long sums wins."""
     n, width, _ = corner_normals.shape
     best = corner_normals[:, 0].copy()
     if width > 1:
+        signs = np.array([[1.0] + [-1.0 if combo >> (j - 1) & 1 else 1.0
+                                   for j in range(1, width)]
+                          for combo in range(2 ** (width - 1))])  # (patterns, width)
         pairs = [(i, j) for i in range(width) for j in range(i + 1, width)]
         dots = np.empty((n, len(pairs)))
         for p, (i, j) in enumerate(pairs):
             dots[:, p] = np.einsum("nd,nd->n", corner_normals[:, i], corner_normals[:, j])
-        signs = np.array([[1.0] + [-1.0 if combo >> (j - 1) & 1 else 1.0
-                                   for j in range(1, width)]
-                          for combo in range(2 ** (width - 1))])  # (patterns, width)
         products = np.array([[s[i] * s[j] for i, j in pairs] for s in signs]).T
-        chosen = signs[np.argmax(np.einsum("np,pc->nc", dots, products), axis=1)]
+        values = np.einsum("np,pc->nc", dots, products)
+        chosen = signs[np.argmax(values, axis=1)]
         for j in range(1, width):
             best += chosen[:, j, None] * corner_normals[:, j]
+        if len(signs) > 1:
+            top2 = np.partition(values, -2, axis=1)[:, -2:]
+            near = np.flatnonzero(top2[:, 1] - top2[:, 0] <= _NEAR_TIE)
+            if len(near):
+                best[near] = _longest_sum(corner_normals[near])
     length = np.sqrt(np.einsum("nd,nd->n", best, best))
     return best / np.where(length > 0, length, 1.0)[:, None]
+
+
+def _longest_sum(corner_normals: np.ndarray) -> np.ndarray:
+    """combined_normals before normalising, by trying every sign pattern (the first longest
+    wins): for the few near-ties."""
+    n, width, _ = corner_normals.shape
+    best, best_value = corner_normals[:, 0].copy(), np.full(n, -np.inf)
+    for combo in range(2 ** (width - 1)):  # sign patterns, not simplices
+        total = corner_normals[:, 0].copy()
+        for j in range(1, width):
+            if combo >> (j - 1) & 1:
+                total -= corner_normals[:, j]
+            else:
+                total += corner_normals[:, j]
+        value = np.einsum("nd,nd->n", total, total)
+        better = value > best_value
+        best[better], best_value[better] = total[better], value[better]
+    return best
 
 
 def _stretch(vectors: np.ndarray, normal: np.ndarray, extra: float) -> np.ndarray:
