@@ -8,6 +8,7 @@ import pytest
 from conftest import open_and_wait
 
 from app.palette import cpk_rgb
+from app.signatures_dock import MIN_PLOT_HEIGHT
 from core.molecule.cavities import cavity_cells
 from tests.molecule_reference import shared_molecule
 
@@ -22,7 +23,7 @@ def test_cpk_colours():
                             [255, 20, 147]]
 
 
-def test_molecule_window(window, qtbot):
+def test_molecule_window(window, qtbot, recwarn):
     open_and_wait(qtbot, window, PDB)
     ds, model = window.model.dataset, window.model
     assert ds.molecule is not None and ds.molecule.atoms == 556
@@ -41,3 +42,7 @@ def test_molecule_window(window, qtbot):
     model.set_index(len(model.spectrum) - 1)  # the hull: no cavities
     qtbot.wait(50)
     assert window.scene.meshes["cavities"].n_cells == 0
+    canvas = window.signatures_panel.canvas
+    canvas.draw()  # the signatures dock keeps room for its axes (no collapsed layout)
+    assert canvas.height() >= MIN_PLOT_HEIGHT
+    assert not [w for w in recwarn if "constrained_layout" in str(w.message)]
