@@ -45,6 +45,14 @@ def lookup_table(mode: ColourMode) -> pv.LookupTable:
     return table
 
 
+def legend_title(mode: ColourMode) -> str | None:
+    """How the legend names a colour-by mode ('enter alpha', 'intensity'); None for class."""
+    if mode.source is None:
+        return None
+    title = {"enter": "enter alpha"}.get(mode.key, mode.title)
+    return title[:1].lower() + title[1:] if title[1:2].islower() else title
+
+
 class Colourer:
     """Applies a ColourMode to a Scene's layers and keeps its colour bar."""
 
@@ -104,6 +112,9 @@ class Colourer:
         self.table.scalar_range = (low, high)
         for layer in self.scene.layers.values():
             layer.actor.mapper.SetScalarRange(low, high)
+        mapped = frozenset(name for name, layer in self.scene.layers.items()
+                           if layer.actor.mapper.GetScalarVisibility())
+        self.scene.overlay.set_colour_by(legend_title(self.mode), mapped)
         if self.bar_title is None and self.mode.source is not None and not self.mode.rgb:
             self._add_bar()  # once per mode and dataset; later steps only move its range
 
