@@ -34,6 +34,8 @@ def test_molecule_window(window, qtbot, recwarn):
     colours = {tuple(c) for c in np.asarray(balls.point_data["rgb"])}
     assert {(144, 144, 144), (255, 13, 13), (48, 80, 248)} <= colours  # C, O, N
     assert window.scene.layers["balls"].actor.GetVisibility()
+    mapper = window.scene.layers["balls"].actor.mapper  # drawn in those element colours
+    assert mapper.GetScalarVisibility() and mapper.GetArrayName() == "rgb"
     model.set_alpha2(0.0)
     qtbot.wait(50)
     cavities = window.scene.meshes["cavities"]
