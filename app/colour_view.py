@@ -29,6 +29,7 @@ from app.scene import Scene
 from core.components import solid_labels
 
 SCALARS = "colour_by"
+OWN_COLOURS = "rgb"  # a layer's own per-point colours (atom balls by element)
 NAN_COLOUR = "#8c96a0"
 BAR = {"vertical": True, "position_x": 0.88, "position_y": 0.2, "width": 0.07, "height": 0.55,
        "n_labels": 5, "fmt": "%.3g", "color": TEXT, "title_font_size": 14,
@@ -43,6 +44,14 @@ def lookup_table(mode: ColourMode) -> pv.LookupTable:
         table = pv.LookupTable(cmap="viridis", n_values=256, log_scale=mode.log)
     table.nan_color = NAN_COLOUR
     return table
+
+
+def legend_title(mode: ColourMode) -> str | None:
+    """How the legend names a colour-by mode ('enter alpha', 'intensity'); None for class."""
+    if mode.source is None:
+        return None
+    title = {"enter": "enter alpha"}.get(mode.key, mode.title)
+    return title[:1].lower() + title[1:] if title[1:2].islower() else title
 
 
 class Colourer:
@@ -95,6 +104,8 @@ class Colourer:
                     and self.scene.styles[name].visible:
                 values = cell_values(self.mode, self.model.dataset.ac, shape, name, labels)
                 shown.append(self._use_cells(layer, values))
+            elif OWN_COLOURS in layer.mesh.point_data:
+                self._use_own(layer)
             else:
                 layer.actor.mapper.SetScalarVisibility(False)
         data = [v for v in shown if v is not None and len(v)]
@@ -104,8 +115,26 @@ class Colourer:
         self.table.scalar_range = (low, high)
         for layer in self.scene.layers.values():
             layer.actor.mapper.SetScalarRange(low, high)
+        mapped = frozenset(name for name, layer in self.scene.layers.items()
+                           if self._mapped(layer))
+        self.scene.overlay.set_colour_by(legend_title(self.mode), mapped)
         if self.bar_title is None and self.mode.source is not None and not self.mode.rgb:
             self._add_bar()  # once per mode and dataset; later steps only move its range
+
+    @staticmethod
+    def _use_own(layer) -> None:
+        """Draw a layer in its own per-point colours (atom balls by element)."""
+        mapper = layer.actor.mapper
+        mapper.SetScalarModeToUsePointFieldData()
+        mapper.SelectColorArray(OWN_COLOURS)
+        mapper.SetColorModeToDirectScalars()
+        mapper.SetScalarVisibility(True)
+
+    @staticmethod
+    def _mapped(layer) -> bool:
+        """The layer is painted by the mode's colour map (not its class or own colours)."""
+        mapper = layer.actor.mapper
+        return bool(mapper.GetScalarVisibility()) and mapper.GetArrayName() != OWN_COLOURS
 
     def _use_cells(self, layer, values: np.ndarray | None) -> np.ndarray | None:
         """Colour layer by its per-cell values (None: class colour)."""
@@ -139,7 +168,7 @@ class Colourer:
     def _add_bar(self) -> None:
         """One colour bar for the mode, tied to a coloured layer's mapper."""
         mapper = next((layer.actor.mapper for layer in self.scene.layers.values()
-                       if layer.actor.mapper.GetScalarVisibility()), None)
+                       if self._mapped(layer)), None)
         if mapper is None:
             return
         self.bar_title = {"enter": "enters at alpha (r)",

@@ -112,13 +112,15 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
     ac = build(pointset.points, build_progress, **options)
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
-    optimal, alpha = float(ac.optimal_alpha()), float(ac.default_alpha())
+    molecule, numbers = _molecule(ac, pointset)
+    # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
+    optimal = float(ac.optimal_alpha())
+    alpha = 0.0 if molecule is not None else float(ac.default_alpha())
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
     ac.persistence()  # for the signatures dock's diagram, computed here, not in the GUI thread
-    molecule, numbers = _molecule(ac, pointset)
     progress(1.0, "done")
     return Dataset(
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=optimal,

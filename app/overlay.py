@@ -1,6 +1,9 @@
 """What makes a picture explain itself: a legend of the visible layers, the alpha (r and r²),
 a scale bar in data units and an orientation marker, drawn over the scene (VTK, 2D actors).
 
+While the layers are coloured by a value (View → Colour by) the legend says so and drops the
+class swatch of every layer the colour map paints: the colour bar is then the key.
+
 The scale bar follows the camera: it is resized before every render to a round length
 (1, 2 or 5 times a power of ten) about a sixth of the view wide at the focal point.
 """
@@ -36,6 +39,19 @@ def length_label(length: float, unit: str | None) -> str:
     return with_unit(f"{length:,.{places}f}", unit)
 
 
+def legend_entries(styles: dict[str, LayerStyle], colour_by: str | None = None,
+                   mapped: frozenset[str] = frozenset()) -> list[tuple[str, str | None]]:
+    """(label, swatch colour or None) per legend line: the visible layers in class colours, or
+    while colouring by `colour_by` a first line saying so and no swatch on the `mapped` layers."""
+    entries: list[tuple[str, str | None]] = [(f"Coloured by {colour_by}", None)] \
+        if colour_by else []
+    for name, style in styles.items():
+        if style.visible:
+            swatch = None if colour_by and name in mapped else style.colour
+            entries.append((LAYER_TITLES.get(name, name), swatch))
+    return entries
+
+
 def alpha_text(alpha: float, unit: str | None) -> str:
     """'alpha: r 0.001105 m, r² 1.222e-06 m²' (weighted alphas may be negative: r² keeps the
     sign of the squared value)."""
@@ -65,6 +81,10 @@ class Overlay:
         self.axes = plotter.add_axes(interactive=False, color=TEXT, line_width=2,
                                      viewport=(0.9, 0.0, 1.0, 0.14))
         self.legend = None
+        self.entries: list[tuple[str, str | None]] = []  # what the legend shows, line by line
+        self.styles: dict[str, LayerStyle] = {}
+        self.colour_by: str | None = None
+        self.mapped: frozenset[str] = frozenset()
         plotter.renderer.AddObserver("StartEvent", lambda *_: self.update_scale_bar())
 
     @staticmethod
@@ -99,16 +119,31 @@ class Overlay:
 
     def set_layers(self, styles: dict[str, LayerStyle]) -> None:
         """Legend of the visible layers, in their colours (only on a style change)."""
-        entries = [(LAYER_TITLES.get(name, name), style.colour)
-                   for name, style in styles.items() if style.visible]
+        self.styles = dict(styles)
+        self._update_legend()
+
+    def set_colour_by(self, title: str | None, mapped: frozenset[str] = frozenset()) -> None:
+        """Colour-by mode `title` (None: class colours) painting the `mapped` layers."""
+        self.colour_by, self.mapped = title, frozenset(mapped)
+        self._update_legend()
+
+    def _update_legend(self) -> None:
+        """Rebuild the legend actor when its lines change (not on every alpha step)."""
+        entries = legend_entries(self.styles, self.colour_by, self.mapped)
+        if entries == self.entries and (self.legend is not None) == bool(entries):
+            return
+        self.entries = entries
         if self.legend is not None:
             self.plotter.remove_legend(render=False)
             self.legend = None
         if entries:
             height = min(0.05 * len(entries), 0.4)
+            labels = [[text, colour or TEXT, "rectangle" if colour else "none"]
+                      for text, colour in entries]
             self.legend = self.plotter.add_legend(
-                labels=entries, bcolor=BACKGROUND, border=True, size=(0.22, height),
-                loc="upper left", face="rectangle", background_opacity=0.6)
+                labels=labels, bcolor=BACKGROUND, border=True,
+                size=(0.3 if self.colour_by else 0.22, height), loc="upper left",
+                background_opacity=0.6)
             self.legend.SetVisibility(self.visible)
 
     def set_visible(self, visible: bool) -> None:

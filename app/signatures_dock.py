@@ -21,6 +21,7 @@ from app.palette import CLASS_COLOURS
 from app.persistence_plot import DrawnPairs, draw_persistence, infinity_level, nearest_pair
 
 MAX_SAMPLES = 2000
+MIN_PLOT_HEIGHT = 160  # pixels: tick labels, titles and a readable plot area
 N_SUGGESTIONS = 5
 BETTI_COLOURS = ("#4c9be8", "#e4572e", "#59b86a")
 OPTIMAL_COLOUR, SUGGESTED_COLOUR = "#e0a800", "#6f42c1"
@@ -97,6 +98,7 @@ class SignaturesPanel(QWidget):
         self.model = model
         self.figure = Figure(figsize=(10, 2.4), layout="constrained")
         self.canvas = FigureCanvasQTAgg(self.figure)
+        self.canvas.setMinimumHeight(MIN_PLOT_HEIGHT)  # lower, the layout has no room for axes
         self.readout = QLabel(HINT)
         self.readout.setWordWrap(True)
         column = QVBoxLayout(self)

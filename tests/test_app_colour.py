@@ -8,7 +8,7 @@ import pytest
 from conftest import image_contrast, open_and_wait
 
 from app.colour_view import SCALARS
-from app.palette import default_styles
+from app.palette import LAYER_TITLES, default_styles
 from core.components import solid_labels
 from core.spheres import find_simplex
 
@@ -138,3 +138,42 @@ def test_menu_lists_the_modes_and_class_restores_layer_colours(opened, qtbot) ->
     assert not any(layer.actor.mapper.GetScalarVisibility()
                    for layer in win.scene.layers.values())
     assert win.plotter.scalar_bars == {} or "enters at alpha (r)" not in win.plotter.scalar_bars
+
+
+def legend_lines(win) -> list[tuple[str, bool]]:
+    """(text, has a swatch) of each line of the drawn VTK legend."""
+    legend = win.scene.overlay.legend
+    return [(legend.GetEntryString(i), legend.GetEntrySymbol(i).GetNumberOfPolys() > 0)
+            for i in range(legend.GetNumberOfEntries())]
+
+
+def test_legend_follows_the_colour_mode(opened) -> None:
+    """In class colours the legend shows each visible layer's swatch; while colouring by a value
+    it says by what and drops the swatches of the painted layers (the colour bar is the key);
+    back to class it shows the swatches again."""
+    win = opened
+    overlay = win.scene.overlay
+    styles = win.scene.styles
+    classed = [(text, True) for text, _ in overlay.entries]
+    assert legend_lines(win) == classed and not overlay.entries[0][0].startswith("Coloured")
+    assert overlay.entries == [(LAYER_TITLES[name], style.colour)
+                               for name, style in styles.items() if style.visible]
+    for key, title in (("enter", "enter alpha"),
+                       ("component", "solid component"),
+                       ("attribute:intensity", "intensity")):
+        win.colourer.set_mode(key)
+        painted = {name for name, layer in win.scene.layers.items()
+                   if layer.actor.mapper.GetScalarVisibility()}
+        assert "interior" in painted
+        expected = [(f"Coloured by {title}", None)] + [
+            (LAYER_TITLES[name], None if name in painted else style.colour)
+            for name, style in styles.items() if style.visible]
+        assert overlay.entries == expected
+        assert legend_lines(win) == [(text, colour is not None) for text, colour in expected]
+        assert any(colour is None for _, colour in expected[1:])
+    win.model.set_index(win.model.index + 1)  # a slider step keeps the mode's legend
+    assert overlay.entries[0] == ("Coloured by intensity", None)
+    win.colourer.set_mode("class")
+    assert legend_lines(win) == classed
+    assert overlay.entries == [(LAYER_TITLES[name], style.colour)
+                               for name, style in styles.items() if style.visible]

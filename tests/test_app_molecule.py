@@ -8,6 +8,7 @@ import pytest
 from conftest import open_and_wait
 
 from app.palette import cpk_rgb
+from app.signatures_dock import MIN_PLOT_HEIGHT
 from core.molecule.cavities import cavity_cells
 from tests.molecule_reference import shared_molecule
 
@@ -22,10 +23,11 @@ def test_cpk_colours():
                             [255, 20, 147]]
 
 
-def test_molecule_window(window, qtbot):
+def test_molecule_window(window, qtbot, recwarn):
     open_and_wait(qtbot, window, PDB)
     ds, model = window.model.dataset, window.model
     assert ds.molecule is not None and ds.molecule.atoms == 556
+    assert model.alpha2 == 0.0  # opens on the dual of the union of balls, what it measures
     assert ds.molecule.surface_area == pytest.approx(4668.88, abs=0.01)
     text = window.info_panel.data.text()
     assert "4,668.88 Å²" in text and "2 cavities" in text
@@ -33,6 +35,8 @@ def test_molecule_window(window, qtbot):
     colours = {tuple(c) for c in np.asarray(balls.point_data["rgb"])}
     assert {(144, 144, 144), (255, 13, 13), (48, 80, 248)} <= colours  # C, O, N
     assert window.scene.layers["balls"].actor.GetVisibility()
+    mapper = window.scene.layers["balls"].actor.mapper  # drawn in those element colours
+    assert mapper.GetScalarVisibility() and mapper.GetArrayName() == "rgb"
     model.set_alpha2(0.0)
     qtbot.wait(50)
     cavities = window.scene.meshes["cavities"]
@@ -41,3 +45,7 @@ def test_molecule_window(window, qtbot):
     model.set_index(len(model.spectrum) - 1)  # the hull: no cavities
     qtbot.wait(50)
     assert window.scene.meshes["cavities"].n_cells == 0
+    canvas = window.signatures_panel.canvas
+    canvas.draw()  # the signatures dock keeps room for its axes (no collapsed layout)
+    assert canvas.height() >= MIN_PLOT_HEIGHT
+    assert not [w for w in recwarn if "constrained_layout" in str(w.message)]
