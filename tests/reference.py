@@ -71,6 +71,12 @@ def gudhi_table(points: np.ndarray, precision: str = "safe") -> dict:
 
     pts = np.asarray(points, dtype=np.float64)
     st = gudhi.AlphaComplex(points=pts, precision=precision).create_simplex_tree()
+    return simplex_tree_table(st, len(pts))
+
+
+def simplex_tree_table(st, n_points: int) -> dict:
+    """A gudhi simplex tree as {k: (simplices, enter_sq, regular_sq, interior_sq)} plus
+    "dim" and "st"; simplices canonical, regular/interior derived from the complex."""
     dim = st.dimension()
     rows = {k: [] for k in range(dim + 1)}
     vals = {k: [] for k in range(dim + 1)}
@@ -82,7 +88,7 @@ def gudhi_table(points: np.ndarray, precision: str = "safe") -> dict:
         arr, order = canonical(np.array(rows[k], dtype=np.int64).reshape(-1, k + 1))
         simplices[k] = arr
         enter[k] = np.array(vals[k], dtype=np.float64)[order]
-    regular, interior = derived_intervals(simplices, enter, dim, len(pts))
+    regular, interior = derived_intervals(simplices, enter, dim, n_points)
     return {"dim": dim, "st": st, **{k: (simplices[k], enter[k], regular[k], interior[k])
                                       for k in range(dim + 1)}}
 

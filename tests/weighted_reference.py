@@ -7,7 +7,7 @@ Nothing here reads the implementation's tables; the tests compare the two sides.
 from __future__ import annotations
 
 import numpy as np
-from reference import canonical, derived_intervals
+from reference import canonical, simplex_tree_table
 
 
 def gudhi_weighted_table(points: np.ndarray, weights: np.ndarray,
@@ -19,20 +19,8 @@ def gudhi_weighted_table(points: np.ndarray, weights: np.ndarray,
     pts = np.asarray(points, dtype=np.float64)
     st = gudhi.AlphaComplex(points=pts, weights=[float(w) for w in weights],
                             precision=precision).create_simplex_tree()
-    dim = st.dimension()
-    rows = {k: [] for k in range(dim + 1)}
-    vals = {k: [] for k in range(dim + 1)}
-    for simplex, filt in st.get_simplices():
-        rows[len(simplex) - 1].append(simplex)
-        vals[len(simplex) - 1].append(filt)
-    simplices, enter = {}, {}
-    for k in range(dim + 1):
-        arr, order = canonical(np.array(rows[k], dtype=np.int64).reshape(-1, k + 1))
-        simplices[k] = arr
-        enter[k] = np.array(vals[k], dtype=np.float64)[order]
-    regular, interior = derived_intervals(simplices, enter, dim, len(pts))
-    return {"dim": dim, "st": st, "vertices": simplices[0][:, 0],
-            **{k: (simplices[k], enter[k], regular[k], interior[k]) for k in range(dim + 1)}}
+    table = simplex_tree_table(st, len(pts))
+    return {**table, "vertices": table[0][0][:, 0]}
 
 
 def gudhi_betti(st, dim: int, alpha2: np.ndarray) -> np.ndarray:
