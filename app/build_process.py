@@ -1,7 +1,8 @@
 """Build big tables in a child process: Qhull cannot be interrupted, a process can be killed.
 
-The child builds the table and its signatures, writes them to the cache (or to a temporary
-file when the cache cannot be written) and says where; the caller loads that file, which takes
+ChildRunner is the window's runner for core.obtain. The child builds the table (and its
+signatures when asked), writes it to the cache entry (or to a temporary file when the cache
+cannot be written or is not used) and says where; the caller loads that file, which takes
 a few percent of the build. Cancel kills the child at once, so a newer open or closing the
 window never waits for a Delaunay triangulation to finish. Small sets build in the caller's
 thread: under IN_THREAD_BELOW points a build takes a few seconds at most, and a process would
@@ -13,63 +14,60 @@ from __future__ import annotations
 import multiprocessing
 import tempfile
 import threading
-from collections.abc import Callable
 from multiprocessing.connection import Connection
 from pathlib import Path
 
 import numpy as np
 
 from core import errors
-from core.cache import build_cached, load_cached, store
 from core.complex import AlphaComplex
 from core.modes import Mode, make_mode
+from core.obtain import BuildRequest, run_here
+from core.table import Progress
 
-Progress = Callable[[float, str], None]
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
 POLL_SECONDS = 0.1
-TABLE_SHARE, SAVE_START = 0.65, 0.95  # of the child's progress; the topology pass between
 
 
-def build(points: np.ndarray, progress: Progress, cancel: threading.Event,
-          use_cache: bool = True, weights: np.ndarray | None = None, *,
-          mode: Mode | None = None, normals: np.ndarray | None = None) -> AlphaComplex:
-    """The complex of (n, d) points (weighted: with (n,) squared radii `weights`; in the
-    alpha `mode`, with `normals` if it takes given ones) with signatures computed, from the
-    cache when possible.
+class ChildRunner:
+    """A core.obtain runner that builds in a child process, killed as soon as `cancel` is set.
 
-    Raises core.errors.Cancelled soon after `cancel` is set, and the errors of the build
-    (InputError for point sets that make no complex) as they are.
+    Sets under IN_THREAD_BELOW points are built in the calling thread instead.
     """
-    points = np.asarray(points, dtype=np.float64)
-    mode = mode or Mode()
-    if len(points) < IN_THREAD_BELOW:
-        return build_cached(points, use_cache=use_cache, progress=progress, signatures=True,
-                            weights=weights, mode=mode, normals=normals)
-    if use_cache and (ac := load_cached(points, mode, normals, weights)) is not None:
-        progress(1.0, "loaded from cache")
-        if "_signatures" not in ac.__dict__:  # an entry the command line left without them
-            ac.signatures()
-            store(ac, points, normals, weights)
-        return ac
-    with tempfile.TemporaryDirectory(prefix="alphascoop-build-") as folder:
-        source, target = Path(folder) / "points.npy", Path(folder) / "table.npz"
-        np.save(source, points)
-        if weights is not None:
-            np.save(Path(folder) / "weights.npy", np.asarray(weights, dtype=np.float64))
-        if mode.normals == "given" and normals is not None:
-            np.save(Path(folder) / "normals.npy", np.asarray(normals, dtype=np.float64))
-        written = _run_child(source, target, use_cache, progress, cancel, mode)
-        progress(1.0, "loading the table")
-        return AlphaComplex.load(written)
+
+    def __init__(self, cancel: threading.Event) -> None:
+        """cancel: set it (from any thread) to stop the build; Cancelled is then raised."""
+        self.cancel = cancel
+
+    def __call__(self, request: BuildRequest, progress: Progress | None = None) -> AlphaComplex:
+        """The complex of request, saved to request.save_to when that can be written.
+
+        Raises core.errors.Cancelled soon after `cancel` is set, and the errors of the build
+        (InputError for point sets that make no complex) as they are.
+        """
+        report = progress or (lambda _fraction, _stage: None)
+        if len(request.points) < IN_THREAD_BELOW:
+            return run_here(request, progress)
+        with tempfile.TemporaryDirectory(prefix="alphascoop-build-") as folder:
+            source, target = Path(folder) / "points.npy", Path(folder) / "table.npz"
+            np.save(source, request.points)
+            if request.weights is not None:
+                np.save(Path(folder) / "weights.npy", request.weights)
+            if request.mode.normals == "given" and request.normals is not None:
+                np.save(Path(folder) / "normals.npy", np.asarray(request.normals, np.float64))
+            job = {"mode": request.mode.to_dict(), "signatures": request.signatures,
+                   "save_to": None if request.save_to is None else str(request.save_to)}
+            written = _run_child(source, target, job, report, self.cancel)
+            report(1.0, "loading the table")
+            return AlphaComplex.load(written)
 
 
-def _run_child(source: Path, target: Path, use_cache: bool, progress: Progress,
-               cancel: threading.Event, mode: Mode) -> Path:
+def _run_child(source: Path, target: Path, job: dict, progress: Progress,
+               cancel: threading.Event) -> Path:
     """Start the build process and follow it; the path it wrote, or its error raised here."""
     context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
     receiver, sender = context.Pipe(duplex=False)
-    child = context.Process(target=child_main, args=(str(source), str(target), use_cache, sender,
-                                                     mode.to_dict()),
+    child = context.Process(target=child_main, args=(str(source), str(target), job, sender),
                             name="alphascoop-build", daemon=True)
     child.start()
     sender.close()
@@ -113,28 +111,21 @@ def _follow(child, receiver: Connection, progress: Progress, cancel: threading.E
                 "out of memory?)")
 
 
-def child_main(source: str, target: str, use_cache: bool, sender: Connection,
-               mode: dict | None = None) -> None:
-    """Body of the build process: build, compute signatures, save, report where (or why not).
+def child_main(source: str, target: str, job: dict, sender: Connection) -> None:
+    """Body of the build process: build (and the signatures if asked), save to the cache entry
+    or else to `target`, report where (or why not).
 
-    `mode` is Mode.to_dict() (classic when None); given normals are in normals.npy beside
-    the points."""
+    `job` holds "mode" (Mode.to_dict()), "signatures" (bool) and "save_to" (the cache entry
+    or None); weights.npy and normals.npy beside the points hold those when given."""
     try:
         points = np.load(source, allow_pickle=False)
-        weights_file = Path(source).with_name("weights.npy")
-        weights = np.load(weights_file, allow_pickle=False) if weights_file.exists() else None
-        mode_ = Mode() if mode is None else make_mode(
-            mode["density"], mode["combine"], mode["anisotropy"], mode["normals"] == "given")
-        normals_path = Path(source).with_name("normals.npy")
-        normals = (np.load(normals_path, allow_pickle=False)
-                   if mode_.normals == "given" and normals_path.is_file() else None)
-        ac = AlphaComplex.from_points(
-            points, lambda f, s: sender.send(("progress", TABLE_SHARE * f, s)), weights=weights,
-            **mode_.build_kwargs(normals))
-        sender.send(("progress", TABLE_SHARE, "topology"))
-        ac.signatures()
-        sender.send(("progress", SAVE_START, "saving the table"))
-        written = store(ac, points, normals, weights) if use_cache else None
+        weights = _optional(Path(source).with_name("weights.npy"))
+        mode = _mode(job["mode"])
+        normals = (_optional(Path(source).with_name("normals.npy"))
+                   if mode.normals == "given" else None)
+        request = BuildRequest(points, weights, mode, normals, bool(job["signatures"]),
+                               None if job["save_to"] is None else Path(job["save_to"]))
+        ac, written = request.run(lambda f, s: sender.send(("progress", f, s)))
         if written is None:
             ac.save(target)
             written = Path(target)
@@ -148,3 +139,16 @@ def child_main(source: str, target: str, use_cache: bool, sender: Connection,
                                                  f"({type(error).__name__}: {error})"))
     finally:
         sender.close()
+
+
+def _optional(path: Path) -> np.ndarray | None:
+    """The array saved at path, None when there is none."""
+    return np.load(path, allow_pickle=False) if path.is_file() else None
+
+
+def _mode(saved: dict | None) -> Mode:
+    """The Mode of Mode.to_dict() (classic when None)."""
+    if saved is None:
+        return Mode()
+    return make_mode(saved["density"], saved["combine"], saved["anisotropy"],
+                     saved["normals"] == "given")

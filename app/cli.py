@@ -24,6 +24,8 @@ from core.errors import AlphaScoopError, InputError
 
 CLASS_NAMES = ("exterior", "singular", "regular", "interior")
 SIMPLEX_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
+SOURCE_TEXT = {"built": " (built in {seconds:.2f} s)", "cache": " (from cache)",
+               "rebuilt": " (rebuilt in {seconds:.2f} s: the cached table was damaged)"}
 
 
 class UsageError(Exception):
@@ -117,25 +119,24 @@ def _progress():
 
 
 def load(args) -> tuple:
-    """(PointSet, AlphaComplex, seconds, from cache?) for the file and options."""
-    from core.cache import build_cached, is_cached
+    """(PointSet, Obtained (the complex and its source), seconds) for the file and options."""
     from core.modes import file_normals
+    from core.obtain import obtain
 
     mode = _mode(args)
     ps = _read(args)
     normals = file_normals(mode, ps.attributes, args.file)
-    cached = not args.no_cache and is_cached(ps, mode, normals)
     update, close = _progress()
     start = time.perf_counter()
     try:
         # Where the optimal alpha is needed, the topology is cached with the table too.
         needs_topology = args.command == "info" or chosen_alpha(args) is None
-        ac = build_cached(ps, use_cache=not args.no_cache, progress=update,
+        obtained = obtain(ps.points, weights=ps.weights, mode=mode, normals=normals,
                           signatures=needs_topology and not getattr(args, "table", False),
-                          mode=mode, normals=normals)
+                          use_cache=not args.no_cache, progress=update)
     finally:
         close()
-    return ps, ac, time.perf_counter() - start, cached
+    return ps, obtained, time.perf_counter() - start
 
 
 def _mode(args):
@@ -210,11 +211,12 @@ def chosen_alpha(args) -> dict | None:
     return None
 
 
-def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
-    """Everything `info` reports, as a JSON-ready dict (`at`: chosen_alpha's result; None:
-    the opening alpha)."""
+def summary(ps, obtained, seconds: float, at: dict | None) -> dict:
+    """Everything `info` reports, as a JSON-ready dict (`obtained`: core.obtain's result;
+    `at`: chosen_alpha's result, None: the opening alpha)."""
     from core.complex import at_value
 
+    ac = obtained.complex
     optimal, opening = float(ac.optimal_alpha()), float(ac.default_alpha())
     shape = ac.shape(**(at or at_value(opening)))
     alpha = shape.alpha
@@ -226,9 +228,10 @@ def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
     first = 0 if weighted or len(spectrum) < 2 else 1  # classic: 0 (bare points) left out
     return {
         "load": ps.report.to_dict(),
+        "source": obtained.source,
         "mode": ac.mode.to_dict(),
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
-                    "from_cache": cached,
+                    "from_cache": obtained.from_cache,
                     **{SIMPLEX_NAMES[k]: len(ac.simplices(k)) for k in range(ac.dim + 1)}},
         "spectrum": {"count": len(spectrum), "min": float(spectrum[first]),
                      "max": float(spectrum[-1]), "min2": _sq(spectrum[first]),
@@ -279,7 +282,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"mode        {info['mode_text']}",
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
-        + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
+        + SOURCE_TEXT[info["source"]].format(seconds=cx["seconds"]),
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
     ]
@@ -312,8 +315,9 @@ def _text(info: dict, lines: list[str]) -> str:
 
 def cmd_info(args) -> int:
     """Print the load report and the shape summary (and a molecule's measures)."""
-    ps, ac, seconds, cached = load(args)
-    info = summary(ps, ac, seconds, cached, chosen_alpha(args))
+    ps, obtained, seconds = load(args)
+    ac = obtained.complex
+    info = summary(ps, obtained, seconds, chosen_alpha(args))
     if is_molecule(args):
         info["molecule"] = molecule_summary(ac, args.probe)
     text = None if args.json else _text({**info, "mode_text": ac.mode.describe()},
@@ -340,7 +344,8 @@ def cmd_export(args) -> int:
             refuse_source(f"{args.output}.json", args.file)
     except InputError as exc:
         raise UsageError(str(exc)) from None
-    ps, ac = load(args)[:2]
+    ps, obtained, _ = load(args)
+    ac = obtained.complex
     if args.table:
         print(write_table(ac, args.output, source=args.file).line())
         return 0

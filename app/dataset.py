@@ -11,26 +11,18 @@ import numpy as np
 
 from app.camera import Z_UP, ViewFrame, frame_for
 from core import AlphaComplex
-from core.cache import build_cached, is_cached
 from core.complex import at_value
 from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
 from core.modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
+from core.obtain import Runner, Source, obtain, run_here
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
-Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=, mode=, normals=])
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
-
-
-def build_here(points: np.ndarray, progress: Progress, weights: np.ndarray | None = None,
-               mode: Mode | None = None, normals: np.ndarray | None = None) -> AlphaComplex:
-    """The complex and its signatures, built in this thread (cached); weighted when
-    `weights` (squared radii) are given, in the alpha `mode` (with `normals` if it takes
-    given ones)."""
-    return build_cached(points, progress=progress, signatures=True, weights=weights,
-                        mode=mode, normals=normals)
+SOURCE_WORDS = {"built": "built", "cache": "loaded from cache",
+                "rebuilt": "rebuilt (its cached table was damaged)"}
 
 
 @dataclass(frozen=True)
@@ -48,7 +40,7 @@ class Dataset:
     load_seconds: float
     build_seconds: float
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
-    from_cache: bool = False  # the table was loaded from the cache, not built
+    source: Source = "built"  # where the table came from (core.obtain): built, cache, rebuilt
     attributes: dict = field(default_factory=dict)  # name -> per-point values, rows of ac.points
     frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
     #: Molecules: the measures of the atoms' union at alpha² = 0, and (m,) int16 atomic
@@ -62,10 +54,15 @@ class Dataset:
         None when unknown."""
         return "m" if self.report is not None and self.report.georef is not None else None
 
+    @property
+    def from_cache(self) -> bool:
+        """True when the table was read from the cache, not built."""
+        return self.source == "cache"
+
     def build_line(self) -> str:
-        """How the table came: 'built in 12.3 s' or 'loaded from cache in 0.4 s'."""
-        how = "loaded from cache" if self.from_cache else "built"
-        return f"{how} in {self.build_seconds:.2f} s"
+        """How the table came: 'built in 12.3 s', 'loaded from cache in 0.4 s' or 'rebuilt
+        (its cached table was damaged) in 12.3 s'."""
+        return f"{SOURCE_WORDS[self.source]} in {self.build_seconds:.2f} s"
 
 
 @dataclass(frozen=True)
@@ -83,15 +80,13 @@ class ImportOptions:
                 "subsample_method": self.subsample_method}
 
 
-def load_dataset(path: str | Path, progress: Progress, build: Build = build_here,
+def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here,
                  mode: Mode | None = None, options: ImportOptions | None = None) -> Dataset:
     """Read (with `options`: columns, subsampling) and build path in the alpha `mode`
     (default classic), reporting progress(fraction, stage); Cancelled stops it.
 
-    `build(points, progress)` makes the complex with its signatures (the window passes
-    app.build_process.build, which can be cancelled mid-triangulation); weighted files
-    (core.io: weight or radius columns) call it with the keyword `weights` too, a mode with
-    `mode` and its given `normals`.
+    The complex and its signatures come from core.obtain (the cache, or a build by `runner`:
+    the window passes app.build_process.ChildRunner, which Cancel kills mid-triangulation).
     """
     mode = mode or Mode()
     path = Path(path)
@@ -104,12 +99,9 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
     normals = file_normals(mode, pointset.attributes, path.name)
-    weights = pointset.weights
-    cached = is_cached(pointset, mode, normals)
-    options = {} if weights is None else {"weights": weights}
-    if mode.active:
-        options.update(mode=mode, normals=normals)
-    ac = build(pointset.points, build_progress, **options)
+    obtained = obtain(pointset.points, weights=pointset.weights, mode=mode, normals=normals,
+                      signatures=True, runner=runner, progress=build_progress)
+    ac = obtained.complex
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     molecule, numbers = _molecule(ac, pointset)
@@ -127,7 +119,7 @@ def load_dataset(path: str | Path, progress: Progress, build: Build = build_here
         default_alpha=alpha,
         signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
-        from_cache=cached, frame=frame_for(path, pointset.report), molecule=molecule,
+        source=obtained.source, frame=frame_for(path, pointset.report), molecule=molecule,
         atomic_numbers=numbers,
         attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )

@@ -73,11 +73,8 @@ class Loader(QObject):
             cancel, lambda fraction, stage: self.progress.emit(request, fraction, stage),
             "cancelled by the user")
         try:
-            dataset = load_dataset(
-                path, progress,
-                lambda points, report, **kwargs: build_process.build(points, report, cancel,
-                                                                     **kwargs),
-                mode=mode, options=options)
+            dataset = load_dataset(path, progress, build_process.ChildRunner(cancel),
+                                   mode=mode, options=options)
         except Cancelled:
             self.cancelled.emit(request)
         except AlphaScoopError as error:

@@ -1,8 +1,10 @@
 """Re-open instantly: interval tables cached by the content hash of the points.
 
 Entries live in platformdirs' user cache dir ("alphascoop/tables", or $ALPHASCOOP_CACHE_DIR)
-as the .npz files `AlphaComplex.save` writes. A corrupt or unreadable entry is deleted and
-rebuilt, never an error; a cache that cannot be written is simply skipped. Temporary files of
+as the .npz files `AlphaComplex.save` writes. core.obtain is the one path that reads and fills
+it; this module names, reads, writes and prunes entries. A corrupt or unreadable entry is
+deleted (and rebuilt by core.obtain), never an error; a cache that cannot be written is
+simply skipped. Temporary files of
 stores that were killed (a cancelled build process) are removed on every lookup and prune;
 only finished entries (named by their key) ever count as results.
 """
@@ -13,7 +15,6 @@ import contextlib
 import hashlib
 import os
 import zipfile
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -25,7 +26,6 @@ from core.modes import Mode
 
 CACHE_VERSION = 1  # bump when the saved table layout or the build rules change
 MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this
-Progress = Callable[[float, str], None]
 
 
 def cache_dir() -> Path:
@@ -58,10 +58,12 @@ def points_key(points: np.ndarray, mode: Mode | None = None,
 
 
 def entry_path(points: np.ndarray, mode: Mode | None = None,
-               normals: np.ndarray | None = None, weights: np.ndarray | None = None) -> Path:
+               normals: np.ndarray | None = None, weights: np.ndarray | None = None, *,
+               folder: str | os.PathLike | None = None) -> Path:
     """Where the table of these (n, d) points (in `mode`, with `weights`) is (or would be)
-    cached."""
-    return cache_dir() / f"{points_key(points, mode, normals, weights)}.npz"
+    cached, in `folder` (default cache_dir())."""
+    return (Path(folder) if folder is not None else cache_dir()) / (
+        f"{points_key(points, mode, normals, weights)}.npz")
 
 
 def pointset_weights(pointset) -> np.ndarray | None:
@@ -72,18 +74,19 @@ def pointset_weights(pointset) -> np.ndarray | None:
 
 def is_cached(pointset, mode: Mode | None = None, normals: np.ndarray | None = None) -> bool:
     """True when a cache entry exists for these points (it may still prove unreadable)."""
-    try:
-        return entry_path(np.asarray(getattr(pointset, "points", pointset)), mode,
-                          normals, pointset_weights(pointset)).is_file()
-    except OSError:  # a cache folder we may not read is no cache
-        return False
+    return entry_exists(entry_path(np.asarray(getattr(pointset, "points", pointset)), mode,
+                               normals, pointset_weights(pointset)))
 
 
-def _load(path: Path, n_points: int, mode: Mode) -> AlphaComplex | None:
-    """The cached complex, or None (and the entry removed) if it is missing or unusable."""
+def read_entry(path: Path, n_points: int, mode: Mode) -> tuple[AlphaComplex | None, bool]:
+    """(the cached complex, False), or (None, damaged?) when it is missing (False) or
+    unusable (True: the entry is then removed). Stale temporaries of killed stores are
+    cleaned from its folder first; a good entry is marked as recently used."""
+    with contextlib.suppress(OSError):
+        remove_stale_temporaries(path.parent)
+    if not entry_exists(path):
+        return None, False
     try:
-        if not path.is_file():
-            return None
         if not zipfile.is_zipfile(path):
             raise ValueError("not an .npz archive")
         ac = AlphaComplex.load(path)
@@ -91,18 +94,18 @@ def _load(path: Path, n_points: int, mode: Mode) -> AlphaComplex | None:
             raise ValueError("cached table was built from other points")
         if ac.mode != mode:
             raise ValueError("cached table was built in another mode")
-        return ac
     except (AlphaScoopError, OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
         with contextlib.suppress(OSError):
             path.unlink()
-        return None
+        return None, True
+    with contextlib.suppress(OSError):
+        os.utime(path)  # mark as recently used
+    return ac, False
 
 
-def store(ac: AlphaComplex, points: np.ndarray, normals: np.ndarray | None = None,
-          weights: np.ndarray | None = None) -> Path | None:
-    """Save ac as the entry of these points (and input weights) in ac's mode (with its
-    signatures, if computed); None when the cache folder cannot be written."""
-    path = entry_path(np.asarray(points, dtype=np.float64), ac.mode, normals, weights)
+def save_entry(ac: AlphaComplex, path: Path) -> Path | None:
+    """Save ac (with its signatures, if computed) as the cache entry `path` and prune the
+    folder; None when the cache folder cannot be written."""
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         ac.save(path)
@@ -112,22 +115,21 @@ def store(ac: AlphaComplex, points: np.ndarray, normals: np.ndarray | None = Non
     return path
 
 
+def store(ac: AlphaComplex, points: np.ndarray, normals: np.ndarray | None = None,
+          weights: np.ndarray | None = None) -> Path | None:
+    """Save ac as the entry of these points (and input weights) in ac's mode (with its
+    signatures, if computed); None when the cache folder cannot be written."""
+    return save_entry(ac, entry_path(np.asarray(points, dtype=np.float64), ac.mode, normals,
+                                     weights))
+
+
 def load_cached(points: np.ndarray, mode: Mode | None = None,
                 normals: np.ndarray | None = None,
                 weights: np.ndarray | None = None) -> AlphaComplex | None:
     """The cached complex of these (n, d) points in `mode` (with input `weights`), or None (a
-    bad entry is removed).
-
-    Stale temporaries of killed stores are cleaned from the cache folder first.
-    """
+    bad entry is removed)."""
     points = np.asarray(points, dtype=np.float64)
-    path = entry_path(points, mode, normals, weights)
-    remove_stale_temporaries(path.parent)
-    ac = _load(path, len(points), mode or Mode())
-    if ac is not None:
-        with contextlib.suppress(OSError):
-            os.utime(path)  # mark as recently used
-    return ac
+    return read_entry(entry_path(points, mode, normals, weights), len(points), mode or Mode())[0]
 
 
 def prune(folder: Path, max_bytes: int | None = None, *, keep: Path | None = None) -> None:
@@ -150,46 +152,17 @@ def prune(folder: Path, max_bytes: int | None = None, *, keep: Path | None = Non
                 entry.unlink()
 
 
+def entry_exists(path: Path) -> bool:
+    """The entry `path` is a file; False when its folder may not be read (no cache)."""
+    try:
+        return path.is_file()
+    except OSError:
+        return False
+
+
 def _stat(path: Path) -> os.stat_result | None:
     """The file's stat, or None if it vanished meanwhile (another process pruning)."""
     try:
         return path.stat()
     except OSError:
         return None
-
-
-def build_cached(pointset, *, use_cache: bool = True, progress: Progress | None = None,
-                 signatures: bool = False, mode: Mode | None = None,
-                 normals: np.ndarray | None = None,
-                 weights: np.ndarray | None = None) -> AlphaComplex:
-    """AlphaComplex of pointset.points (or an (n, d) array), from the cache when possible.
-
-    With `signatures`, they are computed too and cached with the table, so that re-opening
-    needs no topology pass either. `mode` (default classic) and, for its "given" normals,
-    `normals` ((n, d) like the points) choose the alpha mode (core/modes.py). `weights` (or
-    the point set's own `weights`) build a weighted complex.
-    """
-    points = np.asarray(getattr(pointset, "points", pointset), dtype=np.float64)
-    mode = mode or Mode()
-    weights = pointset_weights(pointset) if weights is None else weights
-    build = mode.build_kwargs(normals) | ({} if weights is None else {"weights": weights})
-    if not use_cache:
-        ac = AlphaComplex.from_points(points, progress=progress, **build)
-        if signatures:
-            ac.signatures()
-        return ac
-    ac = load_cached(points, mode, normals, weights)
-    if ac is not None:
-        if progress is not None:
-            progress(1.0, "loaded from cache")
-        if signatures and "_signatures" not in ac.__dict__:
-            ac.signatures()
-            store(ac, points, normals, weights)
-        return ac
-    ac = AlphaComplex.from_points(points, progress=progress, **build)
-    if signatures:
-        if progress is not None:
-            progress(1.0, "topology")
-        ac.signatures()
-    store(ac, points, normals, weights)
-    return ac

@@ -13,6 +13,7 @@ from app import build_process
 from core import AlphaComplex
 from core.cache import entry_path
 from core.errors import AlphaScoopError, Cancelled, InputError
+from core.obtain import has_signatures, obtain
 
 
 @pytest.fixture
@@ -26,34 +27,42 @@ def never(*_args) -> None:
     """A progress callback that ignores its reports."""
 
 
+def child_obtain(points, progress=never, cancel=None, use_cache=True):
+    """The window's path: obtain with signatures, built by the child-process runner."""
+    return obtain(points, signatures=True, use_cache=use_cache, progress=progress,
+                  runner=build_process.ChildRunner(cancel or threading.Event()))
+
+
 def test_child_build_equals_the_build_here_and_fills_the_cache(in_process):
     points = np.random.default_rng(0).random((3000, 3))
     stages: list[str] = []
-    ac = build_process.build(points, lambda f, s: stages.append(s), threading.Event())
+    obtained = child_obtain(points, lambda f, s: stages.append(s))
+    assert obtained.source == "built" and obtained.entry == entry_path(points)
+    ac = obtained.complex
     here = AlphaComplex.from_points(points)
     for k in range(4):
         np.testing.assert_array_equal(ac.simplices(k), here.simplices(k))
         np.testing.assert_array_equal(ac.intervals(k), here.intervals(k))
-    assert "_signatures" in ac.__dict__  # came with the table: no topology pass here
+    assert has_signatures(ac)  # came with the table: no topology pass here
     np.testing.assert_array_equal(ac.signatures().betti, here.signatures().betti)
     assert ac.optimal_alpha() == here.optimal_alpha()
     assert "Delaunay triangulation" in stages and "topology" in stages
     assert entry_path(points).is_file()
     again: list[str] = []
-    build_process.build(points, lambda f, s: again.append(s), threading.Event())
+    assert child_obtain(points, lambda f, s: again.append(s)).source == "cache"
     assert again == ["loaded from cache"]
 
 
 def test_without_a_cache_the_child_hands_over_a_temporary_file(in_process):
     points = np.random.default_rng(1).random((500, 2))
-    ac = build_process.build(points, never, threading.Event(), use_cache=False)
+    ac = child_obtain(points, use_cache=False).complex
     assert len(ac.points) == 500 and not entry_path(points).exists()
 
 
 def test_bad_points_raise_the_childs_input_error(in_process):
     collinear = np.column_stack([np.arange(100.0), 2 * np.arange(100.0), np.zeros(100)])
     with pytest.raises(InputError, match=r"collinear|line"):
-        build_process.build(collinear, never, threading.Event())
+        child_obtain(collinear)
 
 
 def test_cancel_during_the_triangulation_kills_the_child_at_once(in_process):
@@ -68,7 +77,7 @@ def test_cancel_during_the_triangulation_kills_the_child_at_once(in_process):
 
     def run() -> None:
         try:
-            build_process.build(points, progress, cancel)
+            child_obtain(points, progress, cancel)
         except BaseException as error:  # recorded for the assertion below
             outcome.append(error)
 
@@ -100,10 +109,11 @@ def test_a_child_that_dies_is_a_readable_error():
 
 
 def test_a_cached_table_without_signatures_is_upgraded_in_place(in_process):
-    from core.cache import build_cached, load_cached
+    from core.cache import load_cached
 
     points = np.random.default_rng(5).random((800, 3))
-    build_cached(points)  # as `alphascoop export --alpha R` leaves it: no signatures
-    assert "_signatures" not in load_cached(points).__dict__
-    ac = build_process.build(points, never, threading.Event())
-    assert "_signatures" in ac.__dict__ and "_signatures" in load_cached(points).__dict__
+    obtain(points)  # as `alphascoop export --alpha R` leaves it: no signatures
+    assert not has_signatures(load_cached(points))
+    obtained = child_obtain(points)
+    assert obtained.source == "cache" and has_signatures(obtained.complex)
+    assert has_signatures(load_cached(points))

@@ -334,6 +334,14 @@ def test_reopening_loads_the_cached_table_and_says_so(window, qtbot, points_file
     assert second.from_cache and "loaded from cache in" in window.status.text()
     np.testing.assert_array_equal(second.signatures.betti, first.signatures.betti)
     assert second.optimal_alpha == first.optimal_alpha
+    monkeypatch.undo()
+    from core.cache import entry_path
+
+    entry_path(np.load(path)).write_bytes(b"damaged")
+    open_and_wait(qtbot, window, path)
+    assert window.model.dataset.source == "rebuilt"
+    assert "rebuilt (its cached table was damaged) in" in window.status.text()
+    assert "rebuilt (its cached table was damaged)" in window.info_panel.data.text()
 
 
 def test_signature_cursor_follows_alpha(opened, qtbot) -> None:

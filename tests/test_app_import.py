@@ -154,9 +154,10 @@ def test_window_command_line_reads_with_columns_and_subsample(qtbot, table_csv, 
 
 
 def test_load_dataset_honours_the_options(table_csv):
-    from app.dataset import build_here, load_dataset
+    from app.dataset import load_dataset
+    from core.obtain import run_here
 
-    ds = load_dataset(table_csv, lambda f, s: None, build_here,
+    ds = load_dataset(table_csv, lambda f, s: None, run_here,
                       options=ImportOptions(columns="lon,lat,alt", subsample=120))
     assert ds.ac.dim == 3 and ds.report.n_points <= 120
 

@@ -139,14 +139,15 @@ def test_child_process_builds_in_the_mode(tmp_path, monkeypatch):
 
     from app import build_process
     from core import AlphaComplex
+    from core.obtain import obtain
 
     monkeypatch.setattr(build_process, "IN_THREAD_BELOW", 10)  # take the child-process path
     with np.load(_sheets_file(tmp_path, True)) as data:
         points, normals = data["points"], data["normals"] * -1.0
     mode = make_mode(4, "max", 0.6, True)
     for use_cache in (False, True, True):  # the last one loads the cached entry
-        ac = build_process.build(points, lambda f, s: None, threading.Event(), use_cache,
-                                 mode=mode, normals=normals)
+        ac = obtain(points, mode=mode, normals=normals, signatures=True, use_cache=use_cache,
+                    runner=build_process.ChildRunner(threading.Event())).complex
         assert ac.mode == mode
         direct = AlphaComplex.from_points(points, **mode.build_kwargs(normals))
         assert np.array_equal(ac.intervals(3), direct.intervals(3))

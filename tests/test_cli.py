@@ -52,6 +52,22 @@ def test_info_json_airports_and_cache(capsys):
     assert again["area"] < info["area"]
 
 
+def test_info_reports_the_source_it_saw(capsys, cache, tmp_path):
+    points = tmp_path / "p.xyz"
+    np.savetxt(points, np.random.default_rng(3).random((400, 3)))
+    sources = []
+    for _ in range(2):
+        code, out, _ = run(capsys, "info", points, "--json")
+        sources.append(json.loads(out)["source"])
+    for entry in cache.glob("*.npz"):
+        entry.write_bytes(b"damaged")
+    code, out, _ = run(capsys, "info", points)
+    assert sources == ["built", "cache"] and code == 0
+    assert "(rebuilt in" in out and "the cached table was damaged" in out
+    code, out, _ = run(capsys, "info", points, "--json", "--no-cache")
+    assert json.loads(out)["source"] == "built"
+
+
 @needs_data
 def test_info_duplicates_and_columns(capsys):
     code, out, _ = run(capsys, "info", DATA / "plane_flat.laz", "--json", "--alpha", "0.02")

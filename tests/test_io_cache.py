@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from core import AlphaComplex
-from core.cache import build_cached, entry_path, is_cached, points_key, prune
+from core.cache import entry_path, is_cached, points_key, prune
+from core.obtain import has_signatures, obtain
 
 
 @pytest.fixture
@@ -24,19 +25,20 @@ def points() -> np.ndarray:
 
 
 def test_second_build_comes_from_cache(cache, points):
-    first = build_cached(points)
-    assert is_cached(points)
+    first = obtain(points)
+    assert is_cached(points) and first.source == "built" and first.entry == entry_path(points)
     stages = []
-    second = build_cached(points, progress=lambda f, s: stages.append(s))
-    assert stages == ["loaded from cache"]
+    second = obtain(points, progress=lambda f, s: stages.append(s))
+    assert stages == ["loaded from cache"] and second.source == "cache"
+    first, second = first.complex, second.complex
     for k in range(4):
         np.testing.assert_array_equal(second.simplices(k), first.simplices(k))
         np.testing.assert_array_equal(second.intervals(k), first.intervals(k))
 
 
 def test_no_cache_neither_reads_nor_writes(cache, points):
-    build_cached(points, use_cache=False)
-    assert not is_cached(points)
+    obtained = obtain(points, use_cache=False)
+    assert not is_cached(points) and obtained.source == "built" and obtained.entry is None
 
 
 @pytest.mark.parametrize("junk", [b"", b"PK\x03\x04 broken zip", b"\x93NUMPY garbage"])
@@ -44,8 +46,9 @@ def test_corrupt_entry_is_rebuilt(cache, points, junk):
     entry = entry_path(points)
     entry.parent.mkdir(parents=True)
     entry.write_bytes(junk)
-    ac = build_cached(points)
-    assert isinstance(ac, AlphaComplex) and len(ac.points) == 200
+    obtained = obtain(points)
+    assert obtained.source == "rebuilt"
+    assert isinstance(obtained.complex, AlphaComplex) and len(obtained.complex.points) == 200
     assert entry.stat().st_size > 1000  # replaced by a good table
 
 
@@ -54,14 +57,18 @@ def test_entry_for_other_points_is_rebuilt(cache, points):
     entry = entry_path(points)
     entry.parent.mkdir(parents=True)
     other.save(entry)
-    assert len(build_cached(points).input_index) == 200
+    obtained = obtain(points)
+    assert len(obtained.complex.input_index) == 200 and obtained.source == "rebuilt"
+    assert obtain(points).source == "cache"  # the rebuilt entry replaced the wrong one
 
 
 def test_unwritable_cache_still_builds(tmp_path, monkeypatch, points):
     blocker = tmp_path / "file"
     blocker.write_text("not a folder")
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(blocker / "cache"))
-    assert len(build_cached(points).points) == 200
+    obtained = obtain(points)
+    assert len(obtained.complex.points) == 200 and obtained.source == "built"
+    assert obtained.entry is None
 
 
 def test_key_depends_on_values_and_shape(points):
@@ -107,8 +114,8 @@ def test_entry_larger_than_the_limit_is_still_cached(cache, points, monkeypatch)
 
     monkeypatch.setattr(core.cache, "MAX_CACHE_BYTES", 10)
     other = np.random.default_rng(5).normal(size=(50, 3))
-    build_cached(other)
-    build_cached(points)
+    obtain(other)
+    obtain(points)
     assert is_cached(points) and not is_cached(other)
 
 
@@ -158,12 +165,13 @@ def test_single_array_is_not_a_table(tmp_path):
 
 
 def test_signatures_are_cached_with_the_table(cache, points):
-    build_cached(points)  # an entry without signatures (as `alphascoop info` leaves it)
-    assert "_signatures" not in build_cached(points).__dict__
-    upgraded = build_cached(points, signatures=True)  # computes them and rewrites the entry
-    assert "_signatures" in upgraded.__dict__
-    reopened = build_cached(points, signatures=True)
-    assert "_signatures" in reopened.__dict__
+    obtain(points)  # an entry without signatures (as `alphascoop export --alpha` leaves it)
+    assert not has_signatures(obtain(points).complex)
+    upgraded = obtain(points, signatures=True)  # computes them and rewrites the entry
+    assert has_signatures(upgraded.complex) and upgraded.source == "cache"
+    reopened = obtain(points, signatures=True).complex
+    assert has_signatures(reopened)
+    upgraded = upgraded.complex
     np.testing.assert_array_equal(reopened.signatures().betti, upgraded.signatures().betti)
 
 
@@ -175,4 +183,4 @@ def test_a_cache_folder_that_cannot_be_read_is_no_cache(cache, points, monkeypat
 
     monkeypatch.setattr(Path, "is_file", refused)
     assert not is_cached(points)
-    assert len(build_cached(points).points) == 200  # built, not an error
+    assert len(obtain(points).complex.points) == 200  # built, not an error

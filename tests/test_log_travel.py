@@ -62,10 +62,11 @@ def test_page_moves_by_the_factor_snapped_and_at_least_one_value(spectrum) -> No
 def test_page_up_from_the_opening_never_reaches_the_hull(name) -> None:
     """On real scans the opening alpha sits well inside the travel, and a PageUp from it stays
     far below the convex hull."""
-    from core.cache import build_cached
     from core.io import read_points
+    from core.obtain import obtain
 
-    ac = build_cached(read_points(DATA / name), signatures=True)
+    ps = read_points(DATA / name)
+    ac = obtain(ps.points, weights=ps.weights, signatures=True).complex
     spectrum = ac.spectrum()
     travel = LogTravel(spectrum, reach=ac.optimal_alpha())
     opening = int(np.searchsorted(spectrum, ac.default_alpha(), side="right")) - 1

@@ -20,9 +20,10 @@ from reference import (
 )
 
 from core import AlphaComplex
-from core.cache import build_cached, points_key
+from core.cache import points_key
 from core.errors import FileFormatError, InputError
 from core.modes import Mode, make_mode
+from core.obtain import obtain
 
 SETTINGS = settings(max_examples=30, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])
@@ -228,9 +229,11 @@ def test_the_mode_is_part_of_the_cache_key(tmp_path, monkeypatch):
             points_key(pts, make_mode(None, "mean", 0.5, True), normals + 1)}
     assert len(keys) == 7
     assert points_key(pts, Mode()) == points_key(pts)
-    built = build_cached(pts, mode=make_mode(6))
-    again = build_cached(pts, mode=make_mode(6))
-    classic = build_cached(pts)
+    built = obtain(pts, mode=make_mode(6)).complex
+    again = obtain(pts, mode=make_mode(6))
+    assert again.source == "cache"
+    again = again.complex
+    classic = obtain(pts).complex
     assert again.mode == built.mode == make_mode(6) and classic.mode == Mode()
     assert np.array_equal(again.intervals(3), built.intervals(3))
     assert len(list(tmp_path.glob("*.npz"))) == 2

@@ -5,14 +5,14 @@ from __future__ import annotations
 
 import io
 import zipfile
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from core import AlphaComplex
-from core.cache import build_cached, entry_path
+from core.cache import entry_path
 from core.errors import FileFormatError
+from core.obtain import obtain
 
 
 @pytest.fixture(params=[2, 3, "weighted"])
@@ -155,7 +155,9 @@ def test_cache_rebuilds_and_replaces_a_crafted_entry(saved, tmp_path, monkeypatc
     entry = entry_path(points, weights=weights)
     entry.parent.mkdir()
     crafted(saved, tmp_path, craft).replace(entry)
-    got = build_cached(SimpleNamespace(points=points, weights=weights), signatures=True)
+    obtained = obtain(points, weights=weights, signatures=True)
+    assert obtained.source == "rebuilt"
+    got = obtained.complex
     assert got.optimal_alpha() == ac.optimal_alpha()
     assert got.shape(ac.optimal_alpha()).measure == ac.shape(ac.optimal_alpha()).measure
     np.testing.assert_array_equal(got.signatures().solid_components,

@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 from core import AlphaComplex
-from core.cache import build_cached, entry_path, load_cached
+from core.cache import entry_path, load_cached
 from core.errors import InputError
+from core.obtain import obtain
 
 
 @pytest.fixture(scope="module")
@@ -122,21 +123,14 @@ def test_a_table_without_weights_loads_as_classic(tmp_path) -> None:
     assert AlphaComplex.load(tmp_path / "c.npz").weights is None
 
 
-class Weighted:
-    """A point set with weights, as the readers hand it over."""
-
-    def __init__(self, points: np.ndarray, weights: np.ndarray) -> None:
-        self.points, self.weights = points, weights
-
-
 def test_cache_key_includes_weights(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path))
     pts = np.random.default_rng(6).random((150, 2))
     w = np.random.default_rng(7).uniform(0, 1e-3, 150)
     assert entry_path(pts) != entry_path(pts, weights=w) != entry_path(pts, weights=2 * w)
-    built = build_cached(Weighted(pts, w))
+    built = obtain(pts, weights=w).complex
     assert entry_path(pts, weights=w).is_file() and not entry_path(pts).is_file()
     cached = load_cached(pts, weights=w)
     np.testing.assert_array_equal(cached.weights, built.weights)
     assert load_cached(pts) is None
-    assert build_cached(pts).weights is None
+    assert obtain(pts).complex.weights is None

@@ -1,0 +1,126 @@
+"""One path from points to a built complex, and where it came from.
+
+`obtain` reads the table cache (core.cache); on a miss it has a runner build the complex
+(in this thread by default; the window passes app.build_process's child-process runner, which
+Cancel can kill) and the entry is stored. The result says what really happened: "built",
+"cache" (a good entry was read) or "rebuilt" (an entry existed but was damaged or belonged to
+other points, so it was removed and built again). Every caller (window, `alphascoop info` and
+`export`, screenshots) goes through here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+
+from .cache import entry_exists, entry_path, read_entry, save_entry
+from .complex import AlphaComplex
+from .modes import Mode
+from .points import as_points
+from .table import Progress
+
+Source = Literal["built", "cache", "rebuilt"]
+SOURCES: tuple[Source, ...] = ("built", "cache", "rebuilt")
+TABLE_SHARE, SAVE_START = 0.65, 0.95  # of a build's progress with signatures; topology between
+
+
+@dataclass(frozen=True, eq=False)
+class BuildRequest:
+    """What a runner builds: (n, d) float64 points, optional (n,) squared-radius `weights`,
+    the alpha `mode` with its given (n, d) `normals`, whether to compute the `signatures` too,
+    and the cache entry to `save_to` (None: keep it in memory only)."""
+
+    points: np.ndarray
+    weights: np.ndarray | None = None
+    mode: Mode = field(default_factory=Mode)
+    normals: np.ndarray | None = None
+    signatures: bool = False
+    save_to: Path | None = None
+
+    def run(self, progress: Progress | None = None) -> tuple[AlphaComplex, Path | None]:
+        """Build here: (the complex, the entry it was saved to, or None when not saved)."""
+        def step(fraction: float, stage: str) -> None:
+            if progress is not None:
+                progress(fraction, stage)
+
+        share = TABLE_SHARE if self.signatures else SAVE_START
+        extra = {} if self.weights is None else {"weights": self.weights}
+        ac = AlphaComplex.from_points(self.points, lambda f, s: step(share * f, s),
+                                      **extra, **self.mode.build_kwargs(self.normals))
+        if self.signatures:
+            step(TABLE_SHARE, "topology")
+            ac.signatures()
+        if self.save_to is None:
+            return ac, None
+        step(SAVE_START, "saving the table")
+        return ac, save_entry(ac, self.save_to)
+
+
+#: runner(request, progress) -> the complex of request, saved to request.save_to if it can be.
+Runner = Callable[[BuildRequest, Progress | None], AlphaComplex]
+
+
+def run_here(request: BuildRequest, progress: Progress | None = None) -> AlphaComplex:
+    """The default runner: build in the calling thread (Cancelled raised by progress stops it)."""
+    return request.run(progress)[0]
+
+
+@dataclass(frozen=True, eq=False)
+class Obtained:
+    """A complex and where it came from ("built", "cache" or "rebuilt"); `entry` is its cache
+    file (None when the cache was not used or could not be written)."""
+
+    complex: AlphaComplex
+    source: Source
+    entry: Path | None = None
+
+    @property
+    def from_cache(self) -> bool:
+        """True when the table was read from the cache rather than built."""
+        return self.source == "cache"
+
+
+def has_signatures(ac: AlphaComplex) -> bool:
+    """True when ac's signatures are computed (or were loaded with its table)."""
+    return "_signatures" in vars(ac)  # until core.build gives the complex a public flag
+
+
+def obtain(points: object, *, weights: object = None, mode: Mode | None = None,
+           normals: np.ndarray | None = None, signatures: bool = False,
+           use_cache: bool = True, cache_dir: str | Path | None = None,
+           runner: Runner | None = None, progress: Progress | None = None) -> Obtained:
+    """The complex of (n, d) points (with (n,) squared-radius `weights`; in the alpha `mode`,
+    with its given `normals`), from the cache in `cache_dir` (default core.cache.cache_dir())
+    when it holds a good entry, else built by `runner` (default run_here) and stored.
+
+    With `signatures` the topology is computed too (a cached entry without it is upgraded and
+    rewritten). `use_cache=False` neither reads nor writes the cache. progress(fraction,
+    stage) may raise core.errors.Cancelled to stop; the build's errors (InputError for points
+    that make no complex) pass through.
+    """
+    try:
+        coords = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError):
+        coords = as_points(points)  # raises the InputError that says what is wrong
+    w = None if weights is None else np.asarray(weights, dtype=np.float64)
+    mode = mode or Mode()
+    request = BuildRequest(coords, w, mode, normals, signatures)
+    runner = runner or run_here
+    if not use_cache:
+        return Obtained(runner(request, progress), "built")
+    path = entry_path(coords, mode, normals, w, folder=cache_dir)
+    ac, damaged = read_entry(path, len(coords), mode)
+    if ac is None:
+        built = runner(BuildRequest(coords, w, mode, normals, signatures, path), progress)
+        return Obtained(built, "rebuilt" if damaged else "built",
+                        path if entry_exists(path) else None)
+    if progress is not None:
+        progress(1.0, "loaded from cache")
+    if signatures and not has_signatures(ac):  # an entry `info`/`export` left without them
+        ac.signatures()
+        save_entry(ac, path)
+    return Obtained(ac, "cache", path)
