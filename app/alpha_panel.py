@@ -29,6 +29,7 @@ from app.palette import MARK_COLOURS
 from app.signed_travel import SignedTravel
 
 N_SUGGESTED = 5
+OPTIMAL_TEXT, OPTIMAL_WAIT_TEXT = "Optimal", "Optimal: computing…"
 
 
 def format_alpha(value: float) -> str:
@@ -62,7 +63,7 @@ class AlphaPanel(QWidget):
         self.step = QLabel()
         for label in (self.squared, self.step):  # changing text never resizes the dock
             label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
-        self.optimal = QPushButton("Optimal")
+        self.optimal = QPushButton(OPTIMAL_TEXT)
         self.optimal.setToolTip("CGAL's optimal alpha: every point in one solid (Ctrl+1)")
         self.hull = QPushButton("Convex hull")
         self.back = QPushButton("◀ Back")
@@ -116,6 +117,8 @@ class AlphaPanel(QWidget):
         self.model.datasetChanged.connect(self._timer.stop)
         self.model.datasetChanged.connect(self._new_travel)
         self.model.datasetChanged.connect(self.sync)
+        self.model.topologyChanged.connect(self._new_travel)
+        self.model.topologyChanged.connect(self.sync)
         self.model.alphaChanged.connect(self.sync)
 
     def _base(self) -> int:
@@ -130,20 +133,25 @@ class AlphaPanel(QWidget):
         self._timer.start()
 
     def _new_travel(self) -> None:
-        """A new dataset: its log-alpha travel and tick marks (suggested, opening, optimal)."""
+        """A new dataset or its topology: the log-alpha travel and tick marks (suggested,
+        opening, optimal; the opening one only until the topology is known)."""
         ds = self.model.dataset
         travel = SignedTravel if self.model.weighted else LogTravel  # alpha² < 0: no log
         self.travel = travel(ds.spectrum, reach=ds.optimal_alpha)
         self.slider.set_marks(tuple(self.marks()))
 
     def marks(self) -> list[Mark]:
-        """Tick marks of the current dataset: suggested alphas, the opening and optimal one."""
+        """Tick marks of the current dataset: suggested alphas, the opening and optimal one
+        (the suggested and optimal ones once the topology is known)."""
         ds, model = self.model.dataset, self.model
+        opening = Mark(self.travel.position(model.default_index()), MARK_COLOURS["opening"],
+                       f"opening: r {ds.default_alpha:.4g}")
+        if not ds.has_topology:
+            return [opening]
         marks = [Mark(self.travel.position(snap_index(ds.spectrum, r.alpha)),
                       MARK_COLOURS["suggested"], f"suggested: r {r.alpha:.4g} (Betti {r.betti})")
                  for r in ds.ac.suggest_alphas(N_SUGGESTED)]
-        marks.append(Mark(self.travel.position(model.default_index()), MARK_COLOURS["opening"],
-                          f"opening: r {ds.default_alpha:.4g}"))
+        marks.append(opening)
         marks.append(Mark(self.travel.position(model.optimal_index()), MARK_COLOURS["optimal"],
                           f"optimal: r {ds.optimal_alpha:.4g}"))
         return marks
@@ -167,6 +175,9 @@ class AlphaPanel(QWidget):
             self.slider.setValue(position)
         self.back.setEnabled(self.model.history.can_back())
         self.forward.setEnabled(self.model.history.can_forward())
+        ready = count > 0 and self.model.dataset.has_topology
+        self.optimal.setEnabled(ready)
+        self.optimal.setText(OPTIMAL_TEXT if ready or count == 0 else OPTIMAL_WAIT_TEXT)
         if count == 0:
             self.radius.clear()
             self.squared.clear()

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -16,7 +16,8 @@ from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
 from core.modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
-from core.obtain import Runner, Source, obtain, run_here
+from core.obtain import Obtained, Runner, Source, add_topology, has_signatures, obtain, run_here
+from core.opening import opening_alpha_of
 from core.signatures import Signatures
 
 Progress = Callable[[float, str], None]
@@ -27,26 +28,38 @@ SOURCE_WORDS = {"built": "built", "cache": "loaded from cache",
 
 @dataclass(frozen=True)
 class Dataset:
-    """A built dataset: its source, complex, spectrum (s,) float64 and timings in seconds."""
+    """A built dataset: its source, complex, spectrum (s,) float64 and timings in seconds.
+
+    The topology (signatures, optimal alpha, persistence) may come after the table: until
+    `has_topology`, `signatures` and `optimal_alpha` are None and `default_alpha` is the quick
+    choice (quick_alpha); with_topology(dataset) completes it.
+    """
 
     path: Path
     ac: AlphaComplex
     spectrum: np.ndarray
-    optimal_alpha: float
-    default_alpha: float  # where the view opens (ac.default_alpha())
-    signatures: Signatures
+    optimal_alpha: float | None
+    default_alpha: float  # where the view opens (ac.default_alpha(); quick_alpha before)
+    signatures: Signatures | None
     n_input: int
     report: LoadReport | None
     load_seconds: float
     build_seconds: float
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
     source: Source = "built"  # where the table came from (core.obtain): built, cache, rebuilt
+    entry: Path | None = None  # its cache file (None: not cached)
+    topology_seconds: float | None = None  # the topology pass (0 when it came with the table)
     attributes: dict = field(default_factory=dict)  # name -> per-point values, rows of ac.points
     frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
     #: Molecules: the measures of the atoms' union at alpha² = 0, and (m,) int16 atomic
     #: numbers aligned with ac.points (None for other point sets).
     molecule: MoleculeMeasures | None = None
     atomic_numbers: np.ndarray | None = None
+
+    @property
+    def has_topology(self) -> bool:
+        """True once signatures, optimal alpha and persistence are known."""
+        return self.signatures is not None
 
     @property
     def unit(self) -> str | None:
@@ -63,6 +76,15 @@ class Dataset:
         """How the table came: 'built in 12.3 s', 'loaded from cache in 0.4 s' or 'rebuilt
         (its cached table was damaged) in 12.3 s'."""
         return f"{SOURCE_WORDS[self.source]} in {self.build_seconds:.2f} s"
+
+    def topology_line(self) -> str:
+        """'topology: computing…', or how long it took ('topology in 3.1 s'; 'topology
+        from cache' when it came with the table)."""
+        if not self.has_topology:
+            return "topology: computing…"
+        if not self.topology_seconds:
+            return "topology from cache"
+        return f"topology in {self.topology_seconds:.2f} s"
 
 
 @dataclass(frozen=True)
@@ -81,12 +103,16 @@ class ImportOptions:
 
 
 def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here,
-                 mode: Mode | None = None, options: ImportOptions | None = None) -> Dataset:
+                 mode: Mode | None = None, options: ImportOptions | None = None,
+                 topology: bool = True) -> Dataset:
     """Read (with `options`: columns, subsampling) and build path in the alpha `mode`
     (default classic), reporting progress(fraction, stage); Cancelled stops it.
 
-    The complex and its signatures come from core.obtain (the cache, or a build by `runner`:
-    the window passes app.build_process.ChildRunner, which Cancel kills mid-triangulation).
+    The complex comes from core.obtain (the cache, or a build by `runner`: the window passes
+    app.build_process.ChildRunner, which Cancel kills mid-triangulation). Without `topology`
+    the dataset is returned as soon as the slider can use it (the table and its cursor); the
+    window then completes it with with_topology in the background. A cached table that holds
+    its topology is always returned complete.
     """
     mode = mode or Mode()
     path = Path(path)
@@ -100,29 +126,59 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
 
     normals = file_normals(mode, pointset.attributes, path.name)
     obtained = obtain(pointset.points, weights=pointset.weights, mode=mode, normals=normals,
-                      signatures=True, runner=runner, progress=build_progress)
+                      signatures=topology, runner=runner, progress=build_progress)
     ac = obtained.complex
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     molecule, numbers = _molecule(ac, pointset)
+    complete = has_signatures(ac)
     # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
-    optimal = float(ac.optimal_alpha())
-    alpha = 0.0 if molecule is not None else float(ac.default_alpha())
+    alpha = 0.0 if molecule is not None else (
+        float(ac.default_alpha()) if complete else quick_alpha(ac))
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
-    ac.signatures().counts_at(alpha)  # sorts its class thresholds here, not in the info dock
-    ac.persistence()  # for the signatures dock's diagram, computed here, not in the GUI thread
-    progress(1.0, "done")
-    return Dataset(
-        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=optimal,
-        default_alpha=alpha,
-        signatures=ac.signatures(), n_input=len(pointset.points), report=pointset.report,
+    dataset = Dataset(
+        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=None, default_alpha=alpha,
+        signatures=None, n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
-        source=obtained.source, frame=frame_for(path, pointset.report), molecule=molecule,
-        atomic_numbers=numbers,
+        source=obtained.source, entry=obtained.entry, frame=frame_for(path, pointset.report),
+        molecule=molecule, atomic_numbers=numbers,
         attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )
+    if complete:
+        dataset = with_topology(dataset)
+    progress(1.0, "done")
+    return dataset
+
+
+def quick_alpha(ac: AlphaComplex) -> float:
+    """Where a view opens before the topology is known: the opening rule alone (the smallest
+    alpha whose triangles join 99 % of the points, core.opening), which needs only the table.
+    ac.default_alpha() is the same value unless CGAL's optimal alpha, known with the
+    topology, is smaller."""
+    return float(opening_alpha_of(ac))
+
+
+def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> Dataset:
+    """The dataset with its topology: signatures (saved to its cache entry if they were not
+    there), optimal and opening alpha, persistence. `check()` is called between the stages
+    and may raise core.errors.Cancelled to stop."""
+    if dataset.has_topology:
+        return dataset
+    started = time.perf_counter()
+    ac, came = dataset.ac, has_signatures(dataset.ac)
+    check = check or (lambda: None)
+    check()
+    obtained = add_topology(Obtained(ac, dataset.source, dataset.entry))
+    for stage in (ac.default_alpha, ac.persistence):  # default_alpha: the optimal one too
+        check()
+        stage()
+    default = dataset.default_alpha if dataset.molecule is not None else ac.default_alpha()
+    ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
+    return replace(dataset, signatures=ac.signatures(), optimal_alpha=float(ac.optimal_alpha()),
+                   default_alpha=float(default), entry=obtained.entry,
+                   topology_seconds=0.0 if came else time.perf_counter() - started)
 
 
 def aligned_attributes(attributes: dict[str, np.ndarray], input_index: np.ndarray,

@@ -44,7 +44,7 @@ def data_lines(model: ExplorerModel) -> list[str]:
         source = getattr(report, "weights_from", None) or "given weights"
         hidden = int((np.asarray(ac.input_index) < 0).sum())
         lines.append(f"weighted: {html.escape(source)}; {plural(hidden, 'hidden point')}")
-    lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}")
+    lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}, {ds.topology_line()}")
     return lines + molecule_lines(model)
 
 
@@ -82,15 +82,32 @@ def class_counts(model: ExplorerModel) -> tuple[int, int, list[int]]:
     return int(counts[dim, INTERIOR]), int(counts[dim - 1, REGULAR]), singular
 
 
-def shape_lines(model: ExplorerModel) -> list[str]:
-    """Lines describing the shape at the current alpha: classes, topology, measures."""
-    sig, dim, unit = model.dataset.signatures, model.dataset.ac.dim, model.dataset.unit
-    cells, facets, singular = class_counts(model)
+def alpha_line(model: ExplorerModel) -> str:
+    """The current alpha in bold: 'alpha R', or for weighted points 'alpha² A2 (alpha R)'."""
+    unit = model.dataset.unit
     radius = with_unit(quantity(model.alpha, 6), unit)
     at = (f"alpha² {with_unit(quantity(model.alpha2, 6), unit, 2)}"
           + (f" (alpha {radius})" if model.alpha >= 0 else "")
           if model.weighted else f"alpha {radius}")
-    lines = [f"<b>{at}</b>",
+    return f"<b>{at}</b>"
+
+
+def waiting_lines(model: ExplorerModel) -> list[str]:
+    """The shape block before the topology is known: what the slider's shape itself says."""
+    dim, unit, shape = model.dataset.ac.dim, model.dataset.unit, model.shape
+    measure = with_unit(quantity(shape.measure, 6), unit, dim)
+    return [alpha_line(model), plural(len(shape.cells), "cell"),
+            f"{'area' if dim == 2 else 'volume'} {measure}",
+            "Betti numbers and class counts: computing…"]
+
+
+def shape_lines(model: ExplorerModel) -> list[str]:
+    """Lines describing the shape at the current alpha: classes, topology, measures."""
+    if not model.dataset.has_topology:
+        return waiting_lines(model)
+    sig, dim, unit = model.dataset.signatures, model.dataset.ac.dim, model.dataset.unit
+    cells, facets, singular = class_counts(model)
+    lines = [alpha_line(model),
              f"{plural(cells, 'cell')}, {plural(facets, 'boundary facet')}",
              f"singular (points, edges{', triangles' if dim == 3 else ''}): "
              + ", ".join(f"{n:,}" for n in singular)]
@@ -125,6 +142,8 @@ class InfoPanel(QWidget):
         column.addStretch(1)
         model.datasetChanged.connect(self.show_data)
         model.alphaChanged.connect(self.show_shape)
+        model.topologyChanged.connect(self.show_data)
+        model.topologyChanged.connect(self.show_shape)
 
     def sizeHint(self) -> QSize:
         """A fixed width of WIDTH_CHARACTERS characters, whatever the text shows."""

@@ -110,6 +110,8 @@ class MainWindow(QMainWindow):
         self.loader.finished.connect(self._on_loaded)
         self.loader.failed.connect(self._on_failed)
         self.loader.cancelled.connect(self._on_cancelled)
+        self.loader.topologyReady.connect(self._on_topology)
+        self.loader.topologyFailed.connect(self._on_topology_failed)
         self.progress.cancelRequested.connect(self.loader.cancel)
         self.jobs.progress.connect(self.job_progress.update_progress)
         self.jobs.finished.connect(self._on_job_done)
@@ -179,9 +181,24 @@ class MainWindow(QMainWindow):
         if self.start_alpha is not None:
             self.model.set_alpha(self.start_alpha)
             self.start_alpha = None
-        elif self.start_optimal:
+        elif self.start_optimal and dataset.has_topology:
             self.model.set_index(self.model.optimal_index())
-        self.start_optimal = False
+        self.start_optimal = self.start_optimal and not dataset.has_topology
+
+    def _on_topology(self, request: int, dataset) -> None:
+        """The current dataset's topology arrived: fill in the docks (the model moves to the
+        opening alpha if the slider was not touched); `--optimal` goes there now."""
+        if request != self.loader.current or not self.model.set_topology(dataset):
+            return
+        if self.start_optimal:
+            self.model.set_index(self.model.optimal_index())
+            self.start_optimal = False
+        self._show_status()
+
+    def _on_topology_failed(self, request: int, message: str) -> None:
+        """The topology pass failed: the slider keeps working; say why."""
+        if request == self.loader.current:
+            self.status.setText(f"{message}; the slider still works")
 
     def _on_failed(self, request: int, message: str) -> None:
         """Show why the current request failed; the previous dataset stays."""
@@ -226,12 +243,17 @@ class MainWindow(QMainWindow):
         if self.model.dataset.atomic_numbers is not None:
             self.scene.set_cells("cavities", self.model.cavities())
         self.scene.render()
+        self._show_status()
+
+    def _show_status(self) -> None:
+        """Status line: points, cells, alpha, where the table came from, the topology."""
         ds = self.model.dataset
         self.status.setText(
             f"{len(ds.ac.points):,} points · {len(self.model.shape.cells):,} cells · "
             + (f"alpha² {self.model.alpha2:.6g}" if self.model.weighted
                else f"alpha {self.model.alpha:.6g}")
-            + (f" ({ds.ac.mode.name})" if ds.ac.mode.active else "") + f" · {ds.build_line()}"
+            + (f" ({ds.ac.mode.name})" if ds.ac.mode.active else "")
+            + f" · {ds.build_line()} · {ds.topology_line()}"
         )
 
     def _set_style(self, name: str, style) -> None:

@@ -23,6 +23,7 @@ class ExplorerModel(QObject):
 
     datasetChanged = Signal()
     alphaChanged = Signal()
+    topologyChanged = Signal()  # the dataset's topology (signatures, optimal alpha) arrived
 
     def __init__(self) -> None:
         """Start empty: no dataset, index -1."""
@@ -32,6 +33,7 @@ class ExplorerModel(QObject):
         self._shape = None
         self._cursor = None
         self.history = AlphaHistory()
+        self.touched = False  # the alpha moved since the dataset opened (user or --alpha)
 
     @property
     def spectrum(self) -> np.ndarray:
@@ -74,9 +76,24 @@ class ExplorerModel(QObject):
         self._cursor = dataset.cursor or dataset.ac.cursor()
         self.index = self.default_index()
         self.history.reset(self.index)
+        self.touched = False
         self._shape = None
         self.datasetChanged.emit()
         self.alphaChanged.emit()
+
+    def set_topology(self, dataset: Dataset) -> bool:
+        """Take the topology-complete version of the current dataset (same complex); unless
+        the alpha moved since the dataset opened, go to its opening alpha. False (nothing
+        done) for another dataset's result."""
+        if self.dataset is None or dataset.ac is not self.dataset.ac:
+            return False
+        self.dataset = dataset
+        self.topologyChanged.emit()
+        if not self.touched:
+            self.set_index(self.default_index(), record=False)
+            self.history.reset(self.index)
+            self.touched = False
+        return True
 
     def set_index(self, index: int, record: bool = True) -> None:
         """Move to spectrum[index] (clamped); emits alphaChanged only when it changes.
@@ -91,6 +108,7 @@ class ExplorerModel(QObject):
         if record:
             self.history.visit(index)
         self.index = index
+        self.touched = True
         self._shape = None
         self.alphaChanged.emit()
 
@@ -120,8 +138,13 @@ class ExplorerModel(QObject):
         return snap_index(self.spectrum, self.dataset.default_alpha) if self.dataset else -1
 
     def optimal_index(self) -> int:
-        """Index of the dataset's optimal alpha."""
-        return snap_index(self.spectrum, self.dataset.optimal_alpha) if self.dataset else -1
+        """Index of the dataset's optimal alpha (the current index until the topology that
+        gives it is known; -1 without a dataset)."""
+        if self.dataset is None:
+            return -1
+        if self.dataset.optimal_alpha is None:
+            return self.index
+        return snap_index(self.spectrum, self.dataset.optimal_alpha)
 
     def hull_index(self) -> int:
         """Index of the last critical alpha: the whole triangulation (convex hull)."""

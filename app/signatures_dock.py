@@ -25,6 +25,7 @@ MIN_PLOT_HEIGHT = 160  # pixels: tick labels, titles and a readable plot area
 N_SUGGESTIONS = 5
 BETTI_COLOURS = ("#4c9be8", "#e4572e", "#59b86a")
 OPTIMAL_COLOUR, SUGGESTED_COLOUR = "#e0a800", "#6f42c1"
+COMPUTING = "Signatures: computing the topology… (the slider already works)"
 HINT = ("Hover a plot to read its values; click to go to that alpha. "
         "★ optimal alpha (CGAL), ▼ suggested alphas: click to go there.")
 
@@ -110,17 +111,21 @@ class SignaturesPanel(QWidget):
         self.persistence_ax = None
         self.drawn_pairs: list[DrawnPairs] = []
         model.datasetChanged.connect(self.plot)
+        model.topologyChanged.connect(self.plot)
         model.alphaChanged.connect(self.move_cursor)
         self.canvas.mpl_connect("button_press_event", self._clicked)
         self.canvas.mpl_connect("motion_notify_event", self._hovered)
 
     def plot(self) -> None:
-        """Draw the current dataset's signatures (clears the figure when there are none)."""
+        """Draw the current dataset's signatures (clears the figure when there are none, and
+        says so while its topology is being computed)."""
         self.figure.clear()
         self.cursors, self.marker_lines, self.drawn_pairs = [], [], []
         self.persistence_ax = self.death_cursor = None
         sig = self.model.dataset.signatures if self.model.dataset else None
         if sig is None:
+            if self.model.dataset is not None:
+                self.figure.text(0.5, 0.5, COMPUTING, ha="center", va="center", color="#666666")
             self.canvas.draw_idle()
             return
         axes = self.figure.subplots(1, 4, width_ratios=(1, 1, 1, 1.1))

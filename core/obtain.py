@@ -120,7 +120,20 @@ def obtain(points: object, *, weights: object = None, mode: Mode | None = None,
                         path if entry_exists(path) else None)
     if progress is not None:
         progress(1.0, "loaded from cache")
-    if signatures and not has_signatures(ac):  # an entry `info`/`export` left without them
-        ac.signatures()
-        save_entry(ac, path)
-    return Obtained(ac, "cache", path)
+    obtained = Obtained(ac, "cache", path)
+    return add_topology(obtained) if signatures else obtained
+
+
+def add_topology(obtained: Obtained) -> Obtained:
+    """Compute the signatures (the topology pass) of obtained.complex if it lacks them and
+    rewrite its cache entry with them, so that the next open skips that pass too.
+
+    The window calls this in the background once the slider is live; obtain(signatures=True)
+    calls it for a cached entry that `info`/`export` left without them.
+    """
+    ac = obtained.complex
+    if has_signatures(ac):
+        return obtained
+    ac.signatures()
+    entry = None if obtained.entry is None else save_entry(ac, obtained.entry)
+    return Obtained(ac, obtained.source, entry)

@@ -131,9 +131,16 @@ def window(qtbot, tmp_path):
 
 
 def open_and_wait(qtbot, win, path) -> None:
-    """Open path the way a user does (window.open_path) and wait until it is shown."""
+    """Open path the way a user does (window.open_path) and wait until it is shown with its
+    topology (the slider works before: see test_app_topology_later)."""
     with qtbot.waitSignal(win.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
         win.open_path(path)
+    wait_for_topology(qtbot, win)
+
+
+def wait_for_topology(qtbot, win) -> None:
+    """Wait until the shown dataset's topology (signatures, optimal alpha) has arrived."""
+    qtbot.waitUntil(lambda: win.model.dataset.has_topology, timeout=BUILD_TIMEOUT_MS)
 
 
 def fake_export_dialog(target, *, manifold: bool | None = None, seen: list | None = None):

@@ -67,6 +67,8 @@ def shared_window(qapp, tmp_path_factory):
     win.open_path(path)
     wait_for(win.model.datasetChanged)
     assert win.model.dataset is not None, "the shared test dataset did not build"
+    if not win.model.dataset.has_topology:
+        wait_for(win.model.topologyChanged)
     yield win
     win.close()
 
@@ -451,7 +453,7 @@ def test_closing_does_not_wait_for_a_build_that_cannot_stop(qtbot, tmp_path, mon
 
     release, started = threading.Event(), threading.Event()
 
-    def stuck_build(path, progress, build=None, mode=None, options=None):
+    def stuck_build(path, progress, runner=None, **options):
         started.set()
         release.wait(30)  # like a Delaunay build: never looks at the cancel flag
 
