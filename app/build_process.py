@@ -23,7 +23,7 @@ from core import errors
 from core.complex import AlphaComplex
 from core.modes import Mode, make_mode
 from core.obtain import BuildRequest, run_here
-from core.table import Progress
+from core.progress import Progress
 
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
 POLL_SECONDS = 0.1

@@ -21,7 +21,7 @@ from .cache import entry_exists, entry_path, read_entry, save_entry
 from .complex import AlphaComplex
 from .modes import Mode
 from .points import as_points
-from .table import Progress
+from .progress import Progress
 
 Source = Literal["built", "cache", "rebuilt"]
 SOURCES: tuple[Source, ...] = ("built", "cache", "rebuilt")
