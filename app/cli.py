@@ -265,7 +265,7 @@ def _geographic(ps, ac, shape) -> dict:
     georef = ps.report.georef
     if georef is None:
         return {}
-    from core.export.geographic import geographic_metadata
+    from core.export.polygons import geographic_metadata
 
     meta = geographic_metadata(ac, shape, georef)
     return {k: meta[k] for k in ("units", "area_m2", "perimeter_m") if k in meta}

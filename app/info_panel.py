@@ -15,11 +15,10 @@ from PySide6.QtWidgets import QLabel, QSizePolicy, QVBoxLayout, QWidget
 
 from app.model import ExplorerModel
 from app.numbers import coordinate, plural, quantity, with_unit
-from core.signatures import CLASSES
+from core.classes import INTERIOR, REGULAR, SINGULAR
 
 BETTI_NAMES = {2: ("component", "hole"), 3: ("component", "tunnel", "void")}
 WIDTH_CHARACTERS = 34  # the dock's width, in average character widths
-SINGULAR, REGULAR, INTERIOR = (CLASSES.index(c) for c in ("singular", "regular", "interior"))
 
 
 def data_lines(model: ExplorerModel) -> list[str]:
