@@ -39,6 +39,7 @@ def data_lines(model: ExplorerModel) -> list[str]:
     flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
     lines.append(f"{ac.dim}D complex{flat}, {plural(len(ac.simplices(ac.dim)), 'cell')}")
     lines.append(f"alpha mode: {html.escape(ac.mode.describe())}")
+    lines.append(f"build: {html.escape(ac.build_info.describe())}")
     if ac.weights is not None:
         source = getattr(report, "weights_from", None) or "given weights"
         hidden = int((np.asarray(ac.input_index) < 0).sum())
