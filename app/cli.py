@@ -20,9 +20,9 @@ from pathlib import Path
 import numpy as np
 
 from app.args import add_mode_options, count, mode_of, probe_radius, radius, squared_radius
+from core.classes import CLASSES
 from core.errors import AlphaScoopError, InputError
 
-CLASS_NAMES = ("exterior", "singular", "regular", "interior")
 SIMPLEX_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
 
 
@@ -220,7 +220,7 @@ def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
     alpha = shape.alpha
     spectrum = np.asarray(ac.spectrum())
     weighted = ac.weights is not None
-    classes = {SIMPLEX_NAMES[k]: dict(zip(CLASS_NAMES, np.bincount(
+    classes = {SIMPLEX_NAMES[k]: dict(zip(CLASSES, np.bincount(
         ac.classify(alpha2=shape.alpha2, k=k), minlength=4).tolist(), strict=True))
         for k in range(ac.dim + 1)}
     first = 0 if weighted or len(spectrum) < 2 else 1  # classic: 0 (bare points) left out
@@ -306,9 +306,9 @@ def _text(info: dict, lines: list[str]) -> str:
                         f"{info['perimeter_m']:.6g} m)" if "area_m2" in info else ""))
     else:
         lines.append(f"{measure:<12}{info[measure]:.6g}")
-    lines.append(f"{'classes':<12}" + "".join(f"{c:>10}" for c in CLASS_NAMES))
+    lines.append(f"{'classes':<12}" + "".join(f"{c:>10}" for c in CLASSES))
     for name, counts in info["classes"].items():
-        lines.append(f"  {name:<10}" + "".join(f"{counts[c]:>10,}" for c in CLASS_NAMES))
+        lines.append(f"  {name:<10}" + "".join(f"{counts[c]:>10,}" for c in CLASSES))
     return "\n".join(lines)
 
 
