@@ -10,6 +10,7 @@ import shutil
 import subprocess
 import sys
 import sysconfig
+import time
 import zipfile
 from pathlib import Path
 
@@ -27,12 +28,18 @@ SIZE = (320, 240)
 MIN_CONTRAST = 10.0
 MIN_SHAPE_FRACTION = 0.02  # of the pixels, away from the background colour
 STEP_TIMEOUT_S = 120
+POLL_S = 0.2
+
+
+def outside_env(**extra: str) -> dict[str, str]:
+    """The environment minus PYTHONPATH (nothing may point back at the repository)."""
+    env = {name: value for name, value in os.environ.items() if name != "PYTHONPATH"}
+    return env | extra
 
 
 def run(args: list[str], cwd: Path) -> subprocess.CompletedProcess:
-    """Run args in cwd with the environment minus PYTHONPATH; fail the test on a non-zero exit."""
-    env = {name: value for name, value in os.environ.items() if name != "PYTHONPATH"}
-    done = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True,
+    """Run args in cwd outside the repository; fail the test on a non-zero exit."""
+    done = subprocess.run(args, cwd=cwd, env=outside_env(), capture_output=True, text=True,
                           timeout=STEP_TIMEOUT_S)
     assert done.returncode == 0, f"{args[:4]} failed:\n{done.stdout}\n{done.stderr}"
     return done
@@ -111,3 +118,29 @@ def test_installed_command_renders_the_sample(venv: Path) -> None:
     background = image[0, -1]  # the top right corner: no legend, no axes there
     away = np.abs(image.astype(np.int16) - background).max(axis=2) > 30
     assert away.mean() > MIN_SHAPE_FRACTION
+
+
+def cached_tables(folder: Path) -> list[Path]:
+    """Finished table cache entries in folder (temporaries start with a dot)."""
+    return [path for path in folder.glob("*.npz") if not path.name.startswith(".")]
+
+
+def test_installed_window_opens_on_the_sample(venv: Path, tmp_path: Path) -> None:
+    """The installed `alphascoop` (no file, the session's display) opens the window and builds
+    the bundled sample: its table lands in a private cache while the window is still up."""
+    cache = tmp_path / "cache"
+    env = outside_env(ALPHASCOOP_CACHE_DIR=str(cache), XDG_CONFIG_HOME=str(tmp_path / "config"))
+    window = subprocess.Popen([str(venv / "bin" / "alphascoop"), "--size", "400x300"],
+                              cwd=tmp_path, env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + STEP_TIMEOUT_S
+        while not cached_tables(cache) and window.poll() is None and time.monotonic() < deadline:
+            time.sleep(POLL_S)
+        running = window.poll() is None
+    finally:
+        window.terminate()
+        _, errors = window.communicate(timeout=STEP_TIMEOUT_S)
+    assert running, f"the window exited early:\n{errors}"
+    assert len(cached_tables(cache)) == 1, errors
+    assert "Traceback" not in errors
