@@ -13,7 +13,7 @@ MIN_CONTRAST = 10.0
 
 
 def sample_points() -> np.ndarray:
-    """(n, 3) float64 points of app/assets/sample.ply, read independently of the app."""
+    """(n, 3) float64 points of assets/sample.ply, read independently of the app."""
     vertex = PlyData.read(str(SAMPLE_PATH))["vertex"]
     return np.column_stack([vertex[axis] for axis in "xyz"]).astype(np.float64)
 

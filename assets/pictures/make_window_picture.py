@@ -1,7 +1,8 @@
-"""Write docs/window.png, the README's picture of the window: the explorer as it opens on the
-bundled sample, grabbed from the screen. Run it under a display (`xvfb-run -a` works):
+"""Write assets/pictures/window.png, the README's picture of the window: the explorer as it
+opens on the bundled sample, grabbed from the screen. Run it under a display (`xvfb-run -a`
+works):
 
-    xvfb-run -a .venv/bin/python docs/make_window_picture.py
+    xvfb-run -a .venv/bin/python assets/pictures/make_window_picture.py
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
-"""Write app/assets/sample.ply: a trefoil-knot tube (a tunnel) and a thick hollow ball (a void).
+"""Write assets/sample.ply: a trefoil-knot tube (a tunnel) and a thick hollow ball (a void).
 
 The two solids are separate components, so one alpha shows two components, a tunnel and a void;
-run `python app/assets/make_sample.py` to regenerate it byte for byte (fixed seed).
+run `python assets/make_sample.py` to regenerate it byte for byte (fixed seed).
 """
 
 from __future__ import annotations
