@@ -16,7 +16,7 @@ from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
 from core.modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
-from core.obtain import Obtained, Runner, Source, add_topology, has_signatures, obtain, run_here
+from core.obtain import Obtained, Runner, Source, add_topology, obtain, run_here
 from core.opening import opening_alpha_of
 from core.signatures import Signatures
 
@@ -131,7 +131,7 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     molecule, numbers = _molecule(ac, pointset)
-    complete = has_signatures(ac)
+    complete = ac.has_signatures
     # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
     alpha = 0.0 if molecule is not None else (
         float(ac.default_alpha()) if complete else quick_alpha(ac))
@@ -167,7 +167,8 @@ def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> 
     if dataset.has_topology:
         return dataset
     started = time.perf_counter()
-    ac, came = dataset.ac, has_signatures(dataset.ac)
+    ac = dataset.ac
+    came = ac.has_signatures
     check = check or (lambda: None)
     check()
     obtained = add_topology(Obtained(ac, dataset.source, dataset.entry))

@@ -84,11 +84,6 @@ class Obtained:
         return self.source == "cache"
 
 
-def has_signatures(ac: AlphaComplex) -> bool:
-    """True when ac's signatures are computed (or were loaded with its table)."""
-    return "_signatures" in vars(ac)  # until core.build gives the complex a public flag
-
-
 def obtain(points: object, *, weights: object = None, mode: Mode | None = None,
            normals: np.ndarray | None = None, signatures: bool = False,
            use_cache: bool = True, cache_dir: str | Path | None = None,
@@ -132,7 +127,7 @@ def add_topology(obtained: Obtained) -> Obtained:
     calls it for a cached entry that `info`/`export` left without them.
     """
     ac = obtained.complex
-    if has_signatures(ac):
+    if ac.has_signatures:
         return obtained
     ac.signatures()
     entry = None if obtained.entry is None else save_entry(ac, obtained.entry)

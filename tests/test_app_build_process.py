@@ -13,7 +13,7 @@ from app import build_process
 from core import AlphaComplex
 from core.cache import entry_path
 from core.errors import AlphaScoopError, Cancelled, InputError
-from core.obtain import has_signatures, obtain
+from core.obtain import obtain
 
 
 @pytest.fixture
@@ -43,7 +43,7 @@ def test_child_build_equals_the_build_here_and_fills_the_cache(in_process):
     for k in range(4):
         np.testing.assert_array_equal(ac.simplices(k), here.simplices(k))
         np.testing.assert_array_equal(ac.intervals(k), here.intervals(k))
-    assert has_signatures(ac)  # came with the table: no topology pass here
+    assert ac.has_signatures  # came with the table: no topology pass here
     np.testing.assert_array_equal(ac.signatures().betti, here.signatures().betti)
     assert ac.optimal_alpha() == here.optimal_alpha()
     assert "Delaunay triangulation" in stages and "topology" in stages
@@ -113,7 +113,7 @@ def test_a_cached_table_without_signatures_is_upgraded_in_place(in_process):
 
     points = np.random.default_rng(5).random((800, 3))
     obtain(points)  # as `alphascoop export --alpha R` leaves it: no signatures
-    assert not has_signatures(load_cached(points))
+    assert not load_cached(points).has_signatures
     obtained = child_obtain(points)
-    assert obtained.source == "cache" and has_signatures(obtained.complex)
-    assert has_signatures(load_cached(points))
+    assert obtained.source == "cache" and obtained.complex.has_signatures
+    assert load_cached(points).has_signatures

@@ -7,7 +7,7 @@ import pytest
 
 from core import AlphaComplex
 from core.cache import entry_path, is_cached, points_key, prune
-from core.obtain import has_signatures, obtain
+from core.obtain import obtain
 
 
 @pytest.fixture
@@ -166,11 +166,11 @@ def test_single_array_is_not_a_table(tmp_path):
 
 def test_signatures_are_cached_with_the_table(cache, points):
     obtain(points)  # an entry without signatures (as `alphascoop export --alpha` leaves it)
-    assert not has_signatures(obtain(points).complex)
+    assert not obtain(points).complex.has_signatures
     upgraded = obtain(points, signatures=True)  # computes them and rewrites the entry
-    assert has_signatures(upgraded.complex) and upgraded.source == "cache"
+    assert upgraded.complex.has_signatures and upgraded.source == "cache"
     reopened = obtain(points, signatures=True).complex
-    assert has_signatures(reopened)
+    assert reopened.has_signatures
     upgraded = upgraded.complex
     np.testing.assert_array_equal(reopened.signatures().betti, upgraded.signatures().betti)
 

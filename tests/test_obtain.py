@@ -7,7 +7,7 @@ import pytest
 
 from core.cache import entry_path
 from core.errors import InputError
-from core.obtain import BuildRequest, has_signatures, obtain, run_here
+from core.obtain import BuildRequest, obtain, run_here
 
 
 @pytest.fixture
@@ -35,7 +35,7 @@ def test_the_runner_builds_once_then_the_cache_answers(tmp_path, points):
     assert len(runner.requests) == 1
     request = runner.requests[0]
     assert request.save_to == entry_path(points, folder=tmp_path) == first.entry == again.entry
-    assert request.signatures and has_signatures(again.complex)
+    assert request.signatures and again.complex.has_signatures
     np.testing.assert_array_equal(again.complex.intervals(2), first.complex.intervals(2))
 
 
