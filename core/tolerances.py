@@ -47,4 +47,4 @@ MAX_COORDINATE = {2: 1e150, 3: 1e100}
 #: test across a facet and every cell's orientation is decided by more than this share of
 #: its magnitude (the sum of the absolute terms): near-cospherical or flat groups, where
 #: Qhull's own rounding picks one of several triangulations, make the build use Qhull.
-BACKEND_CERTAIN_RTOL = 1e-10
+BACKEND_CERTAIN_RTOL = 1e-12

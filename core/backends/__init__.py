@@ -47,9 +47,10 @@ def check_backend(backend: object) -> str | None:
 
 def _by_gmsh(points: np.ndarray) -> Triangulation | str:
     """gmsh's triangulation completed and certified, or the reason it cannot be used."""
-    if len(points) <= points.shape[1] + 1:
-        return "too few points"
-    cells, nbrs, manifold = restored(points, gmsh_backend.gmsh_cells(points))
+    cells = gmsh_backend.gmsh_cells(points)
+    if not len(cells):
+        return "gmsh found no cell (too few points?)"
+    cells, nbrs, manifold = restored(points, cells)
     if not manifold:
         return "a facet is in three cells"
     reason = why_not_delaunay(points, cells, nbrs)
