@@ -187,3 +187,48 @@ def test_certify_rejects_a_flipped_edge() -> None:
     bad = np.array([[0, 1, 3], [0, 2, 3]], dtype=np.int32)
     assert why_not_delaunay(points, good, neighbours(good, 4)[0]) == ""
     assert "not certainly Delaunay" in why_not_delaunay(points, bad, neighbours(bad, 4)[0])
+
+
+def assert_same_table(a, b) -> None:
+    """Every array of the two complexes equal bit for bit."""
+    assert a.counts() == b.counts()
+    assert np.array_equal(a.points, b.points) and np.array_equal(a.input_index, b.input_index)
+    for k in range(a.dim + 1):
+        assert np.array_equal(a.simplices(k), b.simplices(k))
+        assert np.array_equal(a.intervals(k), b.intervals(k))
+        if k:
+            assert np.array_equal(a.face_ids(k), b.face_ids(k))
+    assert np.array_equal(a.facet_cells(), b.facet_cells())
+    assert np.array_equal(a.cell_measures(), b.cell_measures())
+
+
+@needs_gmsh
+@pytest.mark.parametrize("name", ["uniform 3D", "noisy torus 3D", "uniform 2D", "planar in 3D"])
+def test_tables_equal_bit_for_bit_between_backends(name: str) -> None:
+    from core import AlphaComplex
+
+    points = CASES[name](np.random.default_rng(11)) * 37.5 + 4.0
+    by_gmsh = AlphaComplex.from_points(points, backend="gmsh")
+    by_qhull = AlphaComplex.from_points(points, backend="qhull")
+    assert by_gmsh.build_info.backend == "gmsh" and by_qhull.build_info.backend == "qhull"
+    assert_same_table(by_gmsh, by_qhull)
+    assert by_gmsh.betti(alpha=float(np.median(by_gmsh.spectrum()))) == by_qhull.betti(
+        alpha=float(np.median(by_qhull.spectrum())))
+
+
+@needs_gmsh
+def test_build_records_the_automatic_choice(monkeypatch) -> None:
+    from core import AlphaComplex
+
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 100)
+    rng = np.random.default_rng(2)
+    info = AlphaComplex.from_points(rng.uniform(size=(500, 3))).build_info
+    assert (info.backend, info.backend_note) == ("gmsh", "")
+    info = AlphaComplex.from_points(lattice(6, 3)).build_info
+    assert info.backend == "qhull" and info.backend_note.startswith("gmsh not used: ")
+    weighted = AlphaComplex.from_points(rng.uniform(size=(500, 3)),
+                                        weights=rng.uniform(0, 1e-3, 500))
+    assert weighted.build_info.backend == "qhull"
+    with pytest.raises(InputError, match="Delaunay triangulations only"):
+        AlphaComplex.from_points(rng.uniform(size=(500, 3)), weights=rng.uniform(0, 1e-3, 500),
+                                 backend="gmsh")
