@@ -59,3 +59,15 @@ def test_forced_gmsh_without_gmsh_is_one_line(capsys, xyz, monkeypatch):
     assert main(["info", str(xyz), "--backend", "gmsh"]) != 0
     err = capsys.readouterr().err
     assert "alphascoop[fast]" in err and len(err.strip().splitlines()) == 1
+
+
+def test_load_report_line_names_the_backend(tmp_path):
+    """The window's status line and info dock use Dataset.build_line."""
+    from app.dataset import Dataset
+    from core import AlphaComplex
+
+    ac = AlphaComplex.from_points(np.random.default_rng(2).uniform(size=(60, 3)),
+                                  backend="qhull")
+    ds = Dataset(tmp_path / "p.xyz", ac, ac.spectrum(), ac.optimal_alpha(), ac.default_alpha(),
+                 ac.signatures(), 60, None, 0.1, 1.25)
+    assert ds.build_line() == "built in 1.25 s (qhull)"
