@@ -34,7 +34,7 @@ def test_info_reports_the_qhull_backend(capsys, xyz):
     got = info(capsys, xyz, "--backend", "qhull")
     assert (got["backend"], got["backend_note"]) == ("qhull", "")
     assert main(["info", str(xyz), "--backend", "qhull"]) == 0
-    assert "backend     qhull" in capsys.readouterr().out
+    assert "build       backend qhull" in capsys.readouterr().out
 
 
 @pytest.mark.skipif(not core.backends.gmsh_backend.installed(), reason="gmsh not installed")
