@@ -79,7 +79,7 @@ def test_info_reports_the_build(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
     np.savetxt(tmp_path / "p.xyz", np.random.default_rng(3).random((60, 3)))
     assert main(["info", str(tmp_path / "p.xyz"), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["build"] == {"backend": "qhull"}
+    assert json.loads(capsys.readouterr().out)["build"] == {"backend": "qhull", "backend_note": ""}
     assert main(["info", str(tmp_path / "p.xyz")]) == 0
     assert "build       backend qhull" in capsys.readouterr().out
     assert BuildInfo().describe() == "backend qhull"
