@@ -11,7 +11,6 @@ instead (mallopt) kept the RSS flat too but made the table's loading passes 30-5
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import gc
 import os
 import resource
@@ -39,10 +38,10 @@ def peak_rss_bytes(children: bool = False) -> int:
 
 @cache
 def glibc_trim():
-    """glibc's malloc_trim, or None on another C library (musl, macOS, Windows)."""
-    name = ctypes.util.find_library("c")
+    """glibc's malloc_trim, or None on another C library (musl, macOS, Windows). Looked up
+    among the symbols already loaded (ctypes.util.find_library would start ldconfig)."""
     try:
-        function = ctypes.CDLL(name).malloc_trim
+        function = ctypes.CDLL(None).malloc_trim
     except (OSError, AttributeError, TypeError):
         return None
     function.argtypes, function.restype = [ctypes.c_size_t], ctypes.c_int
