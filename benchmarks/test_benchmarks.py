@@ -196,3 +196,33 @@ def test_first_open_ratios_on_both_clocks_and_memory():
     assert not any(name.startswith("core build") for name in rows)  # not measured: no row
     assert "| window: slider live / gudhi fast (time) | 40 | 80 | 0.5 | <= 0.6 | yes |" in (
         format_report(1000, results))
+
+
+def test_bunny_scan_lies_near_the_bunny_and_is_deterministic() -> None:
+    from pathlib import Path
+
+    from benchmarks.datasets import bunny_scan
+
+    folder = Path(__file__).resolve().parents[2] / "shared" / "data"
+    if not (folder / "bunny.ply").is_file():
+        pytest.skip("shared/data is absent")
+    points = bunny_scan(3000, seed=2, mesh=str(folder / "bunny.ply"))
+    assert points.shape == (3000, 3)
+    assert np.array_equal(points, bunny_scan(3000, seed=2, mesh=str(folder / "bunny.ply")))
+    assert np.array_equal(points, np.round(points, 6))  # 1 µm, as the ASCII PLY
+    assert points.min(axis=0)[1] > 0.03 and points.max(axis=0)[1] < 0.19  # bunny's bbox
+
+
+def test_backend_benchmark_small_run(tmp_path, capsys) -> None:
+    from benchmarks.bench_backends import main as backends_main
+
+    out = tmp_path / "backends.json"
+    steps = "scipy Delaunay,gmsh triangulation,build qhull"
+    assert backends_main(["--n", "3000", "--sets", "torus", "--steps", steps,
+                          "--json", str(out)]) == 0
+    result = json.loads(out.read_text())["results"]["torus"]
+    delaunay = result["scipy Delaunay"]
+    assert delaunay["cells"] > 0 and result["build qhull"]["backend"] == "qhull"
+    assert "error" not in result["gmsh triangulation"] or "gmsh" in result[
+        "gmsh triangulation"]["error"]
+    assert "gmsh triangulation / scipy Delaunay" in capsys.readouterr().out
