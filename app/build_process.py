@@ -56,7 +56,8 @@ class ChildRunner:
             if request.mode.normals == "given" and request.normals is not None:
                 np.save(Path(folder) / "normals.npy", np.asarray(request.normals, np.float64))
             job = {"mode": request.mode.to_dict(), "signatures": request.signatures,
-                   "save_to": None if request.save_to is None else str(request.save_to)}
+                   "save_to": None if request.save_to is None else str(request.save_to),
+                   "backend": request.backend}
             written = _run_child(source, target, job, report, self.cancel)
             report(1.0, "loading the table")
             return AlphaComplex.load(written)
@@ -115,8 +116,9 @@ def child_main(source: str, target: str, job: dict, sender: Connection) -> None:
     """Body of the build process: build (and the signatures if asked), save to the cache entry
     or else to `target`, report where (or why not).
 
-    `job` holds "mode" (Mode.to_dict()), "signatures" (bool) and "save_to" (the cache entry
-    or None); weights.npy and normals.npy beside the points hold those when given."""
+    `job` holds "mode" (Mode.to_dict()), "signatures" (bool), "save_to" (the cache entry
+    or None) and "backend" (str or None); weights.npy and normals.npy beside the points
+    hold those when given."""
     try:
         points = np.load(source, allow_pickle=False)
         weights = _optional(Path(source).with_name("weights.npy"))
@@ -124,7 +126,8 @@ def child_main(source: str, target: str, job: dict, sender: Connection) -> None:
         normals = (_optional(Path(source).with_name("normals.npy"))
                    if mode.normals == "given" else None)
         request = BuildRequest(points, weights, mode, normals, bool(job["signatures"]),
-                               None if job["save_to"] is None else Path(job["save_to"]))
+                               None if job["save_to"] is None else Path(job["save_to"]),
+                               job["backend"])
         ac, written = request.run(lambda f, s: sender.send(("progress", f, s)))
         if written is None:
             ac.save(target)

@@ -54,6 +54,9 @@ def _common(sub: argparse.ArgumentParser) -> None:
     sub.add_argument("--scan", type=index, metavar="N",
                      help="E57: read only scan N (0-based; default all scans, poses applied)")
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
+    sub.add_argument("--backend", choices=("qhull", "gmsh"),
+                     help="triangulation backend (default: gmsh where installed and exact, "
+                          "else qhull)")
     sizes = sub.add_mutually_exclusive_group()
     sizes.add_argument("--weights", metavar="COLUMN",
                        help="weighted points: squared radii from this column")
@@ -133,7 +136,8 @@ def load(args) -> tuple:
         needs_topology = args.command == "info" or chosen_alpha(args) is None
         obtained = obtain(ps.points, weights=ps.weights, mode=mode, normals=normals,
                           signatures=needs_topology and not getattr(args, "table", False),
-                          use_cache=not args.no_cache, progress=update)
+                          use_cache=not args.no_cache, backend=args.backend,
+                          progress=update)
     finally:
         close()
     return ps, obtained, time.perf_counter() - start
@@ -237,6 +241,8 @@ def summary(ps, obtained, seconds: float, at: dict | None) -> dict:
         "spectrum": {"count": len(spectrum), "min": float(spectrum[first]),
                      "max": float(spectrum[-1]), "min2": _sq(spectrum[first]),
                      "max2": _sq(spectrum[-1])},
+        "backend": ac.build_info.backend,
+        "backend_note": ac.build_info.backend_note,
         "weighted": weighted,
         "hidden_points": int((np.asarray(ac.input_index) < 0).sum()),
         "optimal_alpha": optimal,
@@ -284,7 +290,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + SOURCE_TEXT[info["source"]].format(seconds=cx["seconds"]),
-        f"build       {', '.join(f'{k} {v}' for k, v in info['build'].items())}",
+        f"build       {info['build_text']}",
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
     ]
@@ -322,7 +328,8 @@ def cmd_info(args) -> int:
     info = summary(ps, obtained, seconds, chosen_alpha(args))
     if is_molecule(args):
         info["molecule"] = molecule_summary(ac, args.probe)
-    text = None if args.json else _text({**info, "mode_text": ac.mode.describe()},
+    text = None if args.json else _text({**info, "mode_text": ac.mode.describe(),
+                                         "build_text": ac.build_info.describe()},
                                         ps.report.lines())
     if text is not None and "molecule" in info:
         text += "\n" + "\n".join(_molecule_text(info["molecule"]))

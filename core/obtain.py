@@ -11,7 +11,7 @@ other points, so it was removed and built again). Every caller (window, `alphasc
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Literal
 
@@ -32,7 +32,8 @@ TABLE_SHARE, SAVE_START = 0.65, 0.95  # of a build's progress with signatures; t
 class BuildRequest:
     """What a runner builds: (n, d) float64 points, optional (n,) squared-radius `weights`,
     the alpha `mode` with its given (n, d) `normals`, whether to compute the `signatures` too,
-    and the cache entry to `save_to` (None: keep it in memory only)."""
+    the cache entry to `save_to` (None: keep it in memory only) and the triangulation
+    `backend` ("qhull", "gmsh", None = automatic: core/build.py)."""
 
     points: np.ndarray
     weights: np.ndarray | None = None
@@ -40,6 +41,7 @@ class BuildRequest:
     normals: np.ndarray | None = None
     signatures: bool = False
     save_to: Path | None = None
+    backend: str | None = None
 
     def run(self, progress: Progress | None = None) -> tuple[AlphaComplex, Path | None]:
         """Build here: (the complex, the entry it was saved to, or None when not saved)."""
@@ -50,7 +52,8 @@ class BuildRequest:
         share = TABLE_SHARE if self.signatures else SAVE_START
         extra = {} if self.weights is None else {"weights": self.weights}
         ac = AlphaComplex.from_points(self.points, lambda f, s: step(share * f, s),
-                                      **extra, **self.mode.build_kwargs(self.normals))
+                                      **extra, **self.mode.build_kwargs(self.normals),
+                                      backend=self.backend)
         if self.signatures:
             step(TABLE_SHARE, "topology")
             ac.signatures()
@@ -87,13 +90,16 @@ class Obtained:
 def obtain(points: object, *, weights: object = None, mode: Mode | None = None,
            normals: np.ndarray | None = None, signatures: bool = False,
            use_cache: bool = True, cache_dir: str | Path | None = None,
-           runner: Runner | None = None, progress: Progress | None = None) -> Obtained:
+           backend: str | None = None, runner: Runner | None = None,
+           progress: Progress | None = None) -> Obtained:
     """The complex of (n, d) points (with (n,) squared-radius `weights`; in the alpha `mode`,
     with its given `normals`), from the cache in `cache_dir` (default core.cache.cache_dir())
     when it holds a good entry, else built by `runner` (default run_here) and stored.
 
     With `signatures` the topology is computed too (a cached entry without it is upgraded and
-    rewritten). `use_cache=False` neither reads nor writes the cache. progress(fraction,
+    rewritten). `backend` forces a triangulation backend ("qhull" or "gmsh"; a cached table
+    another backend built is then built again). `use_cache=False` neither reads nor writes
+    the cache. progress(fraction,
     stage) may raise core.errors.Cancelled to stop; the build's errors (InputError for points
     that make no complex) pass through.
     """
@@ -103,14 +109,16 @@ def obtain(points: object, *, weights: object = None, mode: Mode | None = None,
         coords = as_points(points)  # raises the InputError that says what is wrong
     w = None if weights is None else np.asarray(weights, dtype=np.float64)
     mode = mode or Mode()
-    request = BuildRequest(coords, w, mode, normals, signatures)
+    request = BuildRequest(coords, w, mode, normals, signatures, backend=backend)
     runner = runner or run_here
     if not use_cache:
         return Obtained(runner(request, progress), "built")
     path = entry_path(coords, mode, normals, w, folder=cache_dir)
     ac, damaged = read_entry(path, len(coords), mode)
+    if ac is not None and backend not in (None, ac.build_info.backend):
+        ac = None  # the same table, but the caller asked for the other backend's build
     if ac is None:
-        built = runner(BuildRequest(coords, w, mode, normals, signatures, path), progress)
+        built = runner(replace(request, save_to=path), progress)
         return Obtained(built, "rebuilt" if damaged else "built",
                         path if entry_exists(path) else None)
     if progress is not None:
