@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .parallel import in_chunks
 from .tolerances import (
     DEGENERATE_RTOL,
     EXTENDED_DEGENERATE_RTOL,
@@ -187,9 +188,11 @@ def cell_spheres(
     n = len(cells)
     r2, dets = np.empty(n), np.empty(n)
     flat, bits = np.empty(n, dtype=bool), np.empty(n, dtype=np.uint8)
-    for lo in range(0, n, CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        _, r2[sl], dets[sl], flat[sl], bits[sl] = _spheres(points, cells[sl])
+
+    def part(lo: int, hi: int) -> None:
+        _, r2[lo:hi], dets[lo:hi], flat[lo:hi], bits[lo:hi] = _spheres(points, cells[lo:hi])
+
+    in_chunks(part, n, CHUNK)
     return r2, dets, flat, bits
 
 
@@ -208,25 +211,32 @@ def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np
         return 0.25 * np.einsum("nd,nd->n", diff, diff), None
     out = np.empty(len(facets))
     bits = np.empty(len(facets), dtype=np.uint8)
+
+    def part(lo: int, hi: int) -> None:
+        out[lo:hi], bits[lo:hi] = _triangle_radii2(points, facets[lo:hi])
+
+    in_chunks(part, len(facets), CHUNK)
+    return out, bits
+
+
+def _triangle_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One chunk of facet_radii2 for triangles: (n,) radii² and (n,) uint8 obtuse bits."""
+    p0, p1, p2 = (np.take(points, facets[:, i], 0) for i in range(3))
+    a, b, c = p1 - p0, p2 - p0, p2 - p1
+    del p0, p1, p2
+    saa, sbb, scc = _dot(a, a), _dot(b, b), _dot(c, c)
+    # the longest side is left out of the cross product: a x b = a x c = b x c exactly
+    longest_a = (saa >= sbb) & (saa >= scc)
+    first = np.where(longest_a[:, None], b, a)
+    second = np.where(((sbb >= saa) & (sbb >= scc) | longest_a)[:, None], c, b)
+    n = _cross(first, second)
+    nn, short = _dot(n, n), _dot(first, first) * _dot(second, second)
+    bad = nn <= (DEGENERATE_RTOL ** 2) * short
+    out = saa * sbb * scc / (4.0 * np.where(bad, 1.0, nn))
+    if bad.any():
+        out[bad] = least_squares(np.stack((a[bad], b[bad]), axis=1))[1]
     tol = ON_SPHERE_RTOL
-    for lo in range(0, len(facets), CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        vec = edge_vectors(points, facets[sl])
-        a, b = vec[:, 0], vec[:, 1]  # p1 - p0, p2 - p0
-        c = np.take(points, facets[sl, 2], 0) - np.take(points, facets[sl, 1], 0)  # p2 - p1
-        saa, sbb, scc = _dot(a, a), _dot(b, b), _dot(c, c)
-        # the longest side is left out of the cross product: a x b = a x c = b x c exactly
-        longest_a = (saa >= sbb) & (saa >= scc)
-        first = np.where(longest_a[:, None], b, a)
-        second = np.where(((sbb >= saa) & (sbb >= scc) | longest_a)[:, None], c, b)
-        n = _cross(first, second)
-        nn, short = _dot(n, n), _dot(first, first) * _dot(second, second)
-        bad = nn <= (DEGENERATE_RTOL ** 2) * short
-        out[sl] = saa * sbb * scc / (4.0 * np.where(bad, 1.0, nn))
-        if bad.any():
-            out[sl][bad] = least_squares(vec[bad])[1]
-        chunk = (_dot(a, b) < -tol * (saa + sbb)).astype(np.uint8)  # angle at p0
-        chunk |= (_dot(a, c) > tol * (saa + scc)).astype(np.uint8) << 1  # p1: (-a).c < 0
-        chunk |= (_dot(b, c) < -tol * (sbb + scc)).astype(np.uint8) << 2  # p2: (-b).(-c)
-        bits[sl] = chunk
+    bits = (_dot(a, b) < -tol * (saa + sbb)).astype(np.uint8)  # angle at p0
+    bits |= (_dot(a, c) > tol * (saa + scc)).astype(np.uint8) << 1  # p1: (-a).c < 0
+    bits |= (_dot(b, c) < -tol * (sbb + scc)).astype(np.uint8) << 2  # p2: (-b).(-c)
     return out, bits

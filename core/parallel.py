@@ -48,6 +48,26 @@ def halves(part: Callable[[int, int], object], n: int) -> None:
     other.result()
 
 
+def in_chunks(part: Callable[[int, int], object], n: int, size: int) -> None:
+    """part(start, stop) over [0, n) in chunks of `size` (the same boundaries as a plain
+    loop, so every row sees the same arithmetic), alternate chunks in a helper thread."""
+    starts = range(0, n, size)
+    if len(starts) < 2 or threading.current_thread().name.startswith(f"{HELPER}-halves"):
+        for lo in starts:
+            part(lo, min(lo + size, n))
+        return
+
+    def run(mine: range) -> None:
+        for lo in mine:
+            part(lo, min(lo + size, n))
+
+    other = _pool("halves").submit(run, starts[1::2])
+    try:
+        run(starts[0::2])
+    finally:
+        other.result()
+
+
 def select(keep: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]],
            ranks: np.ndarray | None = None) -> None:
     """out[:] = source[keep] for each (source, out) pair, and ranks[:] = flatnonzero(keep),
