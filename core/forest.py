@@ -27,6 +27,48 @@ def spanning_forest(n_nodes: int, u: np.ndarray, v: np.ndarray, weight: np.ndarr
     return tree.data[order], tree.row[order].astype(np.int64), tree.col[order].astype(np.int64)
 
 
+def ordered_forest(n_nodes: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(f,) int64 ascending positions of the edges (u, v), taken in the given order, that
+    join two components (Kruskal's filter; the same edges as a spanning forest with weights
+    1, 2, 3, ...). Any pairs allowed, self-loops and repeats included.
+
+    scipy's Kruskal argsorts its weights, the slow part on millions of edges in random
+    order. Here edge i becomes a node n + i hung from u[i] (weight 1, always joining) and
+    tied to v[i] (weight i + 2): laid out by row (all u rows first, then n + i ascending)
+    the weights already ascend, so that sort is one linear pass and Kruskal meets the
+    edges in their order; edge i joins exactly when u[i] and v[i] are still apart.
+    """
+    k = len(u)
+    if k == 0:
+        return np.zeros(0, dtype=np.int64)
+    size = n_nodes + k
+    index = np.int32 if size < 2**31 else np.int64
+    ids = np.arange(n_nodes, size, dtype=index)
+    rows = np.concatenate((np.asarray(u, dtype=index), ids))
+    cols = np.concatenate((ids, np.asarray(v, dtype=index)))
+    del ids
+    data = np.concatenate((np.ones(k), np.arange(2.0, k + 2.0)))  # i + 2 for edge i
+    graph = coo_matrix((data, (rows, cols)), shape=(size, size)).tocsr()
+    del rows, cols, data
+    tree = minimum_spanning_tree(graph, overwrite=True).tocoo()
+    joined = tree.row[tree.row >= n_nodes].astype(np.int64) - n_nodes
+    return np.sort(joined)
+
+
+def rank_forest(rank: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(f,) int64 ascending ranks at which an edge (u, v) first joins two components when
+    each edge arrives with the later of its two nodes: node x arrives at rank[x] (1..n,
+    distinct). Pairs must be distinct. Laid out in rank space with the later node as row,
+    scipy's Kruskal gets its weights already in order (no random-order sort)."""
+    ru, rv = rank[u].astype(np.int64) - 1, rank[v].astype(np.int64) - 1
+    later, earlier = np.maximum(ru, rv), np.minimum(ru, rv)
+    del ru, rv
+    n = len(rank)
+    graph = coo_matrix(((later + 1).astype(np.float64), (later, earlier)), shape=(n, n))
+    tree = minimum_spanning_tree(graph.tocsr(), overwrite=True)
+    return np.sort(tree.data.astype(np.int64))
+
+
 def younger_roots(key: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Elder rule: for forest edges merged in the given order, the key of the component that dies.
 

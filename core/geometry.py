@@ -240,3 +240,22 @@ def _triangle_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray
     bits |= (_dot(a, c) > tol * (saa + scc)).astype(np.uint8) << 1  # p1: (-a).c < 0
     bits |= (_dot(b, c) < -tol * (sbb + scc)).astype(np.uint8) << 2  # p2: (-b).(-c)
     return out, bits
+
+
+def facet_sizes(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
+    """(n,) float64 length (edges) or area (triangles in 3D) of (n, 2|3) int facets, in
+    chunks on two threads: three row gathers per chunk instead of one (n, k, d) fancy index."""
+    out = np.empty(len(facets))
+
+    def part(lo: int, hi: int) -> None:
+        rows = facets[lo:hi]
+        first = np.take(points, rows[:, 0], 0)
+        side = np.take(points, rows[:, 1], 0) - first
+        if rows.shape[1] == 3:
+            side = _cross(side, np.take(points, rows[:, 2], 0) - first)
+        np.sqrt(np.add.reduce(side * side, axis=1), out=out[lo:hi])
+        if rows.shape[1] == 3:
+            out[lo:hi] /= 2.0
+
+    in_chunks(part, len(facets), CHUNK)
+    return out

@@ -6,11 +6,11 @@ from sorted event arrays and cumulative sums, so the whole spectrum costs O(n lo
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from .geometry import facet_sizes
 from .opening import opening_alpha_of
 from .shape import threshold
 from .topology import Topology, ascending, ascending_order
@@ -108,11 +108,7 @@ def class_counts(thresholds: tuple, alphas: np.ndarray) -> np.ndarray:
 
 def facet_measures(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
     """(n_f,) float64 length (2D edges) or area (3D triangles) of (n_f, dim) facets."""
-    corners = np.asarray(points, dtype=np.float64)[np.asarray(facets)]
-    if corners.shape[1] == 2:
-        return np.linalg.norm(corners[:, 1] - corners[:, 0], axis=1)
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    return np.linalg.norm(normal, axis=1) / math.factorial(2)
+    return facet_sizes(np.asarray(points, dtype=np.float64), np.asarray(facets))
 
 
 def _ro(array: np.ndarray) -> np.ndarray:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .forest import spanning_forest
+from .forest import ordered_forest, rank_forest, spanning_forest
 from .locate import checked_alpha
 
 
@@ -84,9 +84,8 @@ def vertex_spanning_forest(n_vertices: int, edges: np.ndarray, edge_enter: np.nd
     """
     if len(edge_enter) == 0 or edge_enter[0] > 0:
         return spanning_forest(n_vertices, edges[:, 0], edges[:, 1], edge_enter)
-    ranks, a, b = spanning_forest(n_vertices, edges[:, 0], edges[:, 1],
-                                  np.arange(1.0, len(edge_enter) + 1.0))
-    return edge_enter[ranks.astype(np.int64) - 1], a, b
+    joined = ordered_forest(n_vertices, edges[:, 0], edges[:, 1])
+    return edge_enter[joined], edges[joined, 0], edges[joined, 1]
 
 
 def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) -> tuple:
@@ -104,9 +103,9 @@ def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) 
     np.minimum.at(first_hull, u[hull], np.flatnonzero(hull))
     keep = (u != v) & (~hull | (np.arange(len(order)) == first_hull[u]))
     arrival = np.flatnonzero(keep)
-    ranks, a, b = spanning_forest(n_cells + 1, u[keep], v[keep], arrival + 1.0)
-    facets = order[ranks.astype(np.int64) - 1]
-    return facet_enter[facets], np.stack([a, b], axis=1)
+    joined = arrival[ordered_forest(n_cells + 1, u[arrival], v[arrival])]
+    facets = order[joined]
+    return facet_enter[facets], np.stack([u[joined], v[joined]], axis=1)
 
 
 def solid_forest(facet_cells: np.ndarray, cell_enter: np.ndarray) -> np.ndarray:
@@ -114,10 +113,9 @@ def solid_forest(facet_cells: np.ndarray, cell_enter: np.ndarray) -> np.ndarray:
     inner = facet_cells[(facet_cells >= 0).all(axis=1)]
     a, b = inner.min(axis=1), inner.max(axis=1)
     order = ascending_order(cell_enter)
-    rank = np.empty(len(cell_enter), dtype=np.float64)
+    rank = np.empty(len(cell_enter), dtype=np.int64)
     rank[order] = np.arange(1, len(cell_enter) + 1)
-    joined, _, _ = spanning_forest(len(cell_enter), a, b, np.maximum(rank[a], rank[b]))
-    return cell_enter[order[joined.astype(np.int64) - 1]]
+    return cell_enter[order[rank_forest(rank, a, b) - 1]]
 
 
 def ascending_order(values: np.ndarray) -> np.ndarray:
