@@ -68,6 +68,18 @@ def in_chunks(part: Callable[[int, int], object], n: int, size: int) -> None:
         other.result()
 
 
+def take(source: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    """source[ids] along the first axis (ids in [-len, len), negatives from the end as in
+    Python), gathered in halves: random gathers are bound by memory latency."""
+    out = np.empty((len(ids), *source.shape[1:]), dtype=source.dtype)
+
+    def part(start: int, stop: int) -> None:
+        np.take(source, ids[start:stop], axis=0, out=out[start:stop], mode="wrap")
+
+    halves(part, len(ids))
+    return out
+
+
 def select(keep: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]],
            ranks: np.ndarray | None = None) -> None:
     """out[:] = source[keep] for each (source, out) pair, and ranks[:] = flatnonzero(keep),

@@ -28,6 +28,7 @@ from .geometry import (
     edge_vectors,
     facet_radii2,
 )
+from .parallel import take
 from .power import (
     any_point_below,
     cell_orthospheres,
@@ -65,19 +66,22 @@ class Table:
 
 def _permute(level: Level, order: np.ndarray) -> np.ndarray:
     """Reorder `level` by `order` in place; return the inverse permutation."""
-    level.simplices = level.simplices[order]
-    level.enter, level.regular, level.interior = (
-        level.enter[order], level.regular[order], level.interior[order])
+    level.simplices = take(level.simplices, order)
+    shared = level.regular is level.enter and level.interior is level.enter  # cells
+    level.enter = take(level.enter, order)
+    level.regular = level.enter.copy() if shared else take(level.regular, order)
+    level.interior = level.enter.copy() if shared else take(level.interior, order)
     if level.face_ids is not None:
-        level.face_ids = level.face_ids[order]
+        level.face_ids = take(level.face_ids, order)
     inverse = np.empty(len(order), dtype=np.int32)
     inverse[order] = np.arange(len(order), dtype=np.int32)
     return inverse
 
 
 def _remap(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
-    """Apply an inverse permutation to an id array that uses -1 for none."""
-    return np.where(ids >= 0, inverse[np.maximum(ids, 0)], -1).astype(np.int32)
+    """Apply an inverse permutation to an int32 id array that uses -1 for none: one gather
+    from the inverse with -1 appended (index -1 reads it)."""
+    return take(np.append(inverse, np.int32(-1)), ids.ravel()).reshape(ids.shape)
 
 
 def argsort_radii(values: np.ndarray) -> np.ndarray:
@@ -185,7 +189,8 @@ def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     level = Level(cells, enter, enter, enter)
     order = argsort_radii(enter)
     inverse = _permute(level, order)
-    return level, _remap(neighbors[order], inverse), det[order], bits[order], measure[order]
+    return (level, _remap(take(neighbors, order), inverse), take(det, order), take(bits, order),
+            take(measure, order))
 
 
 def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
@@ -230,13 +235,13 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     """Level d-1 from the cells' neighbour table: each shared facet taken once."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
-    t0, i0 = np.nonzero(keep)
+    slot0 = np.flatnonzero(keep)  # cell-major, as np.nonzero lists them
     del keep
-    t1 = neighbors[t0, i0]
-    others = np.array([[j for j in range(width) if j != i] for i in range(width)])
-    simplices = np.take_along_axis(cells.simplices[t0], others[i0], axis=1)
+    t0, i0 = np.divmod(slot0, width)
+    t1 = take(neighbors.ravel(), slot0)
+    simplices = _drop_vertex(cells.simplices, t0, i0)
     has1 = np.flatnonzero(t1 >= 0)
-    j1 = np.argmax(neighbors[t1[has1]] == t0[has1, None], axis=1)
+    j1 = _slot_of(neighbors, t1[has1], t0[has1])
 
     radius, obtuse, global_test = _facet_spheres(points, simplices, weights)
     attached = ((bits[t0] >> i0) & 1).astype(bool)
@@ -262,8 +267,8 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
 
     fid = np.arange(len(t0), dtype=np.int32)
     cell_faces = np.full((n_cells, width), -1, dtype=np.int32)
-    cell_faces[t0, i0] = fid
-    cell_faces[t1[has1], j1] = fid[has1]
+    cell_faces.ravel()[slot0] = fid
+    cell_faces.ravel()[t1[has1].astype(np.int64) * width + j1] = fid[has1]
     level = Level(simplices.astype(np.int32), enter, regular, interior)
     facet_cells = np.stack((t0, t1), axis=1).astype(np.int32)
     order = argsort_radii(enter)
@@ -271,6 +276,25 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     cells.face_ids = inverse[cell_faces]
     return (level, facet_cells[order], flip[order], near_flat[order],
             None if obtuse is None else obtuse[order])
+
+
+def _drop_vertex(simplices: np.ndarray, rows: np.ndarray, drop: np.ndarray) -> np.ndarray:
+    """(n, w-1) the ascending rows `rows` of (c, w) `simplices` without column `drop`."""
+    full = take(simplices, rows)
+    out = np.empty((len(rows), simplices.shape[1] - 1), dtype=simplices.dtype)
+    for c in range(out.shape[1]):
+        np.copyto(out[:, c], np.where(drop > c, full[:, c], full[:, c + 1]))
+    return out
+
+
+def _slot_of(neighbors: np.ndarray, cells: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """(n,) int64 first column of neighbors[cells] holding target (0 if none), as argmax
+    would give, by one compare per column instead of a (n, w) boolean argmax."""
+    rows = take(neighbors, cells)
+    slot = np.zeros(len(cells), dtype=np.int64)
+    for c in range(neighbors.shape[1] - 1, -1, -1):
+        slot[rows[:, c] == target] = c
+    return slot
 
 
 def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bool]:
