@@ -1,7 +1,8 @@
 """Union-find over a filtration, done by scipy's compiled graph routines instead of Python loops.
 
-`spanning_forest` gives the edges that merge components when edges arrive in order of weight
-(Kruskal's minimum spanning forest). `younger_roots` applies the
+`ordered_forest` gives the edges that merge components when edges arrive in a given order
+(Kruskal's filter), `spanning_forest` the same by weight, `rank_forest` for edges that arrive
+with the later of their nodes (solid components). `younger_roots` applies the
 elder rule to those merges (which component dies at each one) by divide and conquer over the
 arrival order, one `connected_components` call per halving level: O(m log m) in C plus numpy.
 """
@@ -14,17 +15,17 @@ from scipy.sparse.csgraph import connected_components, minimum_spanning_tree
 
 
 def spanning_forest(n_nodes: int, u: np.ndarray, v: np.ndarray, weight: np.ndarray) -> tuple:
-    """A minimum spanning forest of edges (u, v) with positive weights, edges by weight.
+    """A minimum spanning forest of edges (u, v), edges by weight (ties in the given order).
 
     For every w, its edges of weight <= w span the subgraph of all edges of weight <= w, so
-    they count the merges of a filtration in which edges arrive by weight (ties in any order).
-    Pairs (u, v) must be distinct (scipy would sum duplicates) and weights > 0 (0 = no edge).
+    they count the merges of a filtration in which edges arrive by weight.
     Returns (weights, a, b): (f,) float64 ascending and (f,) int64 end nodes of each edge.
     """
-    graph = coo_matrix((np.asarray(weight, dtype=np.float64), (u, v)), shape=(n_nodes, n_nodes))
-    tree = minimum_spanning_tree(graph.tocsr()).tocoo()
-    order = np.argsort(tree.data, kind="stable")
-    return tree.data[order], tree.row[order].astype(np.int64), tree.col[order].astype(np.int64)
+    weight = np.asarray(weight, dtype=np.float64)
+    order = np.argsort(weight, kind="stable")
+    joined = order[ordered_forest(n_nodes, np.asarray(u)[order], np.asarray(v)[order])]
+    return (weight[joined], np.asarray(u, dtype=np.int64)[joined],
+            np.asarray(v, dtype=np.int64)[joined])
 
 
 def ordered_forest(n_nodes: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:

@@ -80,6 +80,17 @@ def take(source: np.ndarray, ids: np.ndarray) -> np.ndarray:
     return out
 
 
+def searchsorted(ascending: np.ndarray, values: np.ndarray, side: str = "left") -> np.ndarray:
+    """np.searchsorted(ascending, values, side) as (n,) intp, the values in halves."""
+    out = np.empty(len(values), dtype=np.intp)
+
+    def part(start: int, stop: int) -> None:
+        out[start:stop] = np.searchsorted(ascending, values[start:stop], side=side)
+
+    halves(part, len(values))
+    return out
+
+
 def select(keep: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]],
            ranks: np.ndarray | None = None) -> None:
     """out[:] = source[keep] for each (source, out) pair, and ranks[:] = flatnonzero(keep),

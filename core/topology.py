@@ -15,8 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .forest import ordered_forest, rank_forest, spanning_forest
+from .forest import ordered_forest, rank_forest
 from .locate import checked_alpha
+from .parallel import searchsorted
 
 
 @dataclass(frozen=True, eq=False)
@@ -39,9 +40,9 @@ class Topology:
     def betti_many(self, alphas: np.ndarray) -> np.ndarray:
         """(s, dim) int32 Betti numbers at every alpha of the (s,) array `alphas`."""
         alphas = np.asarray(alphas, dtype=np.float64)
-        n_in = [np.searchsorted(e, alphas, side="right") for e in self.enter_sorted]
-        b0 = n_in[0] - np.searchsorted(self.vertex_forest, alphas, side="right")
-        open_forest = len(self.dual_forest) - np.searchsorted(self.dual_forest, alphas, "right")
+        n_in = [searchsorted(e, alphas, side="right") for e in self.enter_sorted]
+        b0 = n_in[0] - searchsorted(self.vertex_forest, alphas, side="right")
+        open_forest = len(self.dual_forest) - searchsorted(self.dual_forest, alphas, "right")
         cavities = (self.n_cells - n_in[self.dim]) - open_forest
         if self.dim == 2:
             return np.stack([b0, cavities], axis=1).astype(np.int32)
@@ -51,8 +52,8 @@ class Topology:
     def solid_components(self, alphas: np.ndarray) -> np.ndarray:
         """(s,) int32 number of facet-connected groups of cells in the complex at each alpha."""
         alphas = np.asarray(alphas, dtype=np.float64)
-        cells_in = np.searchsorted(self.enter_sorted[self.dim], alphas, side="right")
-        return (cells_in - np.searchsorted(self.solid_forest, alphas, side="right")).astype(
+        cells_in = searchsorted(self.enter_sorted[self.dim], alphas, side="right")
+        return (cells_in - searchsorted(self.solid_forest, alphas, side="right")).astype(
             np.int32
         )
 
@@ -79,11 +80,8 @@ def build_topology(ac) -> Topology:
 def vertex_spanning_forest(n_vertices: int, edges: np.ndarray, edge_enter: np.ndarray):
     """(enter, a, b) of the edges that join components, by entry: (f,) float64, (f,) int64.
 
-    Edges are (n_e, 2) int64 sorted by their (n_e,) enter values; values <= 0 (weighted
-    complexes) go through their ranks, as the spanning forest takes positive weights only.
+    Edges are (n_e, 2) int64 sorted by their (n_e,) enter values (ties: in the given order).
     """
-    if len(edge_enter) == 0 or edge_enter[0] > 0:
-        return spanning_forest(n_vertices, edges[:, 0], edges[:, 1], edge_enter)
     joined = ordered_forest(n_vertices, edges[:, 0], edges[:, 1])
     return edge_enter[joined], edges[joined, 0], edges[joined, 1]
 
