@@ -91,6 +91,36 @@ def searchsorted(ascending: np.ndarray, values: np.ndarray, side: str = "left") 
     return out
 
 
+def sort(values: np.ndarray) -> None:
+    """values.sort() in place: long arrays as two halves at once, then one merge pass
+    (numpy's stable sort merges two sorted runs in linear time)."""
+    if len(values) < PARALLEL_ABOVE or threading.current_thread().name.startswith(
+            f"{HELPER}-halves"):
+        values.sort()
+        return
+    half = len(values) // 2
+    other = _pool("halves").submit(values[half:].sort)
+    values[:half].sort()
+    other.result()
+    values.sort(kind="stable")
+
+
+def reduce_segments(ufunc: np.ufunc, values: Callable[[int, int], np.ndarray],
+                    starts: np.ndarray, n: int, dtype: type) -> np.ndarray:
+    """ufunc.reduceat over the segments [starts[i], starts[i+1]) of an n-long sequence
+    whose items [lo, hi) `values(lo, hi)` gives; the segments in halves (each half gathers
+    only its own items)."""
+    out = np.empty(len(starts), dtype=dtype)
+
+    def part(first: int, last: int) -> None:
+        lo = int(starts[first])
+        hi = int(starts[last]) if last < len(starts) else n
+        out[first:last] = ufunc.reduceat(values(lo, hi), starts[first:last] - lo)
+
+    halves(part, len(starts))
+    return out
+
+
 def select(keep: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]],
            ranks: np.ndarray | None = None) -> None:
     """out[:] = source[keep] for each (source, out) pair, and ranks[:] = flatnonzero(keep),

@@ -28,7 +28,7 @@ from .geometry import (
     edge_vectors,
     facet_radii2,
 )
-from .parallel import take
+from .parallel import in_chunks, reduce_segments, sort, take
 from .power import (
     any_point_below,
     cell_orthospheres,
@@ -315,7 +315,7 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
         cols = [triangles[:, c].astype(np.uint64) for c in range(3)]
         packed = np.concatenate([((cols[i] * m + cols[j]) << shift) | tid for i, j in pairs])
         del cols, tid
-        packed.sort()
+        sort(packed)
         tri_ids = (packed & np.uint64((1 << tri_bits) - 1)).astype(np.int32)
         packed >>= shift
         return packed.view(np.int64), tri_ids, True
@@ -323,6 +323,37 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
                            for i, j in pairs])
     order = np.argsort(keys)
     return keys[order], (order % nt).astype(np.int32), False
+
+
+def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
+                tris: np.ndarray, bits: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """For the sorted incidences (edge key, triangle id): (n,) bool attach bit of each
+    (the triangle's vertex opposite the edge is inside its diametral sphere) and the
+    (3 t,) int32 edge number of every triangle's three edges; in chunks on two threads."""
+    inside = np.empty(len(keys), dtype=bool)
+    face_ids = np.empty(tris.size, dtype=np.int32)
+    first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
+    size = 4 * CHUNK
+    base = np.cumsum([0] + [np.count_nonzero(is_start[lo:lo + size])
+                            for lo in range(0, len(keys), size)])
+
+    def part(lo: int, hi: int) -> None:
+        t = tri_ids[lo:hi]
+        a, b = np.divmod(keys[lo:hi], m)
+        local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
+        inside[lo:hi] = (bits[t] >> local) & 1
+        edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
+        face_ids[3 * t.astype(np.int64) + local] = edge_of
+
+    in_chunks(part, len(keys), size)
+    return inside, face_ids
+
+
+def _gathered(source: np.ndarray, ids: np.ndarray | None) -> Callable[[int, int], np.ndarray]:
+    """(lo, hi) -> source[ids[lo:hi]] (source[lo:hi] without ids), for reduce_segments."""
+    if ids is None:
+        return lambda lo, hi: source[lo:hi]
+    return lambda lo, hi: np.take(source, ids[lo:hi])
 
 
 def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
@@ -340,27 +371,19 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     np.not_equal(keys[1:], keys[:-1], out=is_start[1:])
     starts = np.flatnonzero(is_start)
 
-    inside = np.empty(len(keys), dtype=bool)
-    face_ids = np.empty(tris.size, dtype=np.int32)
-    first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
-    edge_base = 0
-    for lo in range(0, len(keys), 4 * CHUNK):
-        sl = slice(lo, lo + 4 * CHUNK)
-        t = tri_ids[sl]
-        a, b = np.divmod(keys[sl], m)
-        local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
-        inside[sl] = (bits[t] >> local) & 1
-        edge_of = np.cumsum(is_start[sl], dtype=np.int64) + (edge_base - 1)
-        edge_base = int(edge_of[-1]) + 1
-        face_ids[3 * t.astype(np.int64) + local] = edge_of
+    inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m)
     del is_start, bits
+    n = len(keys)
     if ids_ascend:
-        regular = triangles.enter[tri_ids[starts]]
+        regular = take(triangles.enter, take(tri_ids, starts))
     else:
-        regular = np.minimum.reduceat(triangles.enter[tri_ids], starts)
-    interior = np.maximum.reduceat(triangles.interior[tri_ids], starts)
-    attached = np.logical_or.reduceat(inside, starts)
-    check = np.flatnonzero(np.logical_or.reduceat(near_flat[tri_ids], starts))
+        regular = reduce_segments(np.minimum, _gathered(triangles.enter, tri_ids), starts, n,
+                                  np.float64)
+    interior = reduce_segments(np.maximum, _gathered(triangles.interior, tri_ids), starts, n,
+                               np.float64)
+    attached = reduce_segments(np.logical_or, _gathered(inside, None), starts, n, bool)
+    check = np.flatnonzero(reduce_segments(np.logical_or, _gathered(near_flat, tri_ids),
+                                           starts, n, bool))
     edge_keys = keys[starts]
     del keys, tri_ids, inside
     a, b = np.divmod(edge_keys, m)
@@ -377,7 +400,7 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     enter = np.where(attached, regular, np.minimum(half, regular))
     level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
     inverse = _sort_by_enter(level)
-    triangles.face_ids = inverse[face_ids.reshape(-1, 3)]
+    triangles.face_ids = take(inverse, face_ids).reshape(-1, 3)
     return level
 
 
