@@ -91,7 +91,7 @@ def boundary_sums(facet_cells: np.ndarray, cell_order: np.ndarray, sizes: np.nda
     rank = np.empty(len(cell_order), dtype=np.int64)
     rank[cell_order] = np.arange(len(cell_order))
     sides = np.where(facet_cells >= 0, rank[np.maximum(facet_cells, 0)], len(cell_order))
-    first, second = sides.min(axis=1), sides.max(axis=1)
+    first, second = np.minimum(sides[:, 0], sides[:, 1]), np.maximum(sides[:, 0], sides[:, 1])
     width = len(cell_order) + 1
     change = np.bincount(first, sizes, width) - np.bincount(second, sizes, width)
     return np.concatenate([[0.0], np.cumsum(change[:-1])])

@@ -94,8 +94,10 @@ def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) 
     n_cells for the outside). A cell with several hull facets keeps its first to arrive.
     """
     order = ascending_order(facet_enter)[::-1]
-    sides = np.where(facet_cells[order] < 0, n_cells, facet_cells[order])
-    u, v = sides.min(axis=1), sides.max(axis=1)
+    sides = facet_cells[order]
+    sides = np.where(sides < 0, n_cells, sides)
+    u, v = np.minimum(sides[:, 0], sides[:, 1]), np.maximum(sides[:, 0], sides[:, 1])
+    del sides
     hull = v == n_cells
     first_hull = np.full(n_cells + 1, len(order), dtype=np.int64)
     np.minimum.at(first_hull, u[hull], np.flatnonzero(hull))
@@ -108,8 +110,8 @@ def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) 
 
 def solid_forest(facet_cells: np.ndarray, cell_enter: np.ndarray) -> np.ndarray:
     """(fs,) float64 ascending alphas at which an inner facet first joins two separate solids."""
-    inner = facet_cells[(facet_cells >= 0).all(axis=1)]
-    a, b = inner.min(axis=1), inner.max(axis=1)
+    inner = facet_cells[(facet_cells[:, 0] >= 0) & (facet_cells[:, 1] >= 0)]
+    a, b = np.minimum(inner[:, 0], inner[:, 1]), np.maximum(inner[:, 0], inner[:, 1])
     order = ascending_order(cell_enter)
     rank = np.empty(len(cell_enter), dtype=np.int64)
     rank[order] = np.arange(1, len(cell_enter) + 1)
