@@ -19,15 +19,27 @@ from .tolerances import (
 CHUNK = 1 << 19
 
 
+_CROSS = ((1, 2), (2, 0), (0, 1))  # component i of a x b is a[j] b[k] - a[k] b[j]
+
+
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.stack(
-        (
-            a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
-            a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
-            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0],
-        ),
-        axis=1,
-    )
+    """(n, 3) a x b of (n, 3) rows."""
+    out = np.empty((len(a), 3), dtype=np.result_type(a, b))
+    for i, (j, k) in enumerate(_CROSS):
+        np.subtract(a[:, j] * b[:, k], a[:, k] * b[:, j], out=out[:, i])
+    return out
+
+
+def _duals(vec: np.ndarray) -> np.ndarray:
+    """(3, n, 3) b x c, c x a, a x b of the rows a, b, c of (n, 3, 3) `vec`: the same
+    products as _cross, read from contiguous coordinate planes instead of strided columns."""
+    planes = np.ascontiguousarray(vec.transpose(1, 2, 0))  # (vector, coordinate, n)
+    out = np.empty((3, len(vec), 3), dtype=vec.dtype)
+    for slot, (u, w) in enumerate(_CROSS):
+        first, second = planes[u], planes[w]
+        for i, (j, k) in enumerate(_CROSS):
+            np.subtract(first[j] * second[k], first[k] * second[j], out=out[slot, :, i])
+    return out
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -110,8 +122,7 @@ def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
         scale = np.sqrt(det * sq[:, 0] * sq[:, 1])  # det is |a x b|²: compare |a x b|
         duals = None
     else:
-        c = vec[:, 2]
-        duals = np.stack((_cross(b, c), _cross(c, a), _cross(a, b)))
+        duals = _duals(vec)
         det = _dot(a, duals[0])
         num = rhs[:, :1] * duals[0] + rhs[:, 1:2] * duals[1] + rhs[:, 2:3] * duals[2]
         scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
