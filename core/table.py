@@ -37,9 +37,8 @@ from .power import (
     signed_sqrt,
     triangle_powers,
 )
+from .progress import Progress
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
-
-Progress = Callable[[float, str], None]
 
 
 @dataclass
