@@ -50,8 +50,9 @@ def worker(n: int, seed: int) -> dict:
     wall, cpu = time.perf_counter(), time.process_time()
     topology = build_topology(ac)
     figures["topology"] = [time.perf_counter() - wall, time.process_time() - cpu]
+    index = getattr(ac, "index", None)  # the table index object since issue 16
     wall, cpu = time.perf_counter(), time.process_time()
-    compute_signatures(ac, topology)
+    compute_signatures(*((ac,) if index is None else (index, ac.points)), topology)
     figures["signatures"] = [time.perf_counter() - wall, time.process_time() - cpu]
     figures["peak MiB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
     return figures
@@ -141,14 +142,23 @@ def main(argv: list[str] | None = None) -> int:
                 sides[side].append(run(root, n, args.seed))
                 print(f"n={n} {side}: build {sides[side][-1]['build'][0]:.1f} s",
                       file=sys.stderr, flush=True)
-        gudhi = run(after_root, n, args.seed, "--gudhi-worker") if args.gudhi else None
-        payload[n] = {"before": sides["before"], "after": sides["after"], "gudhi": gudhi}
-        print(table(n, best(sides["before"]), best(sides["after"]), gudhi) + "\n", flush=True)
-        if args.json:
-            with open(args.json + ".tmp", "w") as handle:
-                json.dump(payload, handle, indent=1)
-            os.replace(args.json + ".tmp", args.json)
+        payload[n] = {"before": sides["before"], "after": sides["after"], "gudhi": None}
+        _write(args.json, payload)
+        print(table(n, best(sides["before"]), best(sides["after"]), None) + "\n", flush=True)
+        if args.gudhi:  # after the table, so a long gudhi run loses nothing measured before
+            payload[n]["gudhi"] = gudhi = run(after_root, n, args.seed, "--gudhi-worker")
+            _write(args.json, payload)
+            print(table(n, best(sides["before"]), best(sides["after"]), gudhi).splitlines()[-1]
+                  + "\n", flush=True)
     return 0
+
+
+def _write(path: str | None, payload: dict) -> None:
+    """Write the JSON atomically (temporary file + os.replace), if a path was given."""
+    if path:
+        with open(path + ".tmp", "w") as handle:
+            json.dump(payload, handle, indent=1)
+        os.replace(path + ".tmp", path)
 
 
 if __name__ == "__main__":
