@@ -27,7 +27,7 @@ from app.import_dialog import ask_import_options
 from app.info_panel import InfoPanel
 from app.inspect_panel import InspectPanel
 from app.inspector import Inspector
-from app.jobs import JobRunner
+from app.jobs import Runner
 from app.layers_panel import LayersPanel
 from app.menus import build_menus
 from app.mode_panel import ModePanel
@@ -38,7 +38,7 @@ from app.resources import ICON_PATH
 from app.scene import Scene, as_xyz
 from app.settings import Preferences
 from app.signatures_dock import SignaturesPanel
-from app.worker import Loader
+from app.worker import load_job
 from core.modes import Mode
 
 CLOSE_WAIT_MS = 2000  # how long closing waits for a running build before leaving it behind
@@ -59,8 +59,8 @@ class MainWindow(QMainWindow):
         self.last_options: ImportOptions | None = None  # how the last file was read
         self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
         self.model = ExplorerModel()
-        self.loader = Loader(self)
-        self.jobs = JobRunner(self)
+        self.loader = Runner(self)  # loads and rebuilds: a newer one supersedes the older
+        self.jobs = Runner(self, exclusive=True)  # exports: one at a time
         self.plotter = QtInteractor(self, auto_update=False)
         self.plotter.setAcceptDrops(False)
         self.setCentralWidget(self.plotter)
@@ -111,7 +111,8 @@ class MainWindow(QMainWindow):
         self.loader.failed.connect(self._on_failed)
         self.loader.cancelled.connect(self._on_cancelled)
         self.progress.cancelRequested.connect(self.loader.cancel)
-        self.jobs.progress.connect(self.job_progress.update_progress)
+        self.jobs.progress.connect(lambda _request, fraction, stage:
+                                   self.job_progress.update_progress(fraction, stage))
         self.jobs.finished.connect(self._on_job_done)
         self.jobs.failed.connect(self._on_job_failed)
         self.jobs.cancelled.connect(self._on_job_cancelled)
@@ -128,7 +129,7 @@ class MainWindow(QMainWindow):
         self.prefs.set_last_dir(path)
         self.progress.start(f"opening {path.name}")
         self.last_options = options
-        return self.loader.open(path, self.mode, options)
+        return self.loader.start(load_job(path, self.mode, options))
 
     def open_asking(self, path: str | Path) -> int | None:
         """Open path as a user does (File → Open, a drop): text and big files first show the
@@ -146,32 +147,29 @@ class MainWindow(QMainWindow):
         if not rebuild or dataset is None:
             return None
         self.progress.start(f"rebuilding {dataset.path.name}: {mode.describe()}")
-        return self.loader.open(dataset.path, mode, self.last_options)
+        return self.loader.start(load_job(dataset.path, mode, self.last_options))
 
-    def _on_job_done(self, title: str, message: str) -> None:
+    def _on_job_done(self, _request: int, message: str) -> None:
         """An export finished: say what it wrote."""
         self.job_progress.stop()
         self.report(message)
 
-    def _on_job_failed(self, title: str, message: str) -> None:
+    def _on_job_failed(self, _request: int, message: str) -> None:
         """An export failed: one dialog naming what failed."""
         self.job_progress.stop()
-        QMessageBox.warning(self, title, message)
+        QMessageBox.warning(self, self.jobs.job.title, message)
 
-    def _on_job_cancelled(self, title: str) -> None:
+    def _on_job_cancelled(self, _request: int) -> None:
         """An export was cancelled: nothing was written (an old file stays as it was)."""
         self.job_progress.stop()
-        self.report(f"{title} cancelled; nothing was written")
+        self.report(f"{self.jobs.job.title} cancelled; nothing was written")
 
-    def _on_progress(self, request: int, fraction: float, stage: str) -> None:
-        """Show the current request's progress (older requests are ignored)."""
-        if request == self.loader.current:
-            self.progress.update_progress(fraction, stage)
+    def _on_progress(self, _request: int, fraction: float, stage: str) -> None:
+        """Show the open's progress (the runner drops older requests' reports)."""
+        self.progress.update_progress(fraction, stage)
 
-    def _on_loaded(self, request: int, dataset) -> None:
-        """Adopt the dataset of the current request; drop stale ones."""
-        if request != self.loader.current:
-            return
+    def _on_loaded(self, _request: int, dataset) -> None:
+        """Adopt the dataset of the current request (the runner drops stale ones)."""
         self.progress.stop()
         self.prefs.add_recent(dataset.path)
         self.mode_panel.show_built(dataset.ac.mode)
@@ -183,22 +181,19 @@ class MainWindow(QMainWindow):
             self.model.set_index(self.model.optimal_index())
         self.start_optimal = False
 
-    def _on_failed(self, request: int, message: str) -> None:
+    def _on_failed(self, _request: int, message: str) -> None:
         """Show why the current request failed; the previous dataset stays."""
-        if request != self.loader.current:
-            return
         self.progress.stop()
         if self.model.dataset is not None:  # the shown table's mode stays the current one
             self.set_mode(self.model.dataset.ac.mode, rebuild=False)
         QMessageBox.warning(self, "Could not open the file", message)
 
-    def _on_cancelled(self, request: int) -> None:
+    def _on_cancelled(self, _request: int) -> None:
         """Note a cancelled open in the status bar."""
-        if request == self.loader.current:
-            self.progress.stop()
-            if self.model.dataset is not None:
-                self.set_mode(self.model.dataset.ac.mode, rebuild=False)
-            self.status.setText("Opening cancelled.")
+        self.progress.stop()
+        if self.model.dataset is not None:
+            self.set_mode(self.model.dataset.ac.mode, rebuild=False)
+        self.status.setText("Opening cancelled.")
 
     def _show_dataset(self) -> None:
         """New dataset: new layers and camera (the only time actors are added)."""
@@ -274,10 +269,8 @@ class MainWindow(QMainWindow):
         self.jobs.cancel()
         if self.loader.is_busy() or self.jobs.is_busy():
             self.hide()
-        if not self.loader.wait(CLOSE_WAIT_MS):
-            self.loader.blockSignals(True)  # the late result must not reach a closed window
-        if not self.jobs.wait(CLOSE_WAIT_MS):
-            self.jobs.blockSignals(True)
+        for runner in (self.loader, self.jobs):  # a late result never reaches a closed window
+            runner.shut_down(CLOSE_WAIT_MS)
         self.plotter.close()
         super().closeEvent(event)
 

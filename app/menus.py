@@ -13,6 +13,7 @@ from app.clipping import add_clip_action
 from app.colour_view import add_colour_menu
 from app.export_dialog import ask_export_shape
 from app.help import add_help_actions
+from app.jobs import Job
 from core.errors import InputError
 from core.export import TABLE_FORMATS
 from core.export.targets import refuse_source
@@ -58,7 +59,7 @@ def run_writer(window, title: str, write) -> None:
 def run_in_background(window, title: str, job) -> None:
     """Start a writer in the window's job runner (progress and Cancel in the status bar);
     its outcome arrives through the runner's signals. One at a time."""
-    if not window.jobs.start(title, job):
+    if window.jobs.start(Job(title, lambda progress, _cancel: job(progress))) is None:
         QMessageBox.information(window, title, "Another export is still running; wait for it "
                                                "or cancel it first.")
         return

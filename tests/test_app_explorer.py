@@ -303,7 +303,8 @@ def test_newer_open_kills_a_big_build_in_its_triangulation(window, qtbot, points
     with qtbot.waitSignal(window.loader.progress, timeout=BUILD_TIMEOUT_MS,
                           check_params_cb=lambda r, f, stage: stage == "Delaunay triangulation"):
         first = window.open_path(big)
-    with qtbot.waitSignals([window.loader.cancelled, window.model.datasetChanged],
+    with qtbot.waitSignals([window.loader.dropped, window.model.datasetChanged],
+                           check_params_cbs=[lambda request, kind: kind == "cancelled", None],
                            timeout=BUILD_TIMEOUT_MS):
         window.open_path(small)
     window.loader.wait()
