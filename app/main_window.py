@@ -1,6 +1,8 @@
-"""The explorer's main window: composes the view, docks, menus and the loader (no logic of its own).
+"""The explorer's main window: composes the view, docks, menus and the runners (no logic of
+its own).
 
-State lives in ExplorerModel, geometry in Scene, loading in Loader; this class only wires them.
+State lives in ExplorerModel, every VTK object in the Scene, background work in two
+app.jobs.Runner (loads, exports); this class only wires them.
 """
 
 from __future__ import annotations
@@ -11,15 +13,11 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
-import numpy as np
 from PySide6.QtCore import QSettings, Qt
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
-from pyvistaqt import QtInteractor
 
-from app import file_actions
 from app.alpha_panel import AlphaPanel
-from app.clipping import Clipper
 from app.colour_view import Colourer
 from app.dataset import ImportOptions
 from app.help import ExplainPanel
@@ -29,13 +27,14 @@ from app.inspect_panel import InspectPanel
 from app.inspector import Inspector
 from app.jobs import Runner
 from app.layers_panel import LayersPanel
-from app.menus import build_menus
+from app.menus import MenuTools, build_menus
 from app.mode_panel import ModePanel
 from app.model import ExplorerModel
 from app.palette import ATOM_STYLE, CAVITY_STYLE, cpk_rgb
 from app.progress_widget import ProgressWidget
 from app.resources import ICON_PATH
-from app.scene import Scene, as_xyz
+from app.scene import scene_data
+from app.scene.interactive import interactive_scene
 from app.settings import Preferences
 from app.signatures_dock import SignaturesPanel
 from app.worker import load_job
@@ -61,10 +60,8 @@ class MainWindow(QMainWindow):
         self.model = ExplorerModel()
         self.loader = Runner(self)  # loads and rebuilds: a newer one supersedes the older
         self.jobs = Runner(self, exclusive=True)  # exports: one at a time
-        self.plotter = QtInteractor(self, auto_update=False)
-        self.plotter.setAcceptDrops(False)
-        self.setCentralWidget(self.plotter)
-        self.scene = Scene(self.plotter, render=self.plotter.update)
+        self.scene, view = interactive_scene(self)
+        self.setCentralWidget(view)
         self.alpha_panel = AlphaPanel(self.model)
         self.layers_panel = LayersPanel()
         self.info_panel = InfoPanel(self.model)
@@ -85,14 +82,15 @@ class MainWindow(QMainWindow):
         self._add_dock("Signatures", self.signatures_panel, Qt.DockWidgetArea.BottomDockWidgetArea)
         left = Qt.DockWidgetArea.LeftDockWidgetArea
         self.inspect_panel = InspectPanel(self.model)
-        self.inspector = Inspector(self.model, self.plotter, self.scene, self.inspect_panel,
+        self.inspector = Inspector(self.model, self.scene, self.inspect_panel,
                                    self._add_dock("Inspect", self.inspect_panel, left))
         self.explain_dock = self._add_dock("Help", ExplainPanel(), left)
         self.explain_dock.setWindowTitle("What am I looking at?")
         self.explain_dock.hide()
-        self.colourer = Colourer(self.plotter, self.scene, self.model)
-        self.clipper = Clipper(self.plotter, self.scene)
-        self.menus = build_menus(self)
+        self.colourer = Colourer(self.scene, self.model)
+        self.menus = build_menus(self, MenuTools(
+            self, self.prefs, self.model, self.scene, self.jobs, self.job_progress, self.report,
+            self.open_asking), self.colourer)
         self._connect()
         self._restore_layout()
 
@@ -198,18 +196,13 @@ class MainWindow(QMainWindow):
     def _show_dataset(self) -> None:
         """New dataset: new layers and camera (the only time actors are added)."""
         ds = self.model.dataset
-        ac = ds.ac
-        weighted = ac.weights is not None
-        styles = self.prefs.styles(ac.dim, weighted)
-        radii = np.sqrt(np.maximum(ac.weights, 0.0)) if weighted else None
+        styles = self.prefs.styles(ds.ac.dim, ds.ac.weights is not None)
         rgb = None
         if ds.atomic_numbers is not None:  # a molecule: atoms in CPK colours, its cavities
             styles["balls"], styles["cavities"] = ATOM_STYLE, CAVITY_STYLE
             rgb = cpk_rgb(ds.atomic_numbers)
-        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                               radii, ds.frame, ds.unit, rgb)
+        self.scene.set_dataset(scene_data(ds, styles, rgb))
         self.colourer.set_dataset(ds.attributes)
-        self.clipper.set_enabled(self.clipper.enabled)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
@@ -271,15 +264,9 @@ class MainWindow(QMainWindow):
             self.hide()
         for runner in (self.loader, self.jobs):  # a late result never reaches a closed window
             runner.shut_down(CLOSE_WAIT_MS)
-        self.plotter.close()
+        self.scene.close()
         super().closeEvent(event)
 
     def report(self, message: str) -> None:
         """Show a short result message (exports, screenshots) in the status bar."""
         self.status.setText(message)
-
-    def ask_and_open(self) -> None:
-        """File → Open."""
-        path = file_actions.ask_open_path(self, self.prefs)
-        if path:
-            self.open_asking(path)
