@@ -20,8 +20,8 @@ from dataclasses import dataclass
 from PySide6.QtCore import QObject, QThreadPool, Signal
 
 from core.errors import AlphaScoopError, Cancelled
+from core.progress import Progress
 
-Progress = Callable[[float, str], None]
 Work = Callable[[Progress, threading.Event], object]
 PROGRESS, FINISHED, FAILED, CANCELLED = "progress", "finished", "failed", "cancelled"
 

@@ -32,14 +32,6 @@ DRAW_OPTIONS = {
 }
 
 
-def as_xyz(points: np.ndarray) -> np.ndarray:
-    """(m, 3) float64 copy of (m, 2) or (m, 3) points (2D gets z = 0)."""
-    points = np.asarray(points, dtype=np.float64)
-    if points.shape[1] == 3:
-        return np.ascontiguousarray(points)
-    return np.column_stack([points, np.zeros(len(points))])
-
-
 def cell_array(cells: np.ndarray) -> pv.CellArray:
     """vtkCellArray sharing memory with (k, s) int32 cells (copies only to fix the dtype)."""
     cells = np.ascontiguousarray(cells, dtype=np.int32)
