@@ -227,6 +227,7 @@ def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
     return {
         "load": ps.report.to_dict(),
         "mode": ac.mode.to_dict(),
+        "build": ac.build_info.to_dict(),
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
                     "from_cache": cached,
                     **{SIMPLEX_NAMES[k]: len(ac.simplices(k)) for k in range(ac.dim + 1)}},
@@ -265,7 +266,7 @@ def _geographic(ps, ac, shape) -> dict:
     georef = ps.report.georef
     if georef is None:
         return {}
-    from core.export.geographic import geographic_metadata
+    from core.export.polygons import geographic_metadata
 
     meta = geographic_metadata(ac, shape, georef)
     return {k: meta[k] for k in ("units", "area_m2", "perimeter_m") if k in meta}
@@ -280,6 +281,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
+        f"build       {', '.join(f'{k} {v}' for k, v in info['build'].items())}",
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
     ]

@@ -36,6 +36,15 @@ class BuildInfo:
 
     backend: str = "qhull"
 
+    def to_dict(self) -> dict[str, str | int | float]:
+        """The fields by name (JSON-ready: for `alphascoop info --json`)."""
+        return dataclasses.asdict(self)
+
+    def describe(self) -> str:
+        """One line for people: "backend qhull" (every field, name then value)."""
+        return ", ".join(f"{name.replace('_', ' ')} {value}"
+                         for name, value in self.to_dict().items())
+
     def to_arrays(self) -> dict[str, np.ndarray]:
         """The fields as 0-d arrays named `build_<field>` (for core/storage.py)."""
         return {f"build_{f.name}": np.array(getattr(self, f.name))

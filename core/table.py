@@ -15,7 +15,6 @@ their first edge).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -36,9 +35,8 @@ from .power import (
     signed_sqrt,
     triangle_powers,
 )
+from .progress import Progress
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
-
-Progress = Callable[[float, str], None]
 
 
 @dataclass
