@@ -13,10 +13,11 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
-from PySide6.QtCore import QSettings, Qt
+from PySide6.QtCore import QSettings, Qt, QTimer
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 
+from app import memory
 from app.alpha_panel import AlphaPanel
 from app.colour_view import Colourer
 from app.dataset import ImportOptions
@@ -108,6 +109,9 @@ class MainWindow(QMainWindow):
         self.loader.finished.connect(self._on_loaded)
         self.loader.failed.connect(self._on_failed)
         self.loader.cancelled.connect(self._on_cancelled)
+        for outcome in (self.loader.finished, self.loader.failed, self.loader.cancelled,
+                        self.loader.dropped):  # a superseded load's arrays are freed too
+            outcome.connect(self._give_back_memory)  # after the slots above dropped the old
         self.progress.cancelRequested.connect(self.loader.cancel)
         self.jobs.progress.connect(lambda _request, fraction, stage:
                                    self.job_progress.update_progress(fraction, stage))
@@ -192,6 +196,11 @@ class MainWindow(QMainWindow):
         if self.model.dataset is not None:
             self.set_mode(self.model.dataset.ac.mode, rebuild=False)
         self.status.setText("Opening cancelled.")
+
+    def _give_back_memory(self, *_outcome) -> None:
+        """Once this event is handled (the old dataset or a cancelled load's arrays are
+        dropped by then), return the freed memory to the OS (app.memory)."""
+        QTimer.singleShot(0, memory.give_back)
 
     def _show_dataset(self) -> None:
         """New dataset: new layers and camera (the only time actors are added)."""

@@ -21,10 +21,18 @@ def test_build_info_records_the_backend(points):
     assert AlphaComplex.from_points(points, backend="qhull").build_info.backend == "qhull"
 
 
-@pytest.mark.parametrize("backend", ["gmsh", "cgal", 3])
+@pytest.mark.parametrize("backend", ["cgal", 3])
 def test_unavailable_or_unknown_backend_is_an_input_error(points, backend):
     with pytest.raises(InputError, match="backend"):
         AlphaComplex.from_points(points, backend=backend)
+
+
+def test_gmsh_backend_without_gmsh_is_an_input_error(points, monkeypatch):
+    import core.backends
+
+    monkeypatch.setattr(core.backends.gmsh_backend, "installed", lambda: False)
+    with pytest.raises(InputError, match="backend 'gmsh' needs the optional gmsh"):
+        AlphaComplex.from_points(points, backend="gmsh")
 
 
 def test_from_points_is_the_pipeline(points):
@@ -71,7 +79,7 @@ def test_info_reports_the_build(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
     np.savetxt(tmp_path / "p.xyz", np.random.default_rng(3).random((60, 3)))
     assert main(["info", str(tmp_path / "p.xyz"), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["build"] == {"backend": "qhull"}
+    assert json.loads(capsys.readouterr().out)["build"] == {"backend": "qhull", "backend_note": ""}
     assert main(["info", str(tmp_path / "p.xyz")]) == 0
     assert "build       backend qhull" in capsys.readouterr().out
     assert BuildInfo().describe() == "backend qhull"
