@@ -91,7 +91,7 @@ class MainWindow(QMainWindow):
         self.colourer = Colourer(self.scene, self.model)
         self.menus = build_menus(self, MenuTools(
             self, self.prefs, self.model, self.scene, self.jobs, self.job_progress, self.report,
-            self.open_asking), self.colourer)
+            self.open_asking), self.colourer, self.explain_dock)
         self._connect()
         self._restore_layout()
 

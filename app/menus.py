@@ -213,12 +213,14 @@ def add_shape_menu(window: QMainWindow, model: ExplorerModel) -> dict[str, QActi
     return actions
 
 
-def build_menus(window: QMainWindow, tools: MenuTools, colourer: Colourer) -> dict[str, QAction]:
-    """Create File, View, Shape and Help menus on window; returns the main actions by name."""
+def build_menus(window: QMainWindow, tools: MenuTools, colourer: Colourer,
+                explain_dock: QDockWidget) -> dict[str, QAction]:
+    """Create File, View, Shape and Help menus on window (Help → What am I looking at?
+    shows explain_dock); returns the main actions by name."""
     actions = add_file_menu(window, tools)
     actions.update(add_view_menu(window, tools.scene, colourer))
     actions.update(add_shape_menu(window, tools.model))
     help_menu = window.menuBar().addMenu("&Help")
-    actions.update(add_help_actions(window, help_menu))
+    actions.update(add_help_actions(window, help_menu, explain_dock))
     add_action(help_menu, "&About Alpha Scoop", lambda: QMessageBox.about(window, "About", ABOUT))
     return actions
