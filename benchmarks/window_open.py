@@ -67,9 +67,9 @@ def _window(folder: str):
 
 
 def _topology_signal(win):
-    """The loader's 'topology done' signal when the window hands the dataset over before its
+    """The model's 'topology done' signal when the window hands the dataset over before its
     topology (issue 15), else None (the dataset comes with it)."""
-    return getattr(win.loader, "topologyReady", None)
+    return getattr(win.model, "topologyChanged", None)
 
 
 def _cpu_seconds() -> float:
@@ -95,7 +95,7 @@ def _open_timed(win, path: str) -> dict:
     _wait(win.model.datasetChanged)
     stamp("live")
     _spin(0)  # the first frame is requested; let the event loop run once
-    if topology is not None and "topology" not in stamps:
+    if topology is not None and "topology" not in stamps and not win.model.dataset.has_topology:
         _wait(topology)
     ds = win.model.dataset
     info = getattr(ds.ac, "build_info", None)
@@ -151,7 +151,7 @@ def _soak(win, first: str, second: str, cancel: str) -> dict:
         _wait(win.model.datasetChanged)
         seconds.append(time.perf_counter() - start)
         topology = _topology_signal(win)
-        while topology is not None and win.loader.is_busy():
+        while topology is not None and (win.loader.is_busy() or win.topology.is_busy()):
             _spin(50)
         _spin(200)
         alive.append(weakref.ref(win.model.dataset))

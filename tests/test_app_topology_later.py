@@ -124,15 +124,15 @@ def test_a_new_file_drops_the_old_topology(window, qtbot, held, tmp_path):
     np.save(first, ring(1200, seed=22))
     np.save(second, ring(900, seed=23))
     ready: list[int] = []
-    window.loader.topologyReady.connect(lambda request, _ds: ready.append(request))
+    window.topology.finished.connect(lambda request, _ds: ready.append(request))
     open_table(qtbot, window, first)
-    old = window.loader.current
+    old = window.topology.current
     open_table(qtbot, window, second)
     held.set()
     wait_for_topology(qtbot, window)
-    window.loader.wait()
+    window.topology.wait()
     qtbot.wait(20)
-    assert ready == [window.loader.current] and old not in ready
+    assert ready == [window.topology.current] and old not in ready
     assert window.model.dataset.path == second and window.model.dataset.has_topology
 
 
@@ -155,7 +155,7 @@ def test_the_model_ignores_another_datasets_topology(window, qtbot, held, tmp_pa
 def test_reopening_comes_complete_from_the_cache(window, qtbot, points_path):
     open_table(qtbot, window, points_path)
     wait_for_topology(qtbot, window)
-    window.loader.wait()  # the entry is rewritten with the signatures
+    window.topology.wait()  # the entry is rewritten with the signatures
     open_table(qtbot, window, points_path)
     ds = window.model.dataset
     assert ds.source == "cache" and ds.has_topology  # no second pass, no waiting dock
