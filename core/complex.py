@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import storage
+from .certify import certified_triangulation
 from .delaunay import regular_triangulate, triangulate
 from .errors import InputError
 from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
@@ -157,6 +158,7 @@ class AlphaComplex:
         lift_scale = _power_of_two_scale(coords - offset)
         if w is None or bool(np.all(w == w[0])):  # equal weights: the Delaunay cells
             tri = triangulate((coords - offset) / lift_scale)
+            tri = certified_triangulation(coords / _power_of_two_scale(coords), tri).triangulation
         else:
             tri = regular_triangulate((coords - offset) / lift_scale, w / lift_scale**2)
         if len(tri.kept) < len(coords):

@@ -27,6 +27,14 @@ FOLD_CANDIDATE_RTOL = 1e-9
 #: squared distances involved: cospherical points of lattices and scans count as on the sphere.
 ON_SPHERE_RTOL = 1e-13
 
+#: A facet whose smallest sphere's radius² is within this share of its cell's (the cell's
+#: centre close to the facet's plane) gets its attachment decided by an exact predicate.
+NEAR_SPHERE_RTOL = 1e-6
+
+#: A cell whose |determinant| (d! volume) is below this times r^d (r its circumradius) is
+#: ill-conditioned: its flatness is decided exactly and its radius computed in rationals.
+SLIVER_RTOL = 1e-6
+
 #: A power |c|² - w below this share of |c|² + |w| has lost digits to cancellation: it is
 #: recomputed in extended precision (values near zero must keep their relative accuracy).
 POWER_CANCEL_RTOL = 1e-3

@@ -1,0 +1,322 @@
+"""Certifies a Delaunay triangulation with exact predicates and repairs it by flips.
+
+Whatever the fast triangulator returned, every interior facet is checked: the vertex across
+it must not lie inside the cell's circumsphere (core.predicates.in_sphere, exactly, with one
+symbolic perturbation for cospherical points). Violations are flipped (2D edge flips, 3D 2-3
+and 3-2 flips) in rounds: each round flips, all at once, a set of violations whose cells and
+neighbours are disjoint, then re-checks only the facets of the new cells.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .delaunay import Triangulation, regular_triangulate, sort_rows
+from .errors import InputError
+from .predicates import in_sphere, orientations
+
+#: Rounds after which a 3D triangulation that still has unflippable violations is left as is.
+MAX_ROUNDS = 10_000
+
+
+@dataclass(frozen=True)
+class Certified:
+    """A certified triangulation and what certifying it took."""
+
+    triangulation: Triangulation
+    exact_predicates: int  # predicate evaluations settled by exact arithmetic
+    flips: int  # flips performed (2D edge flips, 3D 2-3 and 3-2 flips)
+    uncertified: int  # facets left unchecked or unrepaired (flat cells, stuck 3D flips)
+
+
+def _folded(cells: np.ndarray, nbs: np.ndarray, signs: np.ndarray) -> np.ndarray:
+    """(t,) bool: cells on the same side of a shared facet as their neighbour (rows ascending,
+    so the facet's orientation follows from the cell's sign and the position left out)."""
+    t, i = np.nonzero(nbs > np.arange(len(cells))[:, None])
+    u = nbs[t, i]
+    j = np.argmax(nbs[u] == t[:, None], axis=1)
+    same = signs[t] * (-1) ** (i % 2) == signs[u] * (-1) ** (j % 2)
+    out = np.zeros(len(cells), dtype=bool)
+    out[t[same]] = out[u[same]] = True
+    return out
+
+
+class _Mesh:
+    """Growable cells/neighbours arrays with the predicate counters (certification state)."""
+
+    def __init__(self, points: np.ndarray, tri: Triangulation) -> None:
+        self.points = points
+        self.cells = tri.cells.astype(np.int64)
+        self.nbs = tri.neighbors.astype(np.int64)
+        self.alive = np.ones(len(self.cells), dtype=bool)
+        self.signs, self.exact = orientations(points, self.cells)
+        self.bad = (self.signs == 0) | _folded(self.cells, self.nbs, self.signs)
+        self.flips = 0
+
+    def append(self, rows: np.ndarray) -> np.ndarray:
+        ids = np.arange(len(self.cells), len(self.cells) + len(rows))
+        self.cells = np.concatenate((self.cells, rows))
+        self.nbs = np.concatenate((self.nbs, np.full(rows.shape, -1, dtype=np.int64)))
+        self.alive = np.concatenate((self.alive, np.ones(len(rows), dtype=bool)))
+        self.signs = np.concatenate((self.signs, np.zeros(len(rows), dtype=np.int8)))
+        self.bad = np.concatenate((self.bad, np.zeros(len(rows), dtype=bool)))
+        return ids
+
+    def orient(self, rows: np.ndarray) -> np.ndarray:
+        signs, n_exact = orientations(self.points, rows)
+        self.exact += n_exact
+        return signs
+
+
+def _facets_of(mesh: _Mesh, pending: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Interior facets (t, i, u, j) around the pending cells, each once, flat cells aside."""
+    is_pending = np.zeros(len(mesh.cells), dtype=bool)
+    is_pending[pending] = True
+    rows = np.flatnonzero(is_pending & mesh.alive)
+    t = np.repeat(rows, mesh.cells.shape[1])
+    i = np.tile(np.arange(mesh.cells.shape[1]), len(rows))
+    u = mesh.nbs[t, i]
+    keep = (u >= 0) & ~(is_pending[np.maximum(u, 0)] & (u < t))
+    t, i, u = t[keep], i[keep], u[keep]
+    j = np.argmax(mesh.nbs[u] == t[:, None], axis=1)
+    return t, i, u, j
+
+
+def _violations(mesh: _Mesh, t, i, u, j) -> np.ndarray:
+    """Mask of the facets whose opposite vertex is inside the cell's sphere; facets of an
+    invalid cell (flat, or folded over its neighbour) are left unchecked."""
+    solid = ~mesh.bad[t] & ~mesh.bad[u]
+    bad = np.zeros(len(t), dtype=bool)
+    q = mesh.cells[u, j]
+    inside, n_exact = in_sphere(mesh.points, mesh.cells[t[solid]], q[solid],
+                                mesh.signs[t[solid]])
+    mesh.exact += n_exact
+    bad[solid] = inside
+    return bad
+
+
+def _independent(mesh: _Mesh, zones: np.ndarray) -> np.ndarray:
+    """Mask of candidates (rows of (n, z) zone cells, -1 padded) whose zones meet no zone of a
+    smaller-numbered selected candidate; the first candidate is always selected."""
+    ids = np.broadcast_to(np.arange(len(zones))[:, None], zones.shape)
+    valid = zones >= 0
+    claim = np.full(len(mesh.cells), len(zones), dtype=np.int64)
+    np.minimum.at(claim, zones[valid], ids[valid])
+    return np.all(np.where(valid, claim[np.maximum(zones, 0)] == ids, True), axis=1)
+
+
+def _relink(mesh: _Mesh, old: np.ndarray, new: np.ndarray) -> None:
+    """Re-match the neighbours of the rewritten cells `new` (ids that replace `old`, whose
+    neighbour rows are still the old ones) and of the cells around them."""
+    width = mesh.cells.shape[1]
+    changed = np.zeros(len(mesh.cells), dtype=bool)
+    changed[old] = True
+    changed[new] = True
+    around = mesh.nbs[old].ravel()
+    around = np.unique(around[(around >= 0) & ~changed[np.maximum(around, 0)]])
+    ext_t, ext_k = np.nonzero(changed[np.maximum(mesh.nbs[around], 0)] & (mesh.nbs[around] >= 0))
+    slot_cell = np.concatenate((np.repeat(new, width), around[ext_t]))
+    slot_k = np.concatenate((np.tile(np.arange(width), len(new)), ext_k))
+    others = np.array([[c for c in range(width) if c != k] for k in range(width)])
+    keys = np.sort(mesh.cells[slot_cell[:, None], others[slot_k]], axis=1)
+    order = np.lexsort(keys.T[::-1])
+    keys, slot_cell, slot_k = keys[order], slot_cell[order], slot_k[order]
+    same = np.all(keys[1:] == keys[:-1], axis=1)
+    mesh.nbs[slot_cell, slot_k] = -1
+    first = np.flatnonzero(same)
+    mesh.nbs[slot_cell[first], slot_k[first]] = slot_cell[first + 1]
+    mesh.nbs[slot_cell[first + 1], slot_k[first + 1]] = slot_cell[first]
+
+
+def _flip_2d(mesh: _Mesh, t, i, u, j) -> None:
+    """Edge flips: triangles (p, a, b) and (q, b, a) become (p, q, a) and (p, q, b)."""
+    p, q = mesh.cells[t, i], mesh.cells[u, j]
+    a, b = mesh.cells[t, (i + 1) % 3], mesh.cells[t, (i + 2) % 3]
+    zones = np.column_stack((t, u, mesh.nbs[t], mesh.nbs[u]))
+    pick = _independent(mesh, zones)
+    t, u, p, q, a, b = (x[pick] for x in (t, u, p, q, a, b))
+    mesh.cells[t] = np.column_stack((p, q, a))
+    mesh.cells[u] = np.column_stack((p, q, b))
+    changed = np.concatenate((t, u))
+    mesh.signs[changed] = mesh.orient(mesh.cells[changed])
+    _relink(mesh, changed, changed)
+    mesh.flips += len(t)
+
+
+def _flip_3d(mesh: _Mesh, t, i, u, j) -> int:
+    """2-3 flips where the segment pq crosses the facet abc, 3-2 flips where it passes beyond
+    one edge ab shared by exactly three cells; returns how many violations were unflippable."""
+    others = np.array([[c for c in range(4) if c != k] for k in range(4)])
+    p, q = mesh.cells[t, i], mesh.cells[u, j]
+    face = np.take_along_axis(mesh.cells[t], others[i], axis=1)  # a, b, c
+    rot = [np.column_stack((p, q, face[:, k], face[:, (k + 1) % 3])) for k in range(3)]
+    side = np.stack([mesh.orient(r) for r in rot], axis=1)  # edges ab, bc, ca
+    through = np.all(side == side[:, :1], axis=1) & (side[:, 0] != 0)
+    odd = (side != 0).all(axis=1) & (np.abs(side.sum(axis=1)) == 1)
+    edge = np.argmax(side != np.sign(side.sum(axis=1))[:, None], axis=1)  # the odd edge
+    third = face[np.arange(len(t)), (edge + 2) % 3]
+    v = mesh.nbs[t, np.argmax(mesh.cells[t] == third[:, None], axis=1)]
+    v_u = mesh.nbs[u, np.argmax(mesh.cells[u] == third[:, None], axis=1)]
+    odd &= (v >= 0) & (v == v_u)
+    flippable = through | odd
+    t, u, p, q, face, v, through = (x[flippable] for x in (t, u, p, q, face, v, through))
+    edge = edge[flippable]
+    v = np.where(through, -1, v)
+    nb_v = np.where(through[:, None], -1, mesh.nbs[np.maximum(v, 0)])
+    zones = np.column_stack((t, u, v, mesh.nbs[t], mesh.nbs[u], nb_v))
+    pick = _independent(mesh, zones)
+    t, u, p, q, face, v, through, edge = (x[pick] for x in (t, u, p, q, face, v, through, edge))
+    two, three = ~through, through
+    a = face[np.arange(len(t)), edge]
+    b = face[np.arange(len(t)), (edge + 1) % 3]
+    c = face[np.arange(len(t)), (edge + 2) % 3]
+    rows = [np.column_stack((p, q, face[:, k], face[:, (k + 1) % 3])) for k in range(3)]
+    w = mesh.append(rows[2][three])
+    mesh.cells[t[three]], mesh.cells[u[three]] = rows[0][three], rows[1][three]
+    mesh.cells[t[two]] = np.column_stack((c, p, q, a))[two]
+    mesh.cells[u[two]] = np.column_stack((c, p, q, b))[two]
+    dead = v[two]
+    mesh.alive[dead] = False
+    new = np.concatenate((t, u, w))
+    mesh.signs[new] = mesh.orient(mesh.cells[new])
+    _relink(mesh, np.concatenate((t, u, dead)), new)
+    mesh.nbs[dead] = -1
+    mesh.flips += len(t)
+    return int((~flippable).sum())
+
+
+def _fill_reflex_hull(mesh: _Mesh) -> None:
+    """Cells over reflex ridges of the hull: where the vertex g of a hull facet G lies
+    strictly outside the plane of the neighbouring hull facet F, the cell F + g belongs to
+    the Delaunay triangulation (near-collinear or near-coplanar hull points Qhull left out)."""
+    d = mesh.cells.shape[1] - 1
+    t, k = np.nonzero((mesh.nbs < 0) & mesh.alive[:, None] & ~mesh.bad[:, None])
+    if not len(t):
+        return
+    others = np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
+    facets = np.take_along_axis(mesh.cells[t], others[k], axis=1)  # (h, d)
+    ridges = np.concatenate([np.sort(facets[:, others[r][: d - 1]], axis=1)
+                             for r in range(d)])  # each hull facet without its vertex r
+    owner = np.tile(np.arange(len(t)), d)
+    lonely = np.repeat(np.arange(d), len(t))  # the facet's vertex off the ridge
+    order = np.lexsort(ridges.T[::-1])
+    ridges, owner, lonely = ridges[order], owner[order], lonely[order]
+    first = np.flatnonzero(np.all(ridges[1:] == ridges[:-1], axis=1))
+    f, g = owner[first], owner[first + 1]
+    apex = facets[g, lonely[first + 1]]
+    inner = mesh.cells[t[f], k[f]]
+    outer = np.column_stack((facets[f], apex))
+    outer_sign = mesh.orient(outer)
+    reflex = (outer_sign == -mesh.orient(np.column_stack((facets[f], inner)))) & (outer_sign != 0)
+    if d == 3:  # the new hull facets (x, y, a), (x, y, b) must face away from the cell below
+        x, (a, b) = facets[f, lonely[first]], ridges[first].T
+        s_ab = mesh.orient(np.column_stack((x, apex, a, b)))
+        reflex &= mesh.orient(np.column_stack((x, apex, a, inner))) == s_ab
+        reflex &= mesh.orient(np.column_stack((x, apex, b, inner))) == -s_ab
+    f, g, outer = f[reflex], g[reflex], outer[reflex]
+    if not len(f):
+        return
+    zones = np.column_stack((t[f], t[g], mesh.nbs[t[f]], mesh.nbs[t[g]]))
+    outer = outer[_independent(mesh, zones)]
+    outer = outer[np.unique(np.sort(outer, axis=1), axis=0, return_index=True)[1]]
+    w = mesh.append(outer)
+    mesh.signs[w] = mesh.orient(outer)
+    _glue_hull(mesh)
+    mesh.flips += len(w)
+
+
+def _glue_hull(mesh: _Mesh) -> None:
+    """Link every pair of hull slots (neighbour -1) that hold the same facet."""
+    d = mesh.cells.shape[1] - 1
+    t, k = np.nonzero((mesh.nbs < 0) & mesh.alive[:, None])
+    others = np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
+    keys = np.sort(np.take_along_axis(mesh.cells[t], others[k], axis=1), axis=1)
+    order = np.lexsort(keys.T[::-1])
+    keys, t, k = keys[order], t[order], k[order]
+    first = np.flatnonzero(np.all(keys[1:] == keys[:-1], axis=1))
+    mesh.nbs[t[first], k[first]] = t[first + 1]
+    mesh.nbs[t[first + 1], k[first + 1]] = t[first]
+
+
+def _compact(mesh: _Mesh, tri: Triangulation) -> Triangulation:
+    """The live cells renumbered, rows ascending (the table's canonical form)."""
+    new_id = np.cumsum(mesh.alive) - 1
+    cells = np.ascontiguousarray(mesh.cells[mesh.alive], dtype=np.int32)
+    nbs = mesh.nbs[mesh.alive]
+    nbs = np.ascontiguousarray(np.where(nbs >= 0, new_id[np.maximum(nbs, 0)], -1),
+                               dtype=np.int32)
+    sort_rows(cells, nbs)
+    return replace(tri, cells=cells, neighbors=nbs)
+
+
+def certify(points: np.ndarray, tri: Triangulation) -> Certified:
+    """Check every interior facet of `tri` (cells of the (m, d) `points`) for the local
+    Delaunay condition, exactly, and flip until all hold (module docstring)."""
+    mesh = _Mesh(points, tri)
+    d = points.shape[1]
+    pending = np.arange(len(mesh.cells))
+    stuck = 0
+    for _ in range(MAX_ROUNDS):
+        t, i, u, j = _facets_of(mesh, pending)
+        bad = _violations(mesh, t, i, u, j)
+        if not bad.any():
+            size = len(mesh.cells)
+            _fill_reflex_hull(mesh)
+            if len(mesh.cells) == size:
+                break
+            pending = np.arange(size, len(mesh.cells))
+            continue
+        t, i, u, j = (x[bad] for x in (t, i, u, j))
+        before = mesh.flips
+        size = len(mesh.cells)
+        if d == 2:
+            _flip_2d(mesh, t, i, u, j)
+            stuck = 0
+        else:
+            stuck = _flip_3d(mesh, t, i, u, j)
+        if mesh.flips == before:
+            break
+        pending = np.unique(np.concatenate((t, u, np.arange(size, len(mesh.cells)))))
+    out = _compact(mesh, tri) if mesh.flips else tri
+    invalid = int(np.sum(mesh.bad[:, None] & (mesh.nbs >= 0) & mesh.alive[:, None]))
+    return Certified(out, mesh.exact, mesh.flips, stuck + invalid)
+
+
+#: Lifted heights of the retry are lowered by up to this times the squared extent: enough to
+#: break Qhull's near-ties (which it merges into folded cells), far below any point's margin.
+JITTER_RTOL = 1e-11
+
+
+def _certified_cells(points: np.ndarray, tri: Triangulation) -> Certified:
+    """`certify` on the points that are vertices; points the triangulator merged into a
+    neighbour count as uncertified (an exact triangulation keeps every distinct point)."""
+    out = certify(points[tri.kept], tri)
+    return replace(out, uncertified=out.uncertified + len(points) - len(tri.kept))
+
+
+def certified_triangulation(points: np.ndarray, tri: Triangulation) -> Certified:
+    """Certify the backend's triangulation `tri` of the (m, d) distinct `points` (the exact
+    coordinates, scaled by a power of two at most; signs are decided on these).
+
+    Where the backend merged near-cospherical groups into flat or folded cells (which no flip
+    repairs), Qhull runs once more on the points lifted with tiny fixed pseudo-random weights,
+    whose ties it no longer merges, and the certified result with fewer uncertified facets is
+    kept (the first on a tie, so the backend's result whenever the retry is no better)."""
+    first = _certified_cells(points, tri)
+    if not first.uncertified:
+        return first
+    centred = points - 0.5 * (points.min(axis=0) + points.max(axis=0))
+    centred /= float(np.abs(centred).max())
+    weights = JITTER_RTOL * np.random.default_rng(14).random(len(points))
+    try:
+        retry = regular_triangulate(centred, weights)
+    except InputError:
+        return first
+    if (retry.vertex_of_point < 0).any():  # a point hidden by the weights: not Delaunay
+        return first
+    second = _certified_cells(points, retry)
+    best = second if second.uncertified < first.uncertified else first
+    return replace(best, exact_predicates=first.exact_predicates + second.exact_predicates,
+                   flips=first.flips + second.flips)

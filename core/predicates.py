@@ -1,0 +1,155 @@
+"""Filtered geometric predicates: signs of orientation, in-sphere and diametral-sphere tests,
+computed in float64 with a proven error bound and exactly for the few the bound cannot settle.
+
+Each predicate is one polynomial in coordinate differences, written once (core.exact's
+`determinant`) and evaluated twice: in numpy over all rows with a running bound, then on exact
+integers (core.exact) for the rows whose |value| does not exceed the bound. The bound is the
+classic forward one: a sum of monomials, each through at most k roundings of relative size
+u = 2**-53 (leaf differences included), is off by at most gamma_k times the same expression in
+absolute values (the "permanent"), itself computed in float64 with the same k.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from .exact import determinant, exact_ints, exact_signs, lifted_rows, perturbed_inside
+
+_U = 2.0**-53
+#: Values whose permanent is below this are settled exactly: the bound ignores underflow.
+_TINY = 1e-250
+_CHUNK = 1 << 18
+
+Formula = Callable[[list[list[object]]], object]
+
+
+class Bounded:
+    """A float64 array with its permanent (the same expression in absolute values) and the
+    largest number of roundings behind any of its monomials."""
+
+    __slots__ = ("count", "perm", "value")
+
+    def __init__(self, value: np.ndarray, perm: np.ndarray, count: int) -> None:
+        self.value, self.perm, self.count = value, perm, count
+
+    def __add__(self, other: Bounded) -> Bounded:
+        return Bounded(self.value + other.value, self.perm + other.perm,
+                       max(self.count, other.count) + 1)
+
+    def __sub__(self, other: Bounded) -> Bounded:
+        return Bounded(self.value - other.value, self.perm + other.perm,
+                       max(self.count, other.count) + 1)
+
+    def __mul__(self, other: Bounded) -> Bounded:
+        return Bounded(self.value * other.value, self.perm * other.perm,
+                       self.count + other.count + 1)
+
+    def uncertain(self) -> np.ndarray:
+        """(n,) bool: the float sign may be wrong (or under/overflow left it unproven)."""
+        bound = (2 * self.count + 2) * _U * self.perm  # >= gamma_k / (1 - gamma_k) * perm
+        with np.errstate(invalid="ignore"):
+            return ~(np.abs(self.value) > bound) | ~(self.perm >= _TINY) | ~np.isfinite(
+                self.perm)
+
+
+def _float_vectors(points: np.ndarray, base: np.ndarray, others: np.ndarray) -> list:
+    rows = []
+    origin = points[base]
+    for i in range(others.shape[1]):
+        diff = points[others[:, i]] - origin
+        rows.append([Bounded(diff[:, c], np.abs(diff[:, c]), 1) for c in range(points.shape[1])])
+    return rows
+
+
+def _exact_vectors(points: np.ndarray, base: np.ndarray, others: np.ndarray) -> list:
+    ints = exact_ints(points[np.column_stack((base, others))])  # (n, k+1, d), one exponent
+    diff = ints[:, 1:] - ints[:, :1]
+    return [[diff[:, i, c] for c in range(points.shape[1])] for i in range(diff.shape[1])]
+
+
+def filtered_signs(formula: Formula, points: np.ndarray, base: np.ndarray,
+                   others: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(n,) int8 exact signs of `formula` on the difference vectors points[others] - points[base]
+    ((n,) and (n, k) int indices), and the (n,) bool rows that needed exact arithmetic."""
+    n = len(base)
+    signs = np.empty(n, dtype=np.int8)
+    exact = np.zeros(n, dtype=bool)
+    for lo in range(0, n, _CHUNK):
+        sl = slice(lo, lo + _CHUNK)
+        value = formula(_float_vectors(points, base[sl], others[sl]))
+        signs[sl] = np.sign(value.value)
+        exact[sl] = value.uncertain()
+    ids = np.flatnonzero(exact)
+    if len(ids):
+        signs[ids] = exact_signs(formula, _exact_vectors(points, base[ids], others[ids]))
+    return signs, exact
+
+
+def _dot(u: list, w: list) -> object:
+    total = u[0] * w[0]
+    for a, b in zip(u[1:], w[1:], strict=True):
+        total = total + a * b
+    return total
+
+
+def _cross(u: list, v: list) -> list:
+    return [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+
+
+def orientation_formula(vectors: list) -> object:
+    """det(p_1 - p_0, ..., p_d - p_0): d! times the signed measure."""
+    return determinant(vectors)
+
+
+def insphere_formula(vectors: list) -> object:
+    """det([p_i - q, |p_i - q|²]) over a cell's d + 1 vertices p_i and a query q."""
+    return determinant(lifted_rows(vectors))
+
+
+def diametral_formula(vectors: list) -> object:
+    """Negative exactly when the query is strictly inside the smallest sphere of an edge
+    (vectors a - q, b - q) or of a 3D triangle (vectors b - a, c - a, q - a)."""
+    if len(vectors) == 2:
+        return _dot(vectors[0], vectors[1])
+    u, v, w = vectors
+    n = _cross(u, v)
+    num_u, num_v = _cross(v, n), _cross(n, u)
+    return (_dot(w, w) * _dot(n, n)
+            - _dot(w, [_dot(u, u) * a + _dot(v, v) * b for a, b in zip(num_u, num_v, strict=True)]))
+
+
+def orientations(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, int]:
+    """(n,) int8 exact signs of det(p_i - p_0) for (n, d+1) simplices, and how many rows
+    needed exact arithmetic."""
+    signs, exact = filtered_signs(orientation_formula, points, simplices[:, 0], simplices[:, 1:])
+    return signs, int(exact.sum())
+
+
+def in_sphere(points: np.ndarray, cells: np.ndarray, queries: np.ndarray,
+              cell_signs: np.ndarray) -> tuple[np.ndarray, int]:
+    """(n,) bool: query point i lies inside the circumsphere of (n, d+1) cell i (non-flat, of
+    orientation sign `cell_signs`), exactly cospherical cases decided by the symbolic
+    perturbation of core.exact.perturbed_inside; and how many rows needed exact arithmetic."""
+    d = points.shape[1]
+    signs, exact = filtered_signs(insphere_formula, points, queries, cells)
+    inside = signs == (-1) ** d * cell_signs
+    tie = np.flatnonzero(signs == 0)
+    if len(tie):
+        vectors = _exact_vectors(points, queries[tie], cells[tie])
+        inside[tie] = perturbed_inside(vectors, np.column_stack((cells[tie], queries[tie])))
+    return inside, int(exact.sum())
+
+
+def diametral_signs(points: np.ndarray, simplices: np.ndarray,
+                    queries: np.ndarray) -> tuple[np.ndarray, int]:
+    """(n,) int8 exact signs of query i against the smallest sphere of edge or (3D) triangle
+    i ((n, 2) or (n, 3)): -1 strictly inside (the attachment test), 0 on it, 1 outside; and
+    how many rows needed exact arithmetic."""
+    if simplices.shape[1] == 2:
+        signs, exact = filtered_signs(diametral_formula, points, queries, simplices)
+    else:
+        others = np.column_stack((simplices[:, 1:], queries))
+        signs, exact = filtered_signs(diametral_formula, points, simplices[:, 0], others)
+    return signs, int(exact.sum())
