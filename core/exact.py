@@ -8,6 +8,7 @@ homogeneous polynomial of them (a determinant, a dot product) is computed withou
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from fractions import Fraction
 from itertools import combinations
@@ -102,10 +103,11 @@ def exact_signs(formula: Callable[..., object], vectors: list[list[np.ndarray]])
     return np.array([(v > 0) - (v < 0) for v in value.tolist()], dtype=np.int8)
 
 
-def exact_radii2(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
-    """(n,) float64 squared radii of the smallest spheres through (n, k+1) simplices of
-    (m, d) points, computed in rational arithmetic and rounded once (non-degenerate simplices;
-    for the few ill-conditioned ones whose float formula loses digits).
+def exact_radii(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
+    """(n,) float64 radii of the smallest spheres through (n, k+1) simplices of (m, d)
+    points, from their squares computed in rational arithmetic (non-degenerate simplices;
+    for the few ill-conditioned ones whose float formula loses digits). A radius whose square
+    would overflow float64 stays finite.
 
     The centre is p_0 + sum_i lam_i v_i with G lam = |v|²/2 (G the Gram matrix of the edge
     vectors v_i = p_i - p_0), so r² = lam . |v|² / 2; Cramer's rule keeps it in integers.
@@ -117,6 +119,7 @@ def exact_radii2(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     flat = np.ascontiguousarray(points[simplices], dtype=np.float64)
     ints = exact_ints(flat)
     k = simplices.shape[1] - 1
+    unit2 = Fraction(2) ** (2 * _lowest_exponent(flat))  # exact_ints' scale, squared
     for row, corners in enumerate(ints):
         vec = [[int(a) - int(b) for a, b in zip(corners[i], corners[0], strict=True)]
                for i in range(1, k + 1)]
@@ -128,8 +131,15 @@ def exact_radii2(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
             swapped = [[half[r] if c == i else gram[r][c] for c in range(k)] for r in range(k)]
             lam.append(determinant(swapped))
         num = sum(a * b for a, b in zip(lam, half, strict=True))
-        out[row] = float(Fraction(num, 4 * det)) if det else np.inf
-    return np.ldexp(out, 2 * _lowest_exponent(flat))
+        out[row] = _sqrt(Fraction(num, 4 * det) * unit2) if det else np.inf
+    return out
+
+
+def _sqrt(value: Fraction) -> float:
+    """sqrt of a positive rational as float64 (scaled by an even power of two first, so huge
+    or tiny squares of representable radii do not overflow)."""
+    half = (value.numerator.bit_length() - value.denominator.bit_length()) // 2
+    return math.ldexp(math.sqrt(float(value / Fraction(2) ** (2 * half))), half)
 
 
 def _lowest_exponent(values: np.ndarray) -> int:

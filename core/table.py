@@ -175,9 +175,9 @@ def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     Counts of exactly decided predicates are appended to `exact`."""
     if weights is None:
         r2, det, flat, bits = cell_spheres(points, cells)
-        if exact is not None:
-            exact.append(settle_cells(points, cells, r2, det, flat))
         enter = np.sqrt(r2)
+        if exact is not None:
+            exact.append(settle_cells(points, cells, enter, det, flat))
     else:
         power, det, flat, bits = cell_orthospheres(points, weights, cells)
         enter = signed_sqrt(power)

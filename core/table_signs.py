@@ -15,23 +15,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from .exact import exact_radii2
+from .exact import exact_radii
 from .predicates import diametral_formula, diametral_signs, filtered_signs, orientations
 from .tolerances import NEAR_SPHERE_RTOL, SLIVER_RTOL
 
 
-def slivers(det: np.ndarray, r2: np.ndarray, d: int) -> np.ndarray:
+def slivers(det: np.ndarray, radius: np.ndarray, d: int) -> np.ndarray:
     """(n,) bool: cells whose |det| (d! volume) is tiny against r^d: ill-conditioned spheres
     (slivers, caps, needles), and cells float arithmetic called flat."""
     with np.errstate(over="ignore", invalid="ignore"):
-        return ~(np.abs(det) > SLIVER_RTOL * r2 ** (0.5 * d))
+        return ~(np.abs(det) > SLIVER_RTOL * radius**d)
 
 
-def settle_cells(points: np.ndarray, cells: np.ndarray, r2: np.ndarray, det: np.ndarray,
+def settle_cells(points: np.ndarray, cells: np.ndarray, enter: np.ndarray, det: np.ndarray,
                  flat: np.ndarray) -> int:
-    """Exact flatness, determinant signs and radii² of the ill-conditioned cells, in place;
-    returns how many predicates needed exact arithmetic."""
-    ids = np.flatnonzero(slivers(det, r2, points.shape[1]))
+    """Exact flatness, determinant signs and radii (`enter`) of the ill-conditioned cells,
+    in place; returns how many predicates needed exact arithmetic."""
+    ids = np.flatnonzero(slivers(det, enter, points.shape[1]))
     if not len(ids):
         return 0
     signs, n_exact = orientations(points, cells[ids])
@@ -39,20 +39,20 @@ def settle_cells(points: np.ndarray, cells: np.ndarray, r2: np.ndarray, det: np.
     flat[ids] = ~solid
     tiny = np.finfo(np.float64).tiny
     det[ids] = np.where(solid, signs * np.maximum(np.abs(det[ids]), tiny), 0.0)
-    r2[ids[solid]] = exact_radii2(points, cells[ids[solid]])
+    enter[ids[solid]] = exact_radii(points, cells[ids[solid]])
     return n_exact + int(solid.sum())
 
 
 def settle_attachment(points: np.ndarray, facets: np.ndarray, apex: np.ndarray,
-                      inside: np.ndarray, facet_r2: np.ndarray, cell_r2: np.ndarray,
+                      inside: np.ndarray, facet_radius: np.ndarray, cell_radius: np.ndarray,
                       cell_det: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """Re-decide `inside` (apex strictly inside the facet's smallest sphere) where the facet's
     sphere is nearly the cell's (the cell's centre near the facet's plane) or the cell is
     ill-conditioned; returns it, the (n,) bool rows found exactly ON the sphere (the facet's
     radius is then exactly the cell's), and how many needed exact arithmetic."""
     d = points.shape[1]
-    near = facet_r2 >= (1.0 - NEAR_SPHERE_RTOL) * cell_r2
-    near |= slivers(cell_det, cell_r2, d) & (cell_det != 0)
+    near = facet_radius >= (1.0 - 0.5 * NEAR_SPHERE_RTOL) * cell_radius  # r_f² >~ r_c²
+    near |= slivers(cell_det, cell_radius, d) & (cell_det != 0)
     ids = np.flatnonzero(near)
     on = np.zeros(len(inside), dtype=bool)
     if not len(ids):
@@ -96,14 +96,14 @@ def settle_facets(points: np.ndarray, cells: np.ndarray, cell_enter: np.ndarray,
     if d == 3:
         poor = np.zeros(len(facets), dtype=bool)
         for rows, cell, _, _ in sides:
-            poor[rows] |= slivers(det[cell], cell_enter[cell] ** 2, d) & (det[cell] != 0)
+            poor[rows] |= slivers(det[cell], cell_enter[cell], d) & (det[cell] != 0)
         ids = np.flatnonzero(poor)
-        radius[ids] = np.sqrt(exact_radii2(points, facets[ids]))
+        radius[ids] = exact_radii(points, facets[ids])
         total += len(ids)
     for rows, cell, k, inside in sides:
         decided, on, n_exact = settle_attachment(
-            points, facets[rows], cells[cell, k], inside, radius[rows] ** 2,
-            cell_enter[cell] ** 2, det[cell])
+            points, facets[rows], cells[cell, k], inside, radius[rows], cell_enter[cell],
+            det[cell])
         attached[rows] |= decided
         on &= det[cell] != 0
         radius[rows[on]] = cell_enter[cell[on]]
