@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import json
 import os
 import shutil
@@ -230,6 +231,7 @@ def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
                     "from_cache": cached,
                     **{SIMPLEX_NAMES[k]: len(ac.simplices(k)) for k in range(ac.dim + 1)}},
+        "build": dataclasses.asdict(ac.build_info),
         "spectrum": {"count": len(spectrum), "min": float(spectrum[first]),
                      "max": float(spectrum[-1]), "min2": _sq(spectrum[first]),
                      "max2": _sq(spectrum[-1])},
@@ -280,6 +282,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
+        *([f"certified   {info['certification']}"] if info.get("certification") else []),
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
     ]
@@ -316,7 +319,8 @@ def cmd_info(args) -> int:
     info = summary(ps, ac, seconds, cached, chosen_alpha(args))
     if is_molecule(args):
         info["molecule"] = molecule_summary(ac, args.probe)
-    text = None if args.json else _text({**info, "mode_text": ac.mode.describe()},
+    text = None if args.json else _text({**info, "mode_text": ac.mode.describe(),
+                                         "certification": ac.build_info.certification()},
                                         ps.report.lines())
     if text is not None and "molecule" in info:
         text += "\n" + "\n".join(_molecule_text(info["molecule"]))

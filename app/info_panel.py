@@ -45,6 +45,8 @@ def data_lines(model: ExplorerModel) -> list[str]:
         hidden = int((np.asarray(ac.input_index) < 0).sum())
         lines.append(f"weighted: {html.escape(source)}; {plural(hidden, 'hidden point')}")
     lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}")
+    if ac.build_info.certification():
+        lines.append(html.escape(ac.build_info.certification()))
     return lines + molecule_lines(model)
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import os
 from functools import cached_property
 from typing import TYPE_CHECKING
@@ -10,26 +9,19 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import storage
-from .certify import certified_triangulation
-from .delaunay import regular_triangulate, triangulate
+from .build import BuildInfo, build_complex
 from .errors import InputError
-from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
-from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
+from .modes import Mode
+from .points import Frame
 from .power import signed_sqrt, signed_square
+from .progress import Progress
 from .shape import AlphaShape, readonly, threshold
-from .table import Level, Progress, Table, build_table
-from .weights import as_weights, hide_light_duplicates
+from .table import Level, Table
 
 if TYPE_CHECKING:
     from .cursor import ShapeCursor
 
 EXTERIOR, SINGULAR, REGULAR, INTERIOR = 0, 1, 2, 3
-
-
-def _power_of_two_scale(centred: np.ndarray) -> float:
-    """A power of two near the data's extent: dividing by it is exact and avoids overflow."""
-    extent = float(np.abs(centred).max())
-    return 2.0 ** math.floor(math.log2(extent)) if extent > 0 else 1.0
 
 
 def _radius(alpha: object) -> float:
@@ -61,15 +53,6 @@ def table_value(alpha: object = None, alpha2: object = None) -> float:
     return float(signed_sqrt(np.float64(value)))
 
 
-def _point_normals(normals: np.ndarray, input_index: np.ndarray, m: int,
-                   frame: Frame | None) -> np.ndarray:
-    """(m, dim) unit normals of the complex's points from the (n, ambient) input normals
-    (planar 3D: projected onto the plane; a duplicate point takes one of its rows)."""
-    out = np.zeros((m, normals.shape[1]))
-    out[input_index] = normals
-    return unit_rows(out if frame is None else out @ frame.basis.T)
-
-
 def at_value(value: float) -> dict[str, float]:
     """Keyword arguments that make any query select the table value `value` (a spectrum
     entry, say): alpha=value where it is >= 0 (exact for every table), else alpha2=its
@@ -94,8 +77,11 @@ class AlphaComplex:
 
     def __init__(self, points: np.ndarray, input_index: np.ndarray, table: Table,
                  frame: Frame | None = None, ambient_dim: int | None = None,
-                 mode: Mode | None = None, weights: np.ndarray | None = None) -> None:
+                 mode: Mode | None = None, weights: np.ndarray | None = None, *,
+                 build_info: BuildInfo | None = None) -> None:
         self._table = table
+        #: How the table was built (core/build.py): the triangulation backend, ...
+        self.build_info = build_info or BuildInfo()
         self.mode = mode or Mode()
         self.points = readonly(points)
         self.input_index = readonly(input_index)
@@ -116,11 +102,12 @@ class AlphaComplex:
     def from_points(cls, points: object, progress: Progress | None = None, *,
                     weights: object = None, density: int | None = None,
                     combine: str = "mean", anisotropy: float = 0.0,
-                    normals: object = None) -> AlphaComplex:
+                    normals: object = None, backend: str | None = None) -> AlphaComplex:
         """Build from (n, 2) or (n, 3) points; duplicates merged, planar 3D built in 2D.
 
-        `progress(fraction, stage)` is called between stages; raising core.errors.Cancelled
-        from it stops the build. Raises InputError for points that make no complex.
+        The pipeline is core/build.py. `progress(fraction, stage)` is called between stages;
+        raising core.errors.Cancelled from it stops the build. Raises InputError for points
+        that make no complex.
         `weights`: (n,) squared radii for a weighted complex (regular triangulation, power
         distance); None or all zeros build the classic complex. Points whose ball is hidden
         by the others get input_index -1.
@@ -128,70 +115,14 @@ class AlphaComplex:
         by the local spacing (distance to the k-th neighbour, `combine`d over a simplex's
         vertices by "mean" or "max"); `anisotropy=tau` in [0, 1) compresses the alpha ball
         along the surface normal, taken from `normals` ((n, d) like the points) or estimated.
+        `backend`: the triangulation backend, "qhull", "gmsh" or None (automatic); what was
+        used is `build_info.backend`.
         """
-        def step(fraction: float, stage: str) -> None:
-            if progress is not None:
-                progress(fraction, stage)
-
-        step(0.0, "checking points")
-        raw = as_points(points)
-        w = as_weights(weights, len(raw))
-        mode = make_mode(density, combine, anisotropy, normals is not None)
-        if w is not None and mode.active:
-            raise InputError("weights cannot be combined with the density or anisotropy "
-                             "modes: build a weighted or a mode complex")
-        if mode.anisotropy > 0.0 and normals is not None:
-            normals = check_normals(normals, len(raw), raw.shape[1])
-        unique, input_index = merge_duplicates(raw)
-        if w is not None:
-            w, input_index = hide_light_duplicates(w, input_index, len(unique))
-        frame = check_spread(unique)
-        coords = unique if frame is None else (unique - frame.origin) @ frame.basis.T
-        order = spatial_order(coords)
-        coords = coords[order]
-        w = None if w is None else w[order]
-        rank = np.append(np.empty(len(order), dtype=np.int64), -1)
-        rank[order] = np.arange(len(order))
-        input_index = rank[input_index]  # -1 (hidden duplicates) stays -1 via rank[-1]
-        offset = 0.5 * (coords.min(axis=0) + coords.max(axis=0))
-        step(0.02, "Delaunay triangulation" if w is None else "regular triangulation")
-        lift_scale = _power_of_two_scale(coords - offset)
-        if w is None or bool(np.all(w == w[0])):  # equal weights: the Delaunay cells
-            tri = triangulate((coords - offset) / lift_scale)
-            tri = certified_triangulation(coords / _power_of_two_scale(coords), tri).triangulation
-        else:
-            tri = regular_triangulate((coords - offset) / lift_scale, w / lift_scale**2)
-        if len(tri.kept) < len(coords):
-            coords = coords[tri.kept]
-            w = None if w is None else w[tri.kept]
-            input_index = np.where(input_index >= 0,
-                                   tri.vertex_of_point[np.maximum(input_index, 0)], -1)
-        # The table works on the points themselves, scaled exactly by a power of two: its
-        # arithmetic is relative to a vertex, so it needs no (rounding) shift to the origin.
-        scale = _power_of_two_scale(coords)
-        local = coords / scale
-        step(0.6, "interval table")
-        share = 0.3 if mode.active else 0.4
-        table = build_table(local, tri.cells, tri.neighbors,
-                            None if progress is None else lambda f, s: step(0.6 + share * f, s),
-                            weights=None if w is None else w / scale**2)
-        for level in table.levels:
-            for arr in (level.enter, level.regular, level.interior):
-                arr *= scale
-        if mode.active:
-            table = scaled_table(table, coords, mode,
-                                 _point_normals(normals, input_index, len(coords), frame)
-                                 if mode.normals == "given" else None,
-                                 None if progress is None else lambda f, s: step(0.9 + 0.1 * f, s))
-        with np.errstate(over="ignore"):
-            measure_scale = np.float64(scale) ** coords.shape[1]
-        if not np.isfinite(measure_scale):
-            raise InputError(f"coordinates up to {scale:.3g} are too large: their "
-                             f"{'areas' if coords.shape[1] == 2 else 'volumes'} overflow "
-                             "float64; rescale the points (e.g. to metres or kilometres)")
-        table.cell_measure *= measure_scale
-        return cls(np.ascontiguousarray(coords), input_index, table, frame, raw.shape[1], mode,
-                   w)
+        built = build_complex(points, progress, weights=weights, density=density,
+                              combine=combine, anisotropy=anisotropy, normals=normals,
+                              backend=backend)
+        return cls(built.points, built.input_index, built.table, built.frame,
+                   built.ambient_dim, built.mode, built.weights, build_info=built.info)
 
     # --- the table -------------------------------------------------------------------------
     def _level(self, k: int) -> Level:

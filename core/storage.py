@@ -17,6 +17,10 @@ float64 (the spectrum), `sig_betti` (s, dim) int32, `sig_solid` (s,) int32, `sig
 absent); `topo_vertex_forest`, `topo_dual_forest` (float64),
 `topo_dual_edges` (fd, 2) int64, `topo_solid_forest` (float64).
 
+Optional, how the table was built (core/build.py BuildInfo; absent = defaults, so older
+tables load): `build_backend` (str, the triangulation backend, "qhull"), and one `build_<field>`
+scalar for every other BuildInfo field.
+
 Optional, for a table built in a mode (core/modes.py; absent = classic): `mode_density` (int,
 0 = off), `mode_combine` (str), `mode_anisotropy` (float), `mode_normals` (str).
 """
@@ -30,6 +34,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .atomic import atomic_write
+from .build import BuildInfo
 from .errors import FileFormatError, InputError
 from .modes import Mode, make_mode
 from .npz import read_npz
@@ -66,6 +71,7 @@ def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
                    mode_combine=np.array(ac.mode.combine),
                    mode_anisotropy=np.array(ac.mode.anisotropy),
                    mode_normals=np.array(ac.mode.normals))
+    out.update(ac.build_info.to_arrays())
     out.update(_derived_arrays(ac))
     for k, level in enumerate(table.levels):
         out[f"simplices_{k}"] = level.simplices
@@ -127,6 +133,14 @@ def _mode(a: dict[str, np.ndarray], path: Path) -> Mode:
         raise FileFormatError(f"{path}: not a valid Alpha Scoop table (mode)") from None
 
 
+def _build_info(a: dict[str, np.ndarray], path: Path) -> BuildInfo:
+    """How the saved table was built (defaults for tables saved before BuildInfo)."""
+    try:
+        return BuildInfo.from_arrays(a)
+    except (TypeError, ValueError):
+        raise FileFormatError(f"{path}: not a valid Alpha Scoop table (build info)") from None
+
+
 def save(ac: AlphaComplex, path: str | os.PathLike) -> None:
     """Write `ac` to `path` (.npz) atomically."""
     atomic_write(path, lambda handle: np.savez(handle, **_arrays(ac)))
@@ -158,7 +172,7 @@ def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
         table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"],
                       a["facet_interior_order"])
         ac = cls(a["points"], a["input_index"], table, frame, int(a["ambient_dim"]),
-                 _mode(a, path), a.get("weights"))
+                 _mode(a, path), a.get("weights"), build_info=_build_info(a, path))
         if "sig_alphas" in a:
             _adopt_derived(ac, a, check)
         return ac

@@ -396,22 +396,25 @@ def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
 
 
 def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
-                progress: Progress | None = None, weights: np.ndarray | None = None) -> Table:
+                progress: Progress | None = None, weights: np.ndarray | None = None,
+                exact: bool = True) -> Table:
     """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled).
 
     With (m,) `weights` (squared radii >= 0, same scale), the cells are the regular
-    triangulation's and the values signed radii of powers (module docstring)."""
+    triangulation's and the values signed radii of powers (module docstring). `exact`: the
+    classic table's doubtful sign decisions and ill-conditioned radii are made exact
+    (core/table_signs.py); False keeps the floating-point ones."""
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
 
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
-    exact: list[int] = []
-    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights, exact)
+    exact_counts: list[int] | None = [] if exact else None
+    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights, exact_counts)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
-                                                           weights, exact)
+                                                           weights, exact_counts)
     del neighbors
     levels = [facets, top]
     if d == 3:
@@ -421,5 +424,5 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     levels.insert(0, _vertices(len(points), levels[0], points, weights))
     by_interior = argsort_radii(facets.interior).astype(np.int32)
     step(1.0, "done")
-    return Table(levels, facet_cells, flip, measure, by_interior, sum(exact))
+    return Table(levels, facet_cells, flip, measure, by_interior, sum(exact_counts or []))
 

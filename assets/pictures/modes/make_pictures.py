@@ -1,6 +1,6 @@
 """Regenerate the README's pictures of the alpha modes with the window's screenshot mode.
 
-    python docs/modes/make_pictures.py
+    python assets/pictures/modes/make_pictures.py
 
 Writes two small data sets beside this script (disks.npz: a dense and a sparse disk;
 sheets.npz: two noisy parallel walls 0.5 apart, sampled at spacing 1) and renders each with
@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent.parent
+ROOT = HERE.parents[2]
 SIZE = "480x360"
 
 

@@ -1,0 +1,63 @@
+"""The build pipeline (core/build.py): backend choice and BuildInfo, saved with the table."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from core import AlphaComplex, FileFormatError, InputError
+from core.build import BuildInfo, build_complex
+
+
+@pytest.fixture(scope="module")
+def points() -> np.ndarray:
+    return np.random.default_rng(16).random((200, 3))
+
+
+def test_build_info_records_the_backend(points):
+    assert AlphaComplex.from_points(points).build_info == BuildInfo(backend="qhull")
+    assert AlphaComplex.from_points(points, backend="qhull").build_info.backend == "qhull"
+
+
+@pytest.mark.parametrize("backend", ["gmsh", "cgal", 3])
+def test_unavailable_or_unknown_backend_is_an_input_error(points, backend):
+    with pytest.raises(InputError, match="backend"):
+        AlphaComplex.from_points(points, backend=backend)
+
+
+def test_from_points_is_the_pipeline(points):
+    built = build_complex(points, weights=None)
+    ac = AlphaComplex.from_points(points)
+    np.testing.assert_array_equal(ac.points, built.points)
+    for k in range(4):
+        np.testing.assert_array_equal(ac.intervals(k)[:, 0], built.table.levels[k].enter)
+    assert built.info == ac.build_info and built.ambient_dim == 3
+
+
+def test_positional_progress_still_works(points):
+    seen = []
+    AlphaComplex.from_points(points, lambda f, s: seen.append((f, s)))
+    fractions = [f for f, _ in seen]
+    assert seen[0] == (0.0, "checking points") and fractions == sorted(fractions)
+
+
+def test_build_info_round_trips_and_old_tables_default(points, tmp_path):
+    ac = AlphaComplex.from_points(points)
+    ac.save(tmp_path / "t.npz")
+    with np.load(tmp_path / "t.npz") as f:
+        arrays = dict(f)
+    assert str(arrays["build_backend"]) == "qhull"
+    assert AlphaComplex.load(tmp_path / "t.npz").build_info == ac.build_info
+    old = {k: v for k, v in arrays.items() if not k.startswith("build_")}
+    np.savez(tmp_path / "old.npz", **old)
+    assert AlphaComplex.load(tmp_path / "old.npz").build_info.backend == "qhull"
+
+
+def test_damaged_build_info_is_a_format_error(points, tmp_path):
+    AlphaComplex.from_points(points).save(tmp_path / "t.npz")
+    with np.load(tmp_path / "t.npz") as f:
+        arrays = dict(f)
+    arrays["build_backend"] = np.array(["qhull", "gmsh"])
+    np.savez(tmp_path / "bad.npz", **arrays)
+    with pytest.raises(FileFormatError, match="build info"):
+        AlphaComplex.load(tmp_path / "bad.npz")
