@@ -46,8 +46,9 @@ def _folded(cells: np.ndarray, nbs: np.ndarray, signs: np.ndarray) -> np.ndarray
 class _Mesh:
     """Growable cells/neighbours arrays with the predicate counters (certification state)."""
 
-    def __init__(self, points: np.ndarray, tri: Triangulation) -> None:
+    def __init__(self, points: np.ndarray, tri: Triangulation, ties: np.ndarray) -> None:
         self.points = points
+        self.ties = ties
         self.cells = tri.cells.astype(np.int64)
         self.nbs = tri.neighbors.astype(np.int64)
         self.alive = np.ones(len(self.cells), dtype=bool)
@@ -91,7 +92,7 @@ def _violations(mesh: _Mesh, t, i, u, j) -> np.ndarray:
     bad = np.zeros(len(t), dtype=bool)
     q = mesh.cells[u, j]
     inside, n_exact = in_sphere(mesh.points, mesh.cells[t[solid]], q[solid],
-                                mesh.signs[t[solid]])
+                                mesh.signs[t[solid]], mesh.ties)
     mesh.exact += n_exact
     bad[solid] = inside
     return bad
@@ -145,43 +146,61 @@ def _flip_2d(mesh: _Mesh, t, i, u, j) -> None:
     mesh.flips += len(t)
 
 
+def _vertex_slot(mesh: _Mesh, cells: np.ndarray, vertex: np.ndarray) -> np.ndarray:
+    """Neighbour of each cell opposite `vertex` (-1 for no cell)."""
+    ok = cells >= 0
+    rows = mesh.cells[np.maximum(cells, 0)]
+    out = mesh.nbs[np.maximum(cells, 0), np.argmax(rows == vertex[:, None], axis=1)]
+    return np.where(ok & (rows == vertex[:, None]).any(axis=1), out, -1)
+
+
 def _flip_3d(mesh: _Mesh, t, i, u, j) -> int:
-    """2-3 flips where the segment pq crosses the facet abc, 3-2 flips where it passes beyond
-    one edge ab shared by exactly three cells; returns how many violations were unflippable."""
+    """Flip the violating facets abc between cells t = abcp and u = abcq where a flip exists:
+    2-3 where the segment pq crosses abc; 3-2 where it passes beyond one edge ab shared by
+    exactly three cells; through the edge ab itself (p, q, a, b coplanar), 2-2 when ab is on
+    the hull and 4-4 when four cells share ab. Returns how many were unflippable."""
+    n = len(t)
     others = np.array([[c for c in range(4) if c != k] for k in range(4)])
     p, q = mesh.cells[t, i], mesh.cells[u, j]
     face = np.take_along_axis(mesh.cells[t], others[i], axis=1)  # a, b, c
-    rot = [np.column_stack((p, q, face[:, k], face[:, (k + 1) % 3])) for k in range(3)]
-    side = np.stack([mesh.orient(r) for r in rot], axis=1)  # edges ab, bc, ca
+    side = np.stack([mesh.orient(np.column_stack((p, q, face[:, k], face[:, (k + 1) % 3])))
+                     for k in range(3)], axis=1)  # pq against the edges ab, bc, ca
     through = np.all(side == side[:, :1], axis=1) & (side[:, 0] != 0)
-    odd = (side != 0).all(axis=1) & (np.abs(side.sum(axis=1)) == 1)
-    edge = np.argmax(side != np.sign(side.sum(axis=1))[:, None], axis=1)  # the odd edge
-    third = face[np.arange(len(t)), (edge + 2) % 3]
-    v = mesh.nbs[t, np.argmax(mesh.cells[t] == third[:, None], axis=1)]
-    v_u = mesh.nbs[u, np.argmax(mesh.cells[u] == third[:, None], axis=1)]
-    odd &= (v >= 0) & (v == v_u)
-    flippable = through | odd
-    t, u, p, q, face, v, through = (x[flippable] for x in (t, u, p, q, face, v, through))
-    edge = edge[flippable]
-    v = np.where(through, -1, v)
-    nb_v = np.where(through[:, None], -1, mesh.nbs[np.maximum(v, 0)])
-    zones = np.column_stack((t, u, v, mesh.nbs[t], mesh.nbs[u], nb_v))
-    pick = _independent(mesh, zones)
-    t, u, p, q, face, v, through, edge = (x[pick] for x in (t, u, p, q, face, v, through, edge))
-    two, three = ~through, through
-    a = face[np.arange(len(t)), edge]
-    b = face[np.arange(len(t)), (edge + 1) % 3]
-    c = face[np.arange(len(t)), (edge + 2) % 3]
-    rows = [np.column_stack((p, q, face[:, k], face[:, (k + 1) % 3])) for k in range(3)]
-    w = mesh.append(rows[2][three])
-    mesh.cells[t[three]], mesh.cells[u[three]] = rows[0][three], rows[1][three]
-    mesh.cells[t[two]] = np.column_stack((c, p, q, a))[two]
-    mesh.cells[u[two]] = np.column_stack((c, p, q, b))[two]
-    dead = v[two]
+    zeros = (side == 0).sum(axis=1)
+    odd = (zeros == 0) & (np.abs(side.sum(axis=1)) == 1)
+    level = (zeros == 1) & (np.abs(side.sum(axis=1)) == 2)  # through the edge with side 0
+    majority = np.sign(side.sum(axis=1))
+    edge = np.where(level, np.argmax(side == 0, axis=1),
+                    np.argmax(side != majority[:, None], axis=1))
+    rows = np.arange(n)
+    a, b, c = (face[rows, (edge + k) % 3] for k in range(3))
+    v, v_u = _vertex_slot(mesh, t, c), _vertex_slot(mesh, u, c)
+    x = np.where(v >= 0, mesh.cells[np.maximum(v, 0)].sum(axis=1) - a - b - p, -1)
+    y = np.where(v_u >= 0, mesh.cells[np.maximum(v_u, 0)].sum(axis=1) - a - b - q, -1)
+    three_two = odd & (v >= 0) & (v == v_u)
+    two_two = level & (v < 0) & (v_u < 0)
+    four = level & (v >= 0) & (v_u >= 0) & (x == y) & (_vertex_slot(mesh, v, p) == v_u)
+    flippable = through | three_two | two_two | four
+    v = np.where(three_two | four, v, -1)
+    v_u = np.where(four, v_u, -1)
+    around = [np.where((cell >= 0)[:, None], mesh.nbs[np.maximum(cell, 0)], -1)
+              for cell in (t, u, v, v_u)]
+    zones = np.column_stack((t, u, v, v_u, *around))
+    keep = np.flatnonzero(flippable)[_independent(mesh, zones[flippable])]
+    t, u, p, q, face, a, b, c, v, v_u, x, through, four = (
+        arr[keep] for arr in (t, u, p, q, face, a, b, c, v, v_u, x, through, four))
+    w = mesh.append(np.column_stack((p, q, face[:, 2], face[:, 0]))[through])
+    mesh.cells[t] = np.where(through[:, None], np.column_stack((p, q, face[:, 0], face[:, 1])),
+                             np.column_stack((c, p, q, a)))
+    mesh.cells[u] = np.where(through[:, None], np.column_stack((p, q, face[:, 1], face[:, 2])),
+                             np.column_stack((c, p, q, b)))
+    mesh.cells[v[four]] = np.column_stack((x, p, q, a))[four]
+    mesh.cells[v_u[four]] = np.column_stack((x, p, q, b))[four]
+    dead = v[(v >= 0) & ~four]
     mesh.alive[dead] = False
-    new = np.concatenate((t, u, w))
+    new = np.concatenate((t, u, w, v[four], v_u[four]))
     mesh.signs[new] = mesh.orient(mesh.cells[new])
-    _relink(mesh, np.concatenate((t, u, dead)), new)
+    _relink(mesh, np.concatenate((t, u, dead, v[four], v_u[four])), new)
     mesh.nbs[dead] = -1
     mesh.flips += len(t)
     return int((~flippable).sum())
@@ -251,10 +270,18 @@ def _compact(mesh: _Mesh, tri: Triangulation) -> Triangulation:
     return replace(tri, cells=cells, neighbors=nbs)
 
 
-def certify(points: np.ndarray, tri: Triangulation) -> Certified:
+def tie_weights(m: int) -> np.ndarray:
+    """(m,) fixed pseudo-random weights in [0, 1) of the symbolic perturbation (one set for
+    every build of m points: the certified triangulation is deterministic)."""
+    return np.random.default_rng(14).random(m)
+
+
+def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = None
+            ) -> Certified:
     """Check every interior facet of `tri` (cells of the (m, d) `points`) for the local
-    Delaunay condition, exactly, and flip until all hold (module docstring)."""
-    mesh = _Mesh(points, tri)
+    Delaunay condition, exactly, and flip until all hold (module docstring). `ties`: the
+    points' perturbation weights (default tie_weights(m))."""
+    mesh = _Mesh(points, tri, tie_weights(len(points)) if ties is None else ties)
     d = points.shape[1]
     pending = np.arange(len(mesh.cells))
     stuck = 0
@@ -292,7 +319,7 @@ JITTER_RTOL = 1e-11
 def _certified_cells(points: np.ndarray, tri: Triangulation) -> Certified:
     """`certify` on the points that are vertices; points the triangulator merged into a
     neighbour count as uncertified (an exact triangulation keeps every distinct point)."""
-    out = certify(points[tri.kept], tri)
+    out = certify(points[tri.kept], tri, tie_weights(len(points))[tri.kept])
     return replace(out, uncertified=out.uncertified + len(points) - len(tri.kept))
 
 
@@ -301,15 +328,15 @@ def certified_triangulation(points: np.ndarray, tri: Triangulation) -> Certified
     coordinates, scaled by a power of two at most; signs are decided on these).
 
     Where the backend merged near-cospherical groups into flat or folded cells (which no flip
-    repairs), Qhull runs once more on the points lifted with tiny fixed pseudo-random weights,
-    whose ties it no longer merges, and the certified result with fewer uncertified facets is
-    kept (the first on a tie, so the backend's result whenever the retry is no better)."""
+    repairs), Qhull runs once more on the points lifted with tiny weights, the same that
+    break exact ties in the symbolic perturbation (so it resolves them the same way), and the
+    certified result with fewer uncertified facets is kept (the first on a tie)."""
     first = _certified_cells(points, tri)
     if not first.uncertified:
         return first
     centred = points - 0.5 * (points.min(axis=0) + points.max(axis=0))
     centred /= float(np.abs(centred).max())
-    weights = JITTER_RTOL * np.random.default_rng(14).random(len(points))
+    weights = JITTER_RTOL * tie_weights(len(points))
     try:
         retry = regular_triangulate(centred, weights)
     except InputError:

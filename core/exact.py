@@ -69,32 +69,42 @@ def lifted_rows(vectors: Sequence[Sequence[object]]) -> list[list[object]]:
     return out
 
 
-def perturbed_inside(vectors: list[list[np.ndarray]], ids: np.ndarray) -> np.ndarray:
+def perturbed_inside(vectors: list[list[np.ndarray]], ids: np.ndarray,
+                     tie_weights: np.ndarray) -> np.ndarray:
     """(n,) bool: the query is inside the cell's circumsphere under the symbolic perturbation,
     for exactly cospherical cases (in-sphere determinant exactly 0).
 
     `vectors` (d+1 lists of d object int arrays): the cell's vertices minus the query point;
-    `ids` (n, d+2) global indices of the cell's vertices and then the query's. The rule (one
-    for the whole build): every point's lifted height |p|² is lowered by eps^(N - index), so
-    higher indices weigh more. The lifted determinant D = sum_i h_i C_i then takes the sign of
-    -C_j for the highest-indexed point j with a non-zero cofactor C_j, and the query is inside
-    when D has the sign of -C_q. This is the regular triangulation of infinitesimally weighted
-    points: valid, unique, and the same whichever cell a facet is seen from.
+    `ids` (n, d+2) global indices of the cell's vertices and then the query's; `tie_weights`
+    (n, d+2) their fixed weights in [0, 1) (float64 multiples of 2**-53). The rule (one for
+    the whole build): every point's lifted height |p|² is lowered by eps * w + eps² *
+    eps'^(N - index). The lifted determinant D = sum_i h_i C_i then takes the sign of
+    -sum_i w_i C_i, or, where that is 0 too, of -C_j for the highest-indexed point j with
+    C_j != 0; the query is inside when D has the sign of -C_q. This is the regular
+    triangulation of infinitesimally weighted points (valid, unique, the same from both
+    sides of a facet), and the first order is what Qhull computes with real weights eps * w.
     """
     d = len(vectors[0])
     n = len(ids)
     rows = [[*v, 1] for v in vectors] + [[0] * d + [1]]  # the lifted column removed
-    cof = np.zeros((d + 2, n), dtype=np.int64)
+    cof = np.empty((d + 2, n), dtype=object)
     for i in range(d + 2):
         value = determinant([row for j, row in enumerate(rows) if j != i])
-        value = np.broadcast_to(np.asarray(value, dtype=object), (n,))
-        cof[i] = [(v > 0) - (v < 0) for v in value.tolist()]
+        cof[i] = np.broadcast_to(np.asarray(value, dtype=object), (n,))
         if (i + d) % 2:
             cof[i] = -cof[i]
+    signs = np.array([[(v > 0) - (v < 0) for v in row] for row in cof.tolist()],
+                     dtype=np.int64).reshape(d + 2, n)
+    scaled = (np.asarray(tie_weights, dtype=np.float64) * 2.0**53).astype(np.int64)
+    first = np.zeros(n, dtype=object)
+    for i in range(d + 2):
+        first = first + cof[i] * np.array([*scaled[:, i].tolist(), 0], dtype=object)[:-1]
     order = np.argsort(-np.asarray(ids), axis=1, kind="stable")  # highest index first
-    ranked = np.take_along_axis(cof.T, order, axis=1)
+    ranked = np.take_along_axis(signs.T, order, axis=1)
     decisive = ranked[np.arange(n), np.argmax(ranked != 0, axis=1)]
-    return decisive == cof[d + 1]
+    weighted = np.array([(v > 0) - (v < 0) for v in first.tolist()], dtype=np.int64)
+    decisive = np.where(weighted != 0, weighted, decisive)
+    return decisive == signs[d + 1]
 
 
 def exact_signs(formula: Callable[..., object], vectors: list[list[np.ndarray]]) -> np.ndarray:

@@ -128,17 +128,19 @@ def orientations(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray,
 
 
 def in_sphere(points: np.ndarray, cells: np.ndarray, queries: np.ndarray,
-              cell_signs: np.ndarray) -> tuple[np.ndarray, int]:
+              cell_signs: np.ndarray, tie_weights: np.ndarray) -> tuple[np.ndarray, int]:
     """(n,) bool: query point i lies inside the circumsphere of (n, d+1) cell i (non-flat, of
     orientation sign `cell_signs`), exactly cospherical cases decided by the symbolic
-    perturbation of core.exact.perturbed_inside; and how many rows needed exact arithmetic."""
+    perturbation of core.exact.perturbed_inside with the points' (m,) `tie_weights`; and how
+    many rows needed exact arithmetic."""
     d = points.shape[1]
     signs, exact = filtered_signs(insphere_formula, points, queries, cells)
     inside = signs == (-1) ** d * cell_signs
     tie = np.flatnonzero(signs == 0)
     if len(tie):
         vectors = _exact_vectors(points, queries[tie], cells[tie])
-        inside[tie] = perturbed_inside(vectors, np.column_stack((cells[tie], queries[tie])))
+        ids = np.column_stack((cells[tie], queries[tie]))
+        inside[tie] = perturbed_inside(vectors, ids, tie_weights[ids])
     return inside, int(exact.sum())
 
 
