@@ -17,6 +17,7 @@ from reference import (  # noqa: E402
     gudhi_table,
     read_scan,
 )
+from test_table_degenerate import probe_alphas  # noqa: E402
 from test_table_gudhi import assert_matches_gudhi  # noqa: E402
 
 from core import AlphaComplex  # noqa: E402
@@ -105,10 +106,10 @@ def test_exactly_degenerate_input_is_a_valid_deterministic_filtration(name: str)
         np.testing.assert_array_equal(ac.simplices(k), again.simplices(k))
         np.testing.assert_array_equal(ac.intervals(k), again.intervals(k))
     ref = gudhi_table(pts, precision="exact")
-    values = np.sqrt(np.unique(np.concatenate([ref[k][1] for k in range(ref["dim"] + 1)])))
-    probes = np.concatenate([[0.0], (values[:-1] + values[1:]) / 2, values * (1 + 1e-9)])
-    total = gudhi_measure(pts, ref, float(values[-1]) * 2)
-    for alpha in probes[np.linspace(0, len(probes) - 1, 60).astype(int)]:
+    values = np.sqrt(np.concatenate([ref[k][1] for k in range(ref["dim"] + 1)]))
+    probes = probe_alphas(np.asarray(ac.spectrum()), values)
+    total = gudhi_measure(pts, ref, float(values.max()) * 2)
+    for alpha in probes[np.linspace(0, len(probes) - 1, 80).astype(int)]:
         assert ac.shape(alpha).measure == pytest.approx(
             gudhi_measure(pts, ref, alpha), rel=1e-9, abs=1e-12 * total), f"alpha={alpha!r}"
 
