@@ -55,6 +55,23 @@ class _Mesh:
         self.signs, self.exact = orientations(points, self.cells)
         self.bad = (self.signs == 0) | _folded(self.cells, self.nbs, self.signs)
         self.flips = 0
+        self._peel()
+
+    def _peel(self) -> None:
+        """Drop invalid (flat or folded) cells on the hull until none is left there: slivers
+        the triangulator laid flat or inverted on near-coplanar hull faces. The hull repair
+        fills what they covered, if anything."""
+        while True:
+            ids = np.flatnonzero(self.bad & self.alive & (self.nbs < 0).any(axis=1))
+            if not len(ids):
+                return
+            dropped = np.zeros(len(self.cells), dtype=bool)
+            dropped[ids] = True
+            self.nbs[dropped[np.maximum(self.nbs, 0)] & (self.nbs >= 0)] = -1
+            self.alive[ids] = False
+            self.bad = self.alive & ((self.signs == 0)
+                                     | _folded(self.cells, self.nbs, self.signs))
+            self.flips += len(ids)
 
     def append(self, rows: np.ndarray) -> np.ndarray:
         ids = np.arange(len(self.cells), len(self.cells) + len(rows))
@@ -288,23 +305,16 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
     for _ in range(MAX_ROUNDS):
         t, i, u, j = _facets_of(mesh, pending)
         bad = _violations(mesh, t, i, u, j)
-        if not bad.any():
-            size = len(mesh.cells)
-            _fill_reflex_hull(mesh)
-            if len(mesh.cells) == size:
-                break
-            pending = np.arange(size, len(mesh.cells))
-            continue
         t, i, u, j = (x[bad] for x in (t, i, u, j))
-        before = mesh.flips
-        size = len(mesh.cells)
-        if d == 2:
+        before, size = mesh.flips, len(mesh.cells)
+        if d == 2 and len(t):
             _flip_2d(mesh, t, i, u, j)
-            stuck = 0
-        else:
+        elif len(t):
             stuck = _flip_3d(mesh, t, i, u, j)
-        if mesh.flips == before:
-            break
+        if mesh.flips == before:  # nothing (more) to flip: fill reflex hull ridges, if any
+            _fill_reflex_hull(mesh)
+            if mesh.flips == before:
+                break
         pending = np.unique(np.concatenate((t, u, np.arange(size, len(mesh.cells)))))
     out = _compact(mesh, tri) if mesh.flips else tri
     invalid = int(np.sum(mesh.bad[:, None] & (mesh.nbs >= 0) & mesh.alive[:, None]))
