@@ -259,8 +259,28 @@ def _fill_reflex_hull(mesh: _Mesh) -> None:
     outer = outer[np.unique(np.sort(outer, axis=1), axis=0, return_index=True)[1]]
     w = mesh.append(outer)
     mesh.signs[w] = mesh.orient(outer)
+    mesh.alive[w[_overlapping(mesh, w)]] = False  # it would overlap a cell: not a reflex ridge
     _glue_hull(mesh)
-    mesh.flips += len(w)
+    mesh.flips += int(mesh.alive[w].sum())
+
+
+def _overlapping(mesh: _Mesh, new: np.ndarray) -> np.ndarray:
+    """(n,) bool: new cells with a facet that two other cells already share (the new cell
+    would overlap them); only the cells around the new cells' vertices are searched."""
+    width = mesh.cells.shape[1]
+    touch = np.zeros(mesh.cells.max() + 1, dtype=bool)
+    touch[mesh.cells[new].ravel()] = True
+    near = np.flatnonzero(mesh.alive & touch[mesh.cells].any(axis=1))
+    others = np.array([[c for c in range(width) if c != k] for k in range(width)])
+    keys = np.sort(np.concatenate([mesh.cells[near][:, o] for o in others]), axis=1)
+    owner = np.tile(near, width)
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    crowded = counts[inverse.ravel()] > 2
+    is_new = np.zeros(len(mesh.cells), dtype=bool)
+    is_new[new] = True
+    out = np.zeros(len(mesh.cells), dtype=bool)
+    out[owner[crowded & is_new[owner]]] = True
+    return out[new]
 
 
 def _glue_hull(mesh: _Mesh) -> None:
