@@ -55,6 +55,7 @@ class _Mesh:
         self.signs, self.exact = orientations(points, self.cells)
         self.bad = (self.signs == 0) | _folded(self.cells, self.nbs, self.signs)
         self.flips = 0
+        self.touched = np.zeros(len(self.cells), dtype=bool)  # cells changed or relinked
         self._peel()
 
     def _peel(self) -> None:
@@ -67,7 +68,9 @@ class _Mesh:
                 return
             dropped = np.zeros(len(self.cells), dtype=bool)
             dropped[ids] = True
-            self.nbs[dropped[np.maximum(self.nbs, 0)] & (self.nbs >= 0)] = -1
+            cut = dropped[np.maximum(self.nbs, 0)] & (self.nbs >= 0)
+            self.touched[cut.any(axis=1)] = True
+            self.nbs[cut] = -1
             self.alive[ids] = False
             self.bad = self.alive & ((self.signs == 0)
                                      | _folded(self.cells, self.nbs, self.signs))
@@ -78,6 +81,7 @@ class _Mesh:
         self.cells = np.concatenate((self.cells, rows))
         self.nbs = np.concatenate((self.nbs, np.full(rows.shape, -1, dtype=np.int64)))
         self.alive = np.concatenate((self.alive, np.ones(len(rows), dtype=bool)))
+        self.touched = np.concatenate((self.touched, np.ones(len(rows), dtype=bool)))
         self.signs = np.concatenate((self.signs, np.zeros(len(rows), dtype=np.int8)))
         self.bad = np.concatenate((self.bad, np.zeros(len(rows), dtype=bool)))
         return ids
@@ -134,6 +138,7 @@ def _relink(mesh: _Mesh, old: np.ndarray, new: np.ndarray) -> None:
     changed[new] = True
     around = mesh.nbs[old].ravel()
     around = np.unique(around[(around >= 0) & ~changed[np.maximum(around, 0)]])
+    mesh.touched[new] = mesh.touched[around] = True
     ext_t, ext_k = np.nonzero(changed[np.maximum(mesh.nbs[around], 0)] & (mesh.nbs[around] >= 0))
     slot_cell = np.concatenate((np.repeat(new, width), around[ext_t]))
     slot_k = np.concatenate((np.tile(np.arange(width), len(new)), ext_k))
@@ -294,6 +299,36 @@ def _glue_hull(mesh: _Mesh) -> None:
     first = np.flatnonzero(np.all(keys[1:] == keys[:-1], axis=1))
     mesh.nbs[t[first], k[first]] = t[first + 1]
     mesh.nbs[t[first + 1], k[first + 1]] = t[first]
+    mesh.touched[t[first]] = mesh.touched[t[first + 1]] = True
+
+
+def _valid(mesh: _Mesh) -> bool:
+    """Whether the cells certification touched form a valid triangulation with the rest:
+    no facet in more than two cells, links symmetric, and across every interior facet the
+    two opposite vertices strictly on opposite sides (exact orientations)."""
+    ids = np.flatnonzero(mesh.touched & mesh.alive)
+    if not len(ids):
+        return True
+    if _overlapping(mesh, ids).any():
+        return False
+    width = mesh.cells.shape[1]
+    t, k = np.repeat(ids, width), np.tile(np.arange(width), len(ids))
+    u = mesh.nbs[t, k]
+    t, k, u = t[u >= 0], k[u >= 0], u[u >= 0]
+    back = mesh.nbs[u] == t[:, None]
+    if not (mesh.alive[u].all() and (back.sum(axis=1) == 1).all()):
+        return False
+    j = np.argmax(back, axis=1)
+    others = np.array([[c for c in range(width) if c != i] for i in range(width)])
+    facet = np.take_along_axis(mesh.cells[t], others[k], axis=1)
+    if not (np.sort(facet, axis=1) == np.sort(np.take_along_axis(
+            mesh.cells[u], others[j], axis=1), axis=1)).all():
+        return False
+    solid = ~mesh.bad[t] & ~mesh.bad[u]
+    facet, t, k, u, j = facet[solid], t[solid], k[solid], u[solid], j[solid]
+    side_p = mesh.orient(np.column_stack((facet, mesh.cells[t, k])))
+    side_q = mesh.orient(np.column_stack((facet, mesh.cells[u, j])))
+    return bool(((side_p * side_q) < 0).all())
 
 
 def _compact(mesh: _Mesh, tri: Triangulation) -> Triangulation:
@@ -336,6 +371,8 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
             if mesh.flips == before:
                 break
         pending = np.unique(np.concatenate((t, u, np.arange(size, len(mesh.cells)))))
+    if mesh.flips and not _valid(mesh):  # a repair went wrong: keep the backend's cells
+        return Certified(tri, mesh.exact, 0, int((tri.neighbors >= 0).sum()) // 2)
     out = _compact(mesh, tri) if mesh.flips else tri
     invalid = int(np.sum(mesh.bad[:, None] & (mesh.nbs >= 0) & mesh.alive[:, None]))
     return Certified(out, mesh.exact, mesh.flips, stuck + invalid)

@@ -35,7 +35,7 @@ def _centre(corners: list[list[Fraction]]) -> list[Fraction]:
     a = [[2 * (c[k] - corners[0][k]) for k in range(d)] for c in corners[1:]]
     b = [sum(c[k] ** 2 - corners[0][k] ** 2 for k in range(d)) for c in corners[1:]]
     det = _det(a)
-    return [_det([row[:k] + [b[i]] + row[k + 1:] for i, row in enumerate(a)]) / det
+    return [_det([[*row[:k], b[i], *row[k + 1:]] for i, row in enumerate(a)]) / det
             for k in range(d)]
 
 
