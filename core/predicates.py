@@ -12,6 +12,7 @@ absolute values (the "permanent"), itself computed in float64 with the same k.
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import cache
 
 import numpy as np
 
@@ -46,21 +47,14 @@ class Bounded:
         return Bounded(self.value * other.value, self.perm * other.perm,
                        self.count + other.count + 1)
 
-    def uncertain(self) -> np.ndarray:
-        """(n,) bool: the float sign may be wrong (or under/overflow left it unproven)."""
-        bound = (2 * self.count + 2) * _U * self.perm  # >= gamma_k / (1 - gamma_k) * perm
-        with np.errstate(invalid="ignore"):
-            return ~(np.abs(self.value) > bound) | ~(self.perm >= _TINY) | ~np.isfinite(
-                self.perm)
 
 
-def _float_vectors(points: np.ndarray, base: np.ndarray, others: np.ndarray) -> list:
-    rows = []
-    origin = points[base]
-    for i in range(others.shape[1]):
-        diff = points[others[:, i]] - origin
-        rows.append([Bounded(diff[:, c], np.abs(diff[:, c]), 1) for c in range(points.shape[1])])
-    return rows
+def _differences(points: np.ndarray, base: np.ndarray, others: np.ndarray) -> list:
+    """(k, d) contiguous float64 coordinate columns of points[others[:, i]] - points[base]."""
+    columns = [np.ascontiguousarray(points[:, c]) for c in range(points.shape[1])]
+    origin = [np.take(col, base) for col in columns]
+    return [[np.take(col, others[:, i]) - o for col, o in zip(columns, origin, strict=True)]
+            for i in range(others.shape[1])]
 
 
 def _exact_vectors(points: np.ndarray, base: np.ndarray, others: np.ndarray) -> list:
@@ -69,18 +63,54 @@ def _exact_vectors(points: np.ndarray, base: np.ndarray, others: np.ndarray) -> 
     return [[diff[:, i, c] for c in range(points.shape[1])] for i in range(diff.shape[1])]
 
 
+@cache
+def _roundings(formula: Formula, k: int, d: int) -> int:
+    """The largest number of roundings behind a monomial of `formula` on k difference
+    vectors in d dimensions (structural: found by one evaluation on Bounded scalars)."""
+    one = np.ones(1)
+    vectors = [[Bounded(one, one, 1) for _ in range(d)] for _ in range(k)]
+    return formula(vectors).count
+
+
+def row_sum_bound(vectors: list, lifted: bool = False) -> np.ndarray:
+    """An upper bound of the permanent of |M| for the determinant of the rows v_i (or
+    [v_i, |v_i|²] when lifted): the product of the rows' absolute sums."""
+    total = None
+    for vec in vectors:
+        row = np.abs(vec[0])
+        for c in vec[1:]:
+            row = row + np.abs(c)
+        if lifted:
+            row = row + _dot(vec, vec)
+        total = row if total is None else total * row
+    return total
+
+
 def filtered_signs(formula: Formula, points: np.ndarray, base: np.ndarray,
-                   others: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                   others: np.ndarray, bound: Callable[[list], np.ndarray] | None = None
+                   ) -> tuple[np.ndarray, np.ndarray]:
     """(n,) int8 exact signs of `formula` on the difference vectors points[others] - points[base]
-    ((n,) and (n, k) int indices), and the (n,) bool rows that needed exact arithmetic."""
-    n = len(base)
+    ((n,) and (n, k) int indices), and the (n,) bool rows that needed exact arithmetic.
+
+    With `bound` (vectors -> an upper bound of the formula's permanent, e.g. row_sum_bound
+    for determinants), the float pass evaluates the formula once on plain arrays; without,
+    it carries the permanent alongside (Bounded)."""
+    n, d = len(base), points.shape[1]
     signs = np.empty(n, dtype=np.int8)
     exact = np.zeros(n, dtype=bool)
+    coef = (2 * _roundings(formula, others.shape[1], d) + 2) * _U
     for lo in range(0, n, _CHUNK):
         sl = slice(lo, lo + _CHUNK)
-        value = formula(_float_vectors(points, base[sl], others[sl]))
-        signs[sl] = np.sign(value.value)
-        exact[sl] = value.uncertain()
+        vectors = _differences(points, base[sl], others[sl])
+        if bound is None:
+            leaves = [[Bounded(c, np.abs(c), 1) for c in vec] for vec in vectors]
+            result = formula(leaves)
+            value, perm = result.value, result.perm
+        else:
+            value, perm = formula(vectors), bound(vectors)
+        signs[sl] = np.sign(value)
+        with np.errstate(invalid="ignore"):
+            exact[sl] = ~(np.abs(value) > coef * perm) | ~(perm >= _TINY) | ~np.isfinite(perm)
     ids = np.flatnonzero(exact)
     if len(ids):
         signs[ids] = exact_signs(formula, _exact_vectors(points, base[ids], others[ids]))
@@ -123,7 +153,8 @@ def diametral_formula(vectors: list) -> object:
 def orientations(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, int]:
     """(n,) int8 exact signs of det(p_i - p_0) for (n, d+1) simplices, and how many rows
     needed exact arithmetic."""
-    signs, exact = filtered_signs(orientation_formula, points, simplices[:, 0], simplices[:, 1:])
+    signs, exact = filtered_signs(orientation_formula, points, simplices[:, 0], simplices[:, 1:],
+                                  row_sum_bound)
     return signs, int(exact.sum())
 
 
@@ -134,7 +165,8 @@ def in_sphere(points: np.ndarray, cells: np.ndarray, queries: np.ndarray,
     perturbation of core.exact.perturbed_inside with the points' (m,) `tie_weights`; and how
     many rows needed exact arithmetic."""
     d = points.shape[1]
-    signs, exact = filtered_signs(insphere_formula, points, queries, cells)
+    signs, exact = filtered_signs(insphere_formula, points, queries, cells,
+                                  lambda vectors: row_sum_bound(vectors, lifted=True))
     inside = signs == (-1) ** d * cell_signs
     tie = np.flatnonzero(signs == 0)
     if len(tie):

@@ -16,15 +16,34 @@ from __future__ import annotations
 import numpy as np
 
 from .exact import exact_radii
+from .geometry import CHUNK, edge_vectors
 from .predicates import diametral_formula, diametral_signs, filtered_signs, orientations
-from .tolerances import NEAR_SPHERE_RTOL, SLIVER_RTOL
+from .tolerances import EXACT_RADIUS_SHAPE, NEAR_SPHERE_RTOL, SLIVER_RTOL
+
+#: The float dot product of two side differences (d <= 3 products, d - 1 sums, leaves
+#: rounded once) is within 5 u of the exact value times the sum of |products| (u = 2**-53,
+#: with room for the bound's own rounding); below TINY underflow could hide digits.
+ANGLE_BOUND = 12 * 2.0**-53
+TINY = 1e-250
 
 
 def slivers(det: np.ndarray, radius: np.ndarray, d: int) -> np.ndarray:
-    """(n,) bool: cells whose |det| (d! volume) is tiny against r^d: ill-conditioned spheres
-    (slivers, caps, needles), and cells float arithmetic called flat."""
+    """(n,) bool: cells whose |det| (d! volume) is below SLIVER_RTOL * r^d: ill-conditioned
+    spheres (slivers, caps, needles), and cells float arithmetic called flat."""
     with np.errstate(over="ignore", invalid="ignore"):
         return ~(np.abs(det) > SLIVER_RTOL * radius**d)
+
+
+def shapes(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
+    """(n,) |det| / prod |v_i| of (n, k+1) simplices (k = d: cells; k = 2: triangles): 0 for
+    flat, about 1 for well-shaped; the conditioning of their sphere's linear system."""
+    vec = edge_vectors(points, simplices)
+    lengths = np.sqrt(np.prod(np.einsum("nkd,nkd->nk", vec, vec), axis=1))
+    if vec.shape[1] == vec.shape[2]:
+        size = np.abs(np.linalg.det(vec))
+    else:
+        size = np.linalg.norm(np.cross(vec[:, 0], vec[:, 1]), axis=-1)
+    return size / np.where(lengths > 0, lengths, 1.0)
 
 
 def settle_cells(points: np.ndarray, cells: np.ndarray, enter: np.ndarray, det: np.ndarray,
@@ -36,11 +55,12 @@ def settle_cells(points: np.ndarray, cells: np.ndarray, enter: np.ndarray, det: 
         return 0
     signs, n_exact = orientations(points, cells[ids])
     solid = signs != 0
+    poor = ids[solid & (shapes(points, cells[ids]) < EXACT_RADIUS_SHAPE["cell"])]
     flat[ids] = ~solid
     tiny = np.finfo(np.float64).tiny
     det[ids] = np.where(solid, signs * np.maximum(np.abs(det[ids]), tiny), 0.0)
-    enter[ids[solid]] = exact_radii(points, cells[ids[solid]])
-    return n_exact + int(solid.sum())
+    enter[poor] = exact_radii(points, cells[poor])
+    return n_exact + len(poor)
 
 
 def settle_attachment(points: np.ndarray, facets: np.ndarray, apex: np.ndarray,
@@ -67,17 +87,31 @@ def settle_attachment(points: np.ndarray, facets: np.ndarray, apex: np.ndarray,
 def obtuse_bits(points: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, int]:
     """(n,) uint8 bits for (n, 3) triangles, bit j: vertex j strictly inside the diametral
     sphere of the opposite edge (the angle at j is obtuse), exactly; and how many predicates
-    needed exact arithmetic."""
+    needed exact arithmetic. The dot products of the sides at each corner are filtered by
+    their bound (4 roundings: side differences, products, two sums) in one pass."""
     bits = np.zeros(len(triangles), dtype=np.uint8)
-    total = 0
+    doubt = np.zeros((len(triangles), 3), dtype=bool)
+    columns = [np.ascontiguousarray(points[:, c]) for c in range(points.shape[1])]
+    for lo in range(0, len(triangles), CHUNK):
+        tri = triangles[lo:lo + CHUNK]
+        corners = [[np.take(col, tri[:, j]) for col in columns] for j in range(3)]
+        for j in range(3):
+            here, (one, two) = corners[j], [corners[i] for i in range(3) if i != j]
+            value = perm = 0.0
+            for c in range(len(columns)):
+                a, b = one[c] - here[c], two[c] - here[c]
+                value = value + a * b
+                perm = perm + np.abs(a * b)
+            bits[lo:lo + CHUNK] |= (value < 0).astype(np.uint8) << j
+            doubt[lo:lo + CHUNK, j] = ~(np.abs(value) > ANGLE_BOUND * perm) | (perm < TINY)
+    rows, corner = np.nonzero(doubt)
     for j in range(3):
-        rest = [c for c in range(3) if c != j]
-        signs, exact = filtered_signs(diametral_formula, points, triangles[:, j],
-                                      triangles[:, rest])
-        bits |= (signs < 0).astype(np.uint8) << j
-        total += int(exact.sum())
-    return bits, total
-
+        ids = rows[corner == j]
+        rest = [i for i in range(3) if i != j]
+        signs, _ = filtered_signs(diametral_formula, points, triangles[ids, j],
+                                  triangles[ids][:, rest])
+        bits[ids] = (bits[ids] & ~np.uint8(1 << j)) | ((signs < 0).astype(np.uint8) << j)
+    return bits, len(rows)
 
 
 def settle_facets(points: np.ndarray, cells: np.ndarray, cell_enter: np.ndarray,
@@ -98,6 +132,7 @@ def settle_facets(points: np.ndarray, cells: np.ndarray, cell_enter: np.ndarray,
         for rows, cell, _, _ in sides:
             poor[rows] |= slivers(det[cell], cell_enter[cell], d) & (det[cell] != 0)
         ids = np.flatnonzero(poor)
+        ids = ids[shapes(points, facets[ids]) < EXACT_RADIUS_SHAPE["triangle"]]
         radius[ids] = exact_radii(points, facets[ids])
         total += len(ids)
     for rows, cell, k, inside in sides:

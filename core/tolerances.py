@@ -32,8 +32,13 @@ ON_SPHERE_RTOL = 1e-13
 NEAR_SPHERE_RTOL = 1e-6
 
 #: A cell whose |determinant| (d! volume) is below this times r^d (r its circumradius) is
-#: ill-conditioned: its flatness is decided exactly and its radius computed in rationals.
+#: ill-conditioned: its flatness (orientation) is decided by an exact predicate.
 SLIVER_RTOL = 1e-6
+
+#: Simplices whose shape |det| / prod |v_i| (v_i the edge vectors from a vertex) is below
+#: this may miss 1e-9 relative on r² (cells: extended precision, error ~ 2**-64 / shape;
+#: triangles: float64, ~ 2**-53 / shape): their radius is computed in rational arithmetic.
+EXACT_RADIUS_SHAPE = {"cell": 1e-9, "triangle": 1e-7}
 
 #: A power |c|² - w below this share of |c|² + |w| has lost digits to cancellation: it is
 #: recomputed in extended precision (values near zero must keep their relative accuracy).
