@@ -31,14 +31,21 @@ class Certified:
     uncertified: int  # facets left unchecked or unrepaired (flat cells, stuck 3D flips)
 
 
-def _folded(cells: np.ndarray, nbs: np.ndarray, signs: np.ndarray) -> np.ndarray:
-    """(t,) bool: cells on the same side of a shared facet as their neighbour (rows ascending,
-    so the facet's orientation follows from the cell's sign and the position left out)."""
+def _interior_facets(cells: np.ndarray, nbs: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Every interior facet once, (t, i, u, j): cell t's facet opposite its vertex i is cell
+    u's opposite its vertex j (t < u)."""
     t, i = np.nonzero(nbs > np.arange(len(cells))[:, None])
     u = nbs[t, i]
     j = np.argmax(nbs[u] == t[:, None], axis=1)
+    return t, i, u, j
+
+
+def _folded(n: int, signs: np.ndarray, t, i, u, j) -> np.ndarray:
+    """(n,) bool: cells on the same side of a shared facet (t, i, u, j) as their neighbour
+    (rows ascending, so the facet's orientation follows from the cell's sign and the
+    position left out)."""
     same = signs[t] * (-1) ** (i % 2) == signs[u] * (-1) ** (j % 2)
-    out = np.zeros(len(cells), dtype=bool)
+    out = np.zeros(n, dtype=bool)
     out[t[same]] = out[u[same]] = True
     return out
 
@@ -53,7 +60,8 @@ class _Mesh:
         self.nbs = tri.neighbors.astype(np.int64)
         self.alive = np.ones(len(self.cells), dtype=bool)
         self.signs, self.exact = orientations(points, self.cells)
-        self.bad = (self.signs == 0) | _folded(self.cells, self.nbs, self.signs)
+        self.first = _interior_facets(self.cells, self.nbs)  # the first round's facets
+        self.bad = (self.signs == 0) | _folded(len(self.cells), self.signs, *self.first)
         self.flips = 0
         self.touched = np.zeros(len(self.cells), dtype=bool)  # cells changed or relinked
         self._peel()
@@ -72,8 +80,9 @@ class _Mesh:
             self.touched[cut.any(axis=1)] = True
             self.nbs[cut] = -1
             self.alive[ids] = False
+            self.first = _interior_facets(self.cells, self.nbs)
             self.bad = self.alive & ((self.signs == 0)
-                                     | _folded(self.cells, self.nbs, self.signs))
+                                     | _folded(len(self.cells), self.signs, *self.first))
             self.flips += len(ids)
 
     def append(self, rows: np.ndarray) -> np.ndarray:
@@ -355,10 +364,10 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
     points' perturbation weights (default tie_weights(m))."""
     mesh = _Mesh(points, tri, tie_weights(len(points)) if ties is None else ties)
     d = points.shape[1]
-    pending = np.arange(len(mesh.cells))
+    pending = None
     stuck = 0
     for _ in range(MAX_ROUNDS):
-        t, i, u, j = _facets_of(mesh, pending)
+        t, i, u, j = mesh.first if pending is None else _facets_of(mesh, pending)
         bad = _violations(mesh, t, i, u, j)
         t, i, u, j = (x[bad] for x in (t, i, u, j))
         before, size = mesh.flips, len(mesh.cells)

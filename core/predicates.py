@@ -17,6 +17,7 @@ from functools import cache
 import numpy as np
 
 from .exact import determinant, exact_ints, exact_signs, lifted_rows, perturbed_inside
+from .parallel import halves
 
 _U = 2.0**-53
 #: Values whose permanent is below this are settled exactly: the bound ignores underflow.
@@ -99,18 +100,23 @@ def filtered_signs(formula: Formula, points: np.ndarray, base: np.ndarray,
     signs = np.empty(n, dtype=np.int8)
     exact = np.zeros(n, dtype=bool)
     coef = (2 * _roundings(formula, others.shape[1], d) + 2) * _U
-    for lo in range(0, n, _CHUNK):
-        sl = slice(lo, lo + _CHUNK)
-        vectors = _differences(points, base[sl], others[sl])
-        if bound is None:
-            leaves = [[Bounded(c, np.abs(c), 1) for c in vec] for vec in vectors]
-            result = formula(leaves)
-            value, perm = result.value, result.perm
-        else:
-            value, perm = formula(vectors), bound(vectors)
-        signs[sl] = np.sign(value)
-        with np.errstate(invalid="ignore"):
-            exact[sl] = ~(np.abs(value) > coef * perm) | ~(perm >= _TINY) | ~np.isfinite(perm)
+
+    def part(start: int, stop: int) -> None:
+        for lo in range(start, stop, _CHUNK):
+            sl = slice(lo, min(lo + _CHUNK, stop))
+            vectors = _differences(points, base[sl], others[sl])
+            if bound is None:
+                leaves = [[Bounded(c, np.abs(c), 1) for c in vec] for vec in vectors]
+                result = formula(leaves)
+                value, perm = result.value, result.perm
+            else:
+                value, perm = formula(vectors), bound(vectors)
+            signs[sl] = np.sign(value)
+            with np.errstate(invalid="ignore"):
+                exact[sl] = (~(np.abs(value) > coef * perm) | ~(perm >= _TINY)
+                             | ~np.isfinite(perm))
+
+    halves(part, n)
     ids = np.flatnonzero(exact)
     if len(ids):
         signs[ids] = exact_signs(formula, _exact_vectors(points, base[ids], others[ids]))
