@@ -237,14 +237,15 @@ def _flip_3d(mesh: _Mesh, t, i, u, j) -> int:
     return int((~flippable).sum())
 
 
-def _fill_reflex_hull(mesh: _Mesh) -> None:
+def _fill_reflex_hull(mesh: _Mesh) -> int:
     """Cells over reflex ridges of the hull: where the vertex g of a hull facet G lies
     strictly outside the plane of the neighbouring hull facet F, the cell F + g belongs to
-    the Delaunay triangulation (near-collinear or near-coplanar hull points Qhull left out)."""
+    the Delaunay triangulation (near-collinear or near-coplanar hull points Qhull left out).
+    Returns how many reflex ridges are left unfilled (the hull is then not convex there)."""
     d = mesh.cells.shape[1] - 1
     t, k = np.nonzero((mesh.nbs < 0) & mesh.alive[:, None] & ~mesh.bad[:, None])
     if not len(t):
-        return
+        return 0
     others = np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
     facets = np.take_along_axis(mesh.cells[t], others[k], axis=1)  # (h, d)
     ridges = np.concatenate([np.sort(facets[:, others[r][: d - 1]], axis=1)
@@ -260,14 +261,19 @@ def _fill_reflex_hull(mesh: _Mesh) -> None:
     outer = np.column_stack((facets[f], apex))
     outer_sign = mesh.orient(outer)
     reflex = (outer_sign == -mesh.orient(np.column_stack((facets[f], inner)))) & (outer_sign != 0)
-    if d == 3:  # the new hull facets (x, y, a), (x, y, b) must face away from the cell below
+    found = int(reflex.sum())
+    if d == 3:  # the new hull facets (x, y, a), (x, y, b) must face away from the cell below,
+        # unless they are hull facets already (then glued: a hull vertex under three facets)
         x, (a, b) = facets[f, lonely[first]], ridges[first].T
+        hull = {tuple(r) for r in np.sort(facets, axis=1)[reflex_owner(f, g, reflex)].tolist()}
         s_ab = mesh.orient(np.column_stack((x, apex, a, b)))
-        reflex &= mesh.orient(np.column_stack((x, apex, a, inner))) == s_ab
-        reflex &= mesh.orient(np.column_stack((x, apex, b, inner))) == -s_ab
+        for c, sign in ((a, s_ab), (b, -s_ab)):
+            glued = np.array([tuple(r) in hull for r in
+                              np.sort(np.column_stack((x, apex, c)), axis=1).tolist()], bool)
+            reflex &= glued | (mesh.orient(np.column_stack((x, apex, c, inner))) == sign)
     f, g, outer = f[reflex], g[reflex], outer[reflex]
     if not len(f):
-        return
+        return found
     zones = np.column_stack((t[f], t[g], mesh.nbs[t[f]], mesh.nbs[t[g]]))
     outer = outer[_independent(mesh, zones)]
     outer = outer[np.unique(np.sort(outer, axis=1), axis=0, return_index=True)[1]]
@@ -276,6 +282,12 @@ def _fill_reflex_hull(mesh: _Mesh) -> None:
     mesh.alive[w[_overlapping(mesh, w)]] = False  # it would overlap a cell: not a reflex ridge
     _glue_hull(mesh)
     mesh.flips += int(mesh.alive[w].sum())
+    return found - int(mesh.alive[w].sum())
+
+
+def reflex_owner(f: np.ndarray, g: np.ndarray, reflex: np.ndarray) -> np.ndarray:
+    """Hull facet rows on a reflex ridge (either side): the only candidates to be glued."""
+    return np.unique(np.concatenate((f[reflex], g[reflex])))
 
 
 def _overlapping(mesh: _Mesh, new: np.ndarray) -> np.ndarray:
@@ -365,7 +377,7 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
     mesh = _Mesh(points, tri, tie_weights(len(points)) if ties is None else ties)
     d = points.shape[1]
     pending = None
-    stuck = 0
+    stuck = concave = 0
     for _ in range(MAX_ROUNDS):
         t, i, u, j = mesh.first if pending is None else _facets_of(mesh, pending)
         bad = _violations(mesh, t, i, u, j)
@@ -376,7 +388,7 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
         elif len(t):
             stuck = _flip_3d(mesh, t, i, u, j)
         if mesh.flips == before:  # nothing (more) to flip: fill reflex hull ridges, if any
-            _fill_reflex_hull(mesh)
+            concave = _fill_reflex_hull(mesh)
             if mesh.flips == before:
                 break
         pending = np.unique(np.concatenate((t, u, np.arange(size, len(mesh.cells)))))
@@ -384,12 +396,12 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
         return Certified(tri, mesh.exact, 0, int((tri.neighbors >= 0).sum()) // 2)
     out = _compact(mesh, tri) if mesh.flips else tri
     invalid = int(np.sum(mesh.bad[:, None] & (mesh.nbs >= 0) & mesh.alive[:, None]))
-    return Certified(out, mesh.exact, mesh.flips, stuck + invalid)
+    return Certified(out, mesh.exact, mesh.flips, stuck + invalid + concave)
 
 
 #: Lifted heights of the retry are lowered by up to this times the squared extent: enough to
 #: break Qhull's near-ties (which it merges into folded cells), far below any point's margin.
-JITTER_RTOL = 1e-11
+JITTER_RTOL = 1e-9
 
 
 def _certified_cells(points: np.ndarray, tri: Triangulation) -> Certified:

@@ -49,15 +49,15 @@ def assert_certified(ac) -> None:
     assert info.uncertified == 0, f"{info.uncertified} facets left uncertified"
 
 
-#: Not certified yet: Qhull folds slivers on the near-coplanar faces of the hull (5 cells of
-#: 1,300 here) inside the hull, where neither peeling nor flips repair them (issue 14, open).
+#: Not certified yet: Qhull folds slivers onto near-coplanar faces of the hull (a few cells)
+#: away from the hull facets, where neither peeling nor flips repair them (issue 14, open).
 HULL_SLIVERS = pytest.mark.xfail(strict=True, reason="folded slivers on near-coplanar hull "
                                  "faces are not repaired yet")
 
 ISSUE_CASES = {
     "3d-noise-1e-6": (6, 3, 1e-6),
     "3d-noise-1e-9": (6, 3, 1e-9),
-    "3d-noise-1e-12": pytest.param((6, 3, 1e-12), marks=HULL_SLIVERS),
+    "3d-noise-1e-12": (6, 3, 1e-12),
     "2d-noise-1e-9": (25, 2, 1e-9),
     "2d-noise-1e-13": (25, 2, 1e-13),
 }
