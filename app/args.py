@@ -1,4 +1,5 @@
-"""Command-line value checks shared by the window's options and the `info`/`export` subcommands."""
+"""Command-line values shared by the window's options and the `info`/`export` subcommands:
+their checks (radii, counts, mode parameters) and the mode options."""
 
 from __future__ import annotations
 

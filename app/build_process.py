@@ -13,7 +13,6 @@ from __future__ import annotations
 import multiprocessing
 import tempfile
 import threading
-from collections.abc import Callable
 from multiprocessing.connection import Connection
 from pathlib import Path
 
@@ -23,8 +22,8 @@ from core import errors
 from core.cache import build_cached, load_cached, store
 from core.complex import AlphaComplex
 from core.modes import Mode, make_mode
+from core.progress import Progress
 
-Progress = Callable[[float, str], None]
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
 POLL_SECONDS = 0.1
 TABLE_SHARE, SAVE_START = 0.65, 0.95  # of the child's progress; the topology pass between
@@ -47,7 +46,7 @@ def build(points: np.ndarray, progress: Progress, cancel: threading.Event,
                             weights=weights, mode=mode, normals=normals)
     if use_cache and (ac := load_cached(points, mode, normals, weights)) is not None:
         progress(1.0, "loaded from cache")
-        if "_signatures" not in ac.__dict__:  # an entry the command line left without them
+        if not ac.has_signatures:  # an entry the command line left without them
             ac.signatures()
             store(ac, points, normals, weights)
         return ac

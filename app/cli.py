@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import dataclasses
 import json
 import os
 import shutil
@@ -21,9 +20,9 @@ from pathlib import Path
 import numpy as np
 
 from app.args import add_mode_options, count, mode_of, probe_radius, radius, squared_radius
+from core.classes import CLASSES
 from core.errors import AlphaScoopError, InputError
 
-CLASS_NAMES = ("exterior", "singular", "regular", "interior")
 SIMPLEX_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
 
 
@@ -221,17 +220,17 @@ def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
     alpha = shape.alpha
     spectrum = np.asarray(ac.spectrum())
     weighted = ac.weights is not None
-    classes = {SIMPLEX_NAMES[k]: dict(zip(CLASS_NAMES, np.bincount(
+    classes = {SIMPLEX_NAMES[k]: dict(zip(CLASSES, np.bincount(
         ac.classify(alpha2=shape.alpha2, k=k), minlength=4).tolist(), strict=True))
         for k in range(ac.dim + 1)}
     first = 0 if weighted or len(spectrum) < 2 else 1  # classic: 0 (bare points) left out
     return {
         "load": ps.report.to_dict(),
         "mode": ac.mode.to_dict(),
+        "build": ac.build_info.to_dict(),
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
                     "from_cache": cached,
                     **{SIMPLEX_NAMES[k]: len(ac.simplices(k)) for k in range(ac.dim + 1)}},
-        "build": dataclasses.asdict(ac.build_info),
         "spectrum": {"count": len(spectrum), "min": float(spectrum[first]),
                      "max": float(spectrum[-1]), "min2": _sq(spectrum[first]),
                      "max2": _sq(spectrum[-1])},
@@ -267,7 +266,7 @@ def _geographic(ps, ac, shape) -> dict:
     georef = ps.report.georef
     if georef is None:
         return {}
-    from core.export.geographic import geographic_metadata
+    from core.export.polygons import geographic_metadata
 
     meta = geographic_metadata(ac, shape, georef)
     return {k: meta[k] for k in ("units", "area_m2", "perimeter_m") if k in meta}
@@ -282,7 +281,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
-        *([f"certified   {info['certification']}"] if info.get("certification") else []),
+        f"build       {', '.join(f'{k} {v}' for k, v in info['build'].items())}",
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
     ]
@@ -307,9 +306,9 @@ def _text(info: dict, lines: list[str]) -> str:
                         f"{info['perimeter_m']:.6g} m)" if "area_m2" in info else ""))
     else:
         lines.append(f"{measure:<12}{info[measure]:.6g}")
-    lines.append(f"{'classes':<12}" + "".join(f"{c:>10}" for c in CLASS_NAMES))
+    lines.append(f"{'classes':<12}" + "".join(f"{c:>10}" for c in CLASSES))
     for name, counts in info["classes"].items():
-        lines.append(f"  {name:<10}" + "".join(f"{counts[c]:>10,}" for c in CLASS_NAMES))
+        lines.append(f"  {name:<10}" + "".join(f"{counts[c]:>10,}" for c in CLASSES))
     return "\n".join(lines)
 
 
@@ -319,8 +318,7 @@ def cmd_info(args) -> int:
     info = summary(ps, ac, seconds, cached, chosen_alpha(args))
     if is_molecule(args):
         info["molecule"] = molecule_summary(ac, args.probe)
-    text = None if args.json else _text({**info, "mode_text": ac.mode.describe(),
-                                         "certification": ac.build_info.certification()},
+    text = None if args.json else _text({**info, "mode_text": ac.mode.describe()},
                                         ps.report.lines())
     if text is not None and "molecule" in info:
         text += "\n" + "\n".join(_molecule_text(info["molecule"]))

@@ -17,9 +17,9 @@ from core.cursor import ShapeCursor
 from core.io import LoadReport, read_points
 from core.modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
+from core.progress import Progress
 from core.signatures import Signatures
 
-Progress = Callable[[float, str], None]
 Build = Callable[..., AlphaComplex]  # build(points, progress[, weights=, mode=, normals=])
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 

@@ -15,11 +15,10 @@ from PySide6.QtWidgets import QLabel, QSizePolicy, QVBoxLayout, QWidget
 
 from app.model import ExplorerModel
 from app.numbers import coordinate, plural, quantity, with_unit
-from core.signatures import CLASSES
+from core.classes import INTERIOR, REGULAR, SINGULAR
 
 BETTI_NAMES = {2: ("component", "hole"), 3: ("component", "tunnel", "void")}
 WIDTH_CHARACTERS = 34  # the dock's width, in average character widths
-SINGULAR, REGULAR, INTERIOR = (CLASSES.index(c) for c in ("singular", "regular", "interior"))
 
 
 def data_lines(model: ExplorerModel) -> list[str]:
@@ -40,13 +39,12 @@ def data_lines(model: ExplorerModel) -> list[str]:
     flat = " (planar 3D input)" if ac.dim < ac.ambient_dim else ""
     lines.append(f"{ac.dim}D complex{flat}, {plural(len(ac.simplices(ac.dim)), 'cell')}")
     lines.append(f"alpha mode: {html.escape(ac.mode.describe())}")
+    lines.append(f"build: {html.escape(ac.build_info.describe())}")
     if ac.weights is not None:
         source = getattr(report, "weights_from", None) or "given weights"
         hidden = int((np.asarray(ac.input_index) < 0).sum())
         lines.append(f"weighted: {html.escape(source)}; {plural(hidden, 'hidden point')}")
     lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}")
-    if ac.build_info.certification():
-        lines.append(html.escape(ac.build_info.certification()))
     return lines + molecule_lines(model)
 
 

@@ -15,8 +15,8 @@ from collections.abc import Callable
 from PySide6.QtCore import QObject, QThreadPool, Signal
 
 from core.errors import AlphaScoopError, Cancelled
+from core.progress import Progress
 
-Progress = Callable[[float, str], None]
 Job = Callable[[Progress], str]
 
 

@@ -1,4 +1,5 @@
-"""Status-bar progress for a build: stage, bar, elapsed time and a Cancel button."""
+"""Status-bar progress for a background task (a build, an export): stage, bar, elapsed time
+and a Cancel button."""
 
 from __future__ import annotations
 

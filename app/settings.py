@@ -1,4 +1,5 @@
-"""Preferences kept between runs (QSettings): last directory, recent files, layer styles."""
+"""Preferences kept between runs (QSettings): last directory, recent files, import choices
+per file type, the export's manifold box, layer styles."""
 
 from __future__ import annotations
 

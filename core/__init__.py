@@ -1,9 +1,11 @@
 """Alpha Scoop core: pure numpy/scipy alpha-shape computation (no Qt, no VTK).
 
 `AlphaComplex.from_points(points)` builds the Delaunay triangulation and the interval table
-once; `ac.shape(alpha)` and the other queries are then cheap. Alpha is always a radius.
+once (core/build.py); `ac.shape(alpha)` and the other queries are then cheap lookups in its
+TableIndex (core/index.py). Alpha is a radius (or `alpha2=`, its square).
 """
 
+from .build import BuildInfo
 from .complex import EXTERIOR, INTERIOR, REGULAR, SINGULAR, AlphaComplex
 from .errors import AlphaScoopError, Cancelled, FileFormatError, InputError
 from .shape import AlphaShape
@@ -16,6 +18,7 @@ __all__ = [
     "AlphaComplex",
     "AlphaScoopError",
     "AlphaShape",
+    "BuildInfo",
     "Cancelled",
     "FileFormatError",
     "InputError",

@@ -45,14 +45,14 @@ class BuildInfo:
     flips: int = 0
     uncertified: int = -1
 
-    def certification(self) -> str:
-        """One line on the certification for reports ('' when it did not run)."""
-        if self.uncertified < 0:
-            return ""
-        how = f"{self.flips:,} flips, {self.exact_predicates:,} predicates decided exactly"
-        if self.uncertified == 0:
-            return f"certified Delaunay ({how})"
-        return f"Delaunay certified except at {self.uncertified:,} facets ({how})"
+    def to_dict(self) -> dict[str, str | int | float]:
+        """The fields by name (JSON-ready: for `alphascoop info --json`)."""
+        return dataclasses.asdict(self)
+
+    def describe(self) -> str:
+        """One line for people: "backend qhull" (every field, name then value)."""
+        return ", ".join(f"{name.replace('_', ' ')} {value}"
+                         for name, value in self.to_dict().items())
 
     def to_arrays(self) -> dict[str, np.ndarray]:
         """The fields as 0-d arrays named `build_<field>` (for core/storage.py)."""

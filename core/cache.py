@@ -13,7 +13,6 @@ import contextlib
 import hashlib
 import os
 import zipfile
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -22,10 +21,10 @@ from core.atomic import remove_stale_temporaries
 from core.complex import AlphaComplex
 from core.errors import AlphaScoopError
 from core.modes import Mode
+from core.progress import Progress
 
 CACHE_VERSION = 2  # bump when the saved table layout or the build rules change
 MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this
-Progress = Callable[[float, str], None]
 
 
 def cache_dir() -> Path:
@@ -182,7 +181,7 @@ def build_cached(pointset, *, use_cache: bool = True, progress: Progress | None 
     if ac is not None:
         if progress is not None:
             progress(1.0, "loaded from cache")
-        if signatures and "_signatures" not in ac.__dict__:
+        if signatures and not ac.has_signatures:
             ac.signatures()
             store(ac, points, normals, weights)
         return ac

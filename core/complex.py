@@ -1,64 +1,38 @@
-"""AlphaComplex: the Delaunay triangulation and interval table, built once, queried often."""
+"""AlphaComplex: the queried result of a build (core/build.py) or a load (core/storage.py).
+
+It holds the points and a frozen TableIndex (core/index.py) and answers every query from
+them; topology and signatures are computed on first use, or handed in when they were saved.
+"""
 
 from __future__ import annotations
 
 import os
-from functools import cached_property
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import storage
+from . import topology as forests
+from .alpha import at_value, table_value, threshold
+from .arrays import readonly
 from .build import BuildInfo, build_complex
+from .classes import EXTERIOR, INTERIOR, REGULAR, SINGULAR
+from .cursor import ShapeCursor
 from .errors import InputError
+from .index import TableIndex
+from .locate import Locator, contains
+from .locate import query_points as checked_queries
 from .modes import Mode
+from .persistence import Persistence, compute_persistence
 from .points import Frame
-from .power import signed_sqrt, signed_square
+from .power import signed_square
 from .progress import Progress
-from .shape import AlphaShape, readonly, threshold
-from .table import Level, Table
+from .shape import AlphaShape
+from .signatures import Signatures, compute_signatures
+from .suggest import AlphaRange, cover_alpha, optimal_alpha, suggest_alphas
+from .topology import Topology
 
-if TYPE_CHECKING:
-    from .cursor import ShapeCursor
-
-EXTERIOR, SINGULAR, REGULAR, INTERIOR = 0, 1, 2, 3
-
-
-def _radius(alpha: object) -> float:
-    """`alpha` as a float radius >= 0 (inf allowed); an InputError (a ValueError) otherwise."""
-    try:
-        value = float(alpha)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise InputError(f"alpha must be a number (a radius), not {alpha!r}") from None
-    if not value >= 0:
-        raise InputError(f"alpha is a radius and must be >= 0, not {alpha!r}; pass a "
-                         "squared value (which may be negative) as alpha2=")
-    return value
-
-
-def table_value(alpha: object = None, alpha2: object = None) -> float:
-    """The table's value for a query given as exactly one of `alpha` (a radius >= 0) or
-    `alpha2` (its square; any real, negative below zero radius): sign(a2) * sqrt(|a2|)."""
-    if (alpha is None) == (alpha2 is None):
-        raise InputError("give exactly one of alpha (a radius) and alpha2 (a squared radius), "
-                         f"not {'both' if alpha is not None else 'neither'}")
-    if alpha is not None:
-        return _radius(alpha)
-    try:
-        value = float(alpha2)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise InputError(f"alpha2 must be a number (a squared radius), not {alpha2!r}") from None
-    if value != value:
-        raise InputError("alpha2 must be a number (a squared radius), not NaN")
-    return float(signed_sqrt(np.float64(value)))
-
-
-def at_value(value: float) -> dict[str, float]:
-    """Keyword arguments that make any query select the table value `value` (a spectrum
-    entry, say): alpha=value where it is >= 0 (exact for every table), else alpha2=its
-    signed square (weighted tables below zero radius)."""
-    value = float(value)
-    return {"alpha": value} if value >= 0 else {"alpha2": value * abs(value)}
+__all__ = ["EXTERIOR", "INTERIOR", "REGULAR", "SINGULAR", "AlphaComplex", "at_value",
+           "table_value"]
 
 
 class AlphaComplex:
@@ -75,11 +49,17 @@ class AlphaComplex:
     radius >= 0) or the keyword `alpha2` (a squared value, may be negative), never both.
     """
 
-    def __init__(self, points: np.ndarray, input_index: np.ndarray, table: Table,
+    def __init__(self, points: np.ndarray, input_index: np.ndarray, index: TableIndex,
                  frame: Frame | None = None, ambient_dim: int | None = None,
                  mode: Mode | None = None, weights: np.ndarray | None = None, *,
-                 build_info: BuildInfo | None = None) -> None:
-        self._table = table
+                 build_info: BuildInfo | None = None,
+                 topology: Topology | None = None,
+                 signatures: Signatures | None = None) -> None:
+        """The complex of (m, dim) `points` and its table `index`; `input_index` (n,) maps
+        input rows to points (-1 = hidden). `topology` and `signatures`, when given (saved
+        with a table), are used instead of being computed."""
+        #: The table and its lookups (core/index.py), shared with shapes and cursors.
+        self.index = index
         #: How the table was built (core/build.py): the triangulation backend, ...
         self.build_info = build_info or BuildInfo()
         self.mode = mode or Mode()
@@ -90,13 +70,11 @@ class AlphaComplex:
         self.frame = frame
         self.dim = points.shape[1]
         self.ambient_dim = ambient_dim or (3 if frame is not None else self.dim)
-        for level in table.levels:
-            for name in ("simplices", "enter", "regular", "interior", "face_ids"):
-                if getattr(level, name) is not None:
-                    readonly(getattr(level, name))
-        for arr in (table.facet_cells, table.facet_flip, table.cell_measure,
-                    table.facet_interior_order):
-            readonly(arr)
+        self._topology = topology
+        self._signatures = signatures
+        self._persistence: Persistence | None = None
+        self._cover_alpha: float | None = None
+        self._locator: Locator | None = None
 
     @classmethod
     def from_points(cls, points: object, progress: Progress | None = None, *,
@@ -121,27 +99,19 @@ class AlphaComplex:
         built = build_complex(points, progress, weights=weights, density=density,
                               combine=combine, anisotropy=anisotropy, normals=normals,
                               backend=backend)
-        return cls(built.points, built.input_index, built.table, built.frame,
+        return cls(built.points, built.input_index,
+                   TableIndex(built.table, built.weights is not None), built.frame,
                    built.ambient_dim, built.mode, built.weights, build_info=built.info)
 
     # --- the table -------------------------------------------------------------------------
-    def _level(self, k: int) -> Level:
-        if not 0 <= k <= self.dim:
-            raise ValueError(f"k must be between 0 and {self.dim}, not {k}")
-        return self._table.levels[k]
-
     def simplices(self, k: int) -> np.ndarray:
         """(n_k, k+1) int32 k-simplices as rows of `points`, rows ascending, sorted by enter."""
-        return self._level(k).simplices
+        return self.index.simplices(k)
 
     def intervals(self, k: int) -> np.ndarray:
         """(n_k, 3) float64 columns enter <= regular <= interior (radii; inf = never; signed
         radii sign(a2) * sqrt(|a2|) for weighted complexes)."""
-        cache = self.__dict__.setdefault("_intervals", {})
-        if k not in cache:
-            level = self._level(k)
-            cache[k] = readonly(np.stack((level.enter, level.regular, level.interior), axis=1))
-        return cache[k]
+        return self.index.intervals(k)
 
     def intervals_sq(self, k: int) -> np.ndarray:
         """(n_k, 3) float64 enter <= regular <= interior as squared radii (the filtration
@@ -150,67 +120,24 @@ class AlphaComplex:
 
     def face_ids(self, k: int) -> np.ndarray:
         """(n_k, k+1) int32: row in simplices(k-1) of the face opposite each vertex (k >= 1)."""
-        if k < 1:
-            raise ValueError("vertices have no faces: k must be >= 1")
-        return self._level(k).face_ids
+        return self.index.face_ids(k)
 
     def facet_cells(self) -> np.ndarray:
         """(n_{dim-1}, 2) int32: the cells on both sides of each facet, -1 = outside."""
-        return self._table.facet_cells
+        return self.index.facet_cells()
 
     def cell_measures(self) -> np.ndarray:
         """(n_dim,) float64 volume (3D) or area (2D) of every cell."""
-        return self._table.cell_measure
-
-    @cached_property
-    def _facet_cell0(self) -> np.ndarray:
-        """Contiguous first column of facet_cells (the shape's orientation lookup)."""
-        return np.ascontiguousarray(self._table.facet_cells[:, 0])
-
-    @cached_property
-    def _oriented_facets(self) -> np.ndarray:
-        """(2 n_facets, dim) int32: row 2i is facet i facing out of its cell 0, row 2i+1 out
-        of its cell 1, so the shape orients its boundary with a single gather."""
-        facets = self._table.levels[self.dim - 1].simplices
-        flip = self._table.facet_flip
-        out = np.empty((2 * len(facets), self.dim), dtype=np.int32)
-        for side, reverse in ((0, flip), (1, ~flip)):
-            rows = out[side::2]
-            rows[:] = facets
-            rows[reverse, -2:] = facets[reverse][:, [-1, -2]]
-        return readonly(out)
-
-    @cached_property
-    def _facets_by_interior(self) -> tuple[np.ndarray, np.ndarray]:
-        """Facet interior and enter values in ascending interior order (contiguous, for the
-        shape's scans of the facets not yet interior)."""
-        facets = self._table.levels[self.dim - 1]
-        order = self._table.facet_interior_order
-        return np.take(facets.interior, order), np.take(facets.enter, order)
-
-    @cached_property
-    def _cumulative_measure(self) -> np.ndarray:
-        return np.cumsum(self._table.cell_measure)
-
-    @cached_property
-    def _spectrum(self) -> np.ndarray:
-        levels = self._table.levels
-        first = [[0.0]] if self.weights is None else [levels[0].enter]
-        values = np.concatenate(first + [lv.enter for lv in levels[1:]])
-        values.sort()
-        keep = np.empty(len(values), dtype=bool)
-        keep[0] = True
-        np.not_equal(values[1:], values[:-1], out=keep[1:])
-        return readonly(values[keep])
+        return self.index.cell_measures()
 
     def spectrum(self) -> np.ndarray:
         """(s,) float64 sorted distinct alphas at which the complex changes; 0 comes first
         (weighted: the vertices' values come first, signed radii)."""
-        return self._spectrum
+        return self.index.spectrum()
 
     def spectrum_sq(self) -> np.ndarray:
         """(s,) float64 the spectrum as squared values (may be negative when weighted)."""
-        return readonly(signed_square(self._spectrum))
+        return readonly(signed_square(self.index.spectrum()))
 
     # --- queries ---------------------------------------------------------------------------
     def classify(self, alpha: float | None = None, k: int | None = None, *,
@@ -220,7 +147,7 @@ class AlphaComplex:
         alpha = threshold(table_value(alpha, alpha2))
         if k is None:
             raise InputError("classify needs k, the dimension of the simplices")
-        level = self._level(k)
+        level = self.index.level(k)
         out = (level.enter <= alpha).view(np.int8).copy()
         out += level.regular <= alpha
         out += level.interior <= alpha
@@ -229,15 +156,13 @@ class AlphaComplex:
     def shape(self, alpha: float | None = None, *, alpha2: float | None = None) -> AlphaShape:
         """The alpha shape at `alpha` (a radius) or `alpha2` (squared); arrays are computed
         when first used. Its `alpha` attribute is the table value (signed radius)."""
-        return AlphaShape(self, table_value(alpha, alpha2),
+        return AlphaShape(self.index, self.points, table_value(alpha, alpha2),
                           None if alpha2 is None else float(alpha2))
 
     def cursor(self) -> ShapeCursor:
         """A ShapeCursor: shapes at one alpha after another, each step costing what changed
         (the explorer's slider); building it sorts the table once more."""
-        from .cursor import ShapeCursor
-
-        return ShapeCursor(self)
+        return ShapeCursor(self.index, self.points)
 
     def to_ambient(self, coords: np.ndarray) -> np.ndarray:
         """Map (k, dim) complex coordinates to the input space ((k, ambient_dim))."""
@@ -248,7 +173,7 @@ class AlphaComplex:
 
     def counts(self) -> tuple[int, ...]:
         """Number of simplices per dimension, vertices first."""
-        return tuple(len(level.enter) for level in self._table.levels)
+        return self.index.counts()
 
     # --- files -----------------------------------------------------------------------------
     def save(self, path: str | os.PathLike) -> None:
@@ -258,69 +183,54 @@ class AlphaComplex:
     @classmethod
     def load(cls, path: str | os.PathLike) -> AlphaComplex:
         """Read a table written by `save`; FileFormatError if it is not one."""
-        return storage.load(cls, path)
+        saved = storage.load(path)
+        return cls(saved.points, saved.input_index, saved.index, saved.frame, saved.ambient_dim,
+                   saved.mode, saved.weights, build_info=saved.build_info,
+                   topology=saved.topology, signatures=saved.signatures)
 
     def __repr__(self) -> str:
         return f"AlphaComplex(dim={self.dim}, points={len(self.points)}, simplices={self.counts()})"
 
-    # --- topology (core.topology / core.signatures) ---
-    @cached_property
-    def _topology(self):
-        from .topology import build_topology
+    # --- topology (core.topology / core.signatures), computed on first use ---------------
+    def topology(self) -> Topology:
+        """The forests behind Betti numbers and solid components (core.topology), built on
+        first use in O(n log n) or handed in with a saved table."""
+        if self._topology is None:
+            self._topology = forests.build_topology(self)
+        return self._topology
 
-        return build_topology(self)
+    @property
+    def has_signatures(self) -> bool:
+        """True once the signatures are at hand (computed, or loaded with the table): then
+        `signatures()` costs nothing and `save` writes them too."""
+        return self._signatures is not None
 
-    @cached_property
-    def _signatures(self):
-        from .signatures import compute_signatures
-
-        return compute_signatures(self, self._topology)
-
-    @cached_property
-    def _locator(self):
-        from .locate import Locator
-
-        return Locator(self.points, self.simplices(self.dim), self.face_ids(self.dim),
-                       self.facet_cells())
-
-    def _adopt(self, topology, signatures) -> None:
-        """Take topology and signatures saved with the table instead of computing them."""
-        self.__dict__.update(_topology=topology, _signatures=signatures,
-                             _spectrum=signatures.alphas)
+    def signatures(self) -> Signatures:
+        """Betti numbers, solid components, measures and class counts over the whole spectrum
+        (computed on first call, O(n log n))."""
+        if self._signatures is None:
+            self._signatures = compute_signatures(self.index, self.points, self.topology())
+        return self._signatures
 
     def betti(self, alpha: float | None = None, *, alpha2: float | None = None
               ) -> tuple[int, ...]:
         """Betti numbers at alpha: (components, holes) in 2D, (components, tunnels, voids) in 3D."""
         at = np.array([threshold(table_value(alpha, alpha2))], dtype=np.float64)
-        return tuple(int(b) for b in self._topology.betti_many(at)[0])
+        return tuple(int(b) for b in self.topology().betti_many(at)[0])
 
-    def signatures(self):
-        """Betti numbers, solid components, measures and class counts over the whole spectrum."""
-        return self._signatures
-
-    @cached_property
-    def _persistence(self):
-        from .persistence import compute_persistence
-
-        return compute_persistence(self, self._topology)
-
-    def persistence(self):
+    def persistence(self) -> Persistence:
         """Persistence pairs (birth, death alphas) of components and of holes (2D) / voids (3D)."""
+        if self._persistence is None:
+            self._persistence = compute_persistence(self, self.topology())
         return self._persistence
-
-    @cached_property
-    def _cover_alpha(self) -> float:
-        from .suggest import cover_alpha
-
-        return cover_alpha(self.simplices(self.dim), self.intervals(self.dim)[:, 0],
-                           len(self.points))
 
     def optimal_alpha(self, n_components: int = 1) -> float:
         """Smallest alpha with every point in a cell and <= n_components solid parts (CGAL);
         a signed radius for weighted complexes (see optimal_alpha2)."""
-        from .suggest import optimal_alpha
-
-        return optimal_alpha(self._signatures, self._cover_alpha, n_components)
+        if self._cover_alpha is None:
+            self._cover_alpha = cover_alpha(self.simplices(self.dim),
+                                            self.intervals(self.dim)[:, 0], len(self.points))
+        return optimal_alpha(self.signatures(), self._cover_alpha, n_components)
 
     def default_alpha(self) -> float:
         """The alpha a view opens at: where the shape looks like the object (core.opening).
@@ -329,17 +239,15 @@ class AlphaComplex:
         points into one piece, and never more than `optimal_alpha()` (CGAL's rule for solids).
         Computed with the signatures and saved with them.
         """
-        return min(self._signatures.opening_alpha, self.optimal_alpha())
+        return min(self.signatures().opening_alpha, self.optimal_alpha())
 
     def optimal_alpha2(self, n_components: int = 1) -> float:
         """optimal_alpha as a squared value (may be negative for weighted complexes)."""
         return float(signed_square(np.float64(self.optimal_alpha(n_components))))
 
-    def suggest_alphas(self, k: int = 5) -> tuple:
+    def suggest_alphas(self, k: int = 5) -> tuple[AlphaRange, ...]:
         """The k alpha ranges where the Betti numbers hold longest on a log scale, best first."""
-        from .suggest import suggest_alphas
-
-        return suggest_alphas(self._signatures, k)
+        return suggest_alphas(self.signatures(), k)
 
     def contains(self, query_points: object, alpha: float | None = None, *,
                  alpha2: float | None = None) -> np.ndarray:
@@ -348,9 +256,9 @@ class AlphaComplex:
         Queries are (k, ambient_dim) input-space points (planar 3D input: projected onto the
         plane) or (k, dim) complex coordinates.
         """
-        from .locate import contains
-        from .locate import query_points as checked
-
         value = threshold(table_value(alpha, alpha2))
-        queries = checked(query_points, self.dim, self.ambient_dim, self.to_ambient)
+        queries = checked_queries(query_points, self.dim, self.ambient_dim, self.to_ambient)
+        if self._locator is None:
+            self._locator = Locator(self.points, self.simplices(self.dim),
+                                    self.face_ids(self.dim), self.facet_cells())
         return contains(self._locator, queries, value, self.intervals(self.dim)[:, 0])

@@ -10,16 +10,15 @@ gathers of answer rows), and a far jump is one sequential filter of a prefix.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .alpha import table_value, threshold
+from .arrays import readonly
+from .index import TableIndex, facing_out
 from .parallel import halves, place, select, together
-from .shape import AlphaShape, readonly, threshold
+from .shape import AlphaShape, Known
 from .table import argsort_radii
-
-if TYPE_CHECKING:
-    from .complex import AlphaComplex
 
 FEW = 256  # changes up to this many are spliced by runs of memcpy, more by a masked pass
 EVENT_COST = 8  # an ended simplex (random look-ups, a sort) costs about this many elements
@@ -194,13 +193,15 @@ class ShapeCursor:
     simplices joined their class, not by id.
     """
 
-    def __init__(self, complex_: AlphaComplex) -> None:
-        """Rank the REGULAR facets by (regular, interior) and every SINGULAR level by
-        (enter, regular); the two jobs run in two threads."""
-        self._ac = ac = complex_
-        ac._facets_by_interior  # noqa: B018 (a cached property: made here, not in a thread)
-        singular = together(lambda: {k: _singular_set(ac, k) for k in range(ac.dim)})
-        self.regular = _regular_set(ac)
+    def __init__(self, index: TableIndex, points: np.ndarray) -> None:
+        """Over the table `index` of a complex with (m, dim) `points`: rank the REGULAR
+        facets by (regular, interior) and every SINGULAR level by (enter, regular); the two
+        jobs run in two threads."""
+        self._index = index
+        self._points = points
+        index.facets_by_interior  # noqa: B018 (a cached property: made here, not in a thread)
+        singular = together(lambda: {k: _singular_set(index, k) for k in range(index.dim)})
+        self.regular = _regular_set(index)
         self.singular: dict[int, IntervalSet] = singular()
         self.alpha: float | None = None
 
@@ -210,32 +211,34 @@ class ShapeCursor:
     def move(self, alpha: float | None = None, *, alpha2: float | None = None) -> AlphaShape:
         """The shape at alpha (a radius) or alpha2 (squared), from the previous one by the
         simplices that changed."""
-        shape = self._ac.shape(alpha, alpha2=alpha2)
-        at = threshold(shape.alpha)  # inf (the hull) keeps hull facets REGULAR
+        value = table_value(alpha, alpha2)
+        at = threshold(value)  # inf (the hull) keeps hull facets REGULAR
         for tracked in self._sets():
             if self.alpha is None:
                 tracked.reset(at)
             else:
                 tracked.go(threshold(self.alpha), at)
-        self.alpha = shape.alpha
-        singular = {k: tracked.snapshot() for k, tracked in self.singular.items()}
-        return shape._seed(self.regular.snapshot(), singular)
+        self.alpha = value
+        known = Known(*self.regular.snapshot(),
+                      {k: tracked.snapshot() for k, tracked in self.singular.items()})
+        return AlphaShape(self._index, self._points, value,
+                          None if alpha2 is None else float(alpha2), known)
 
 
-def _regular_set(ac: AlphaComplex) -> IntervalSet:
+def _regular_set(index: TableIndex) -> IntervalSet:
     """The REGULAR facets: candidates ranked by regular, ended by interior."""
-    facets = ac._level(ac.dim - 1)
+    facets = index.level(index.dim - 1)
     by_regular = argsort_radii(facets.regular)
     by_regular = by_regular[np.take(facets.interior, by_regular)
                             > np.take(facets.regular, by_regular)]
     return IntervalSet(facets.regular, facets.interior, by_regular,
-                       ac._table.facet_interior_order, ac._facets_by_interior[0],
-                       _oriented_rows(ac, by_regular))
+                       index.table.facet_interior_order, index.facets_by_interior[0],
+                       _oriented_rows(index, by_regular))
 
 
-def _singular_set(ac: AlphaComplex, k: int) -> IntervalSet:
+def _singular_set(index: TableIndex, k: int) -> IntervalSet:
     """The SINGULAR k-simplices: candidates (enter < regular) ranked by enter, ended by regular."""
-    level = ac._level(k)
+    level = index.level(k)
     by_enter = np.flatnonzero(level.enter < level.regular)
     if k == 0:  # levels k >= 1 are sorted by enter; weighted vertices keep the points' order
         by_enter = by_enter[argsort_radii(np.take(level.enter, by_enter))]
@@ -244,16 +247,13 @@ def _singular_set(ac: AlphaComplex, k: int) -> IntervalSet:
                        np.take(level.regular, by_ended), np.take(level.simplices, by_enter, 0))
 
 
-def _oriented_rows(ac: AlphaComplex, ids: np.ndarray) -> np.ndarray:
+def _oriented_rows(index: TableIndex, ids: np.ndarray) -> np.ndarray:
     """(len(ids), dim) int32 facets as the shape orients them while REGULAR.
 
     In its REGULAR interval a facet bounds exactly one cell: the one entered first (cells
-    are sorted by enter), which is cell 1 when that is real and lower. Facing out of cell 0
-    reverses the stored facet where `facet_flip` says so; facing out of cell 1, elsewhere.
+    are sorted by enter), which is cell 1 when that is real and lower.
     """
-    rows = np.take(ac._level(ac.dim - 1).simplices, ids, 0)
-    pairs = ac.facet_cells()[ids]
+    rows = np.take(index.simplices(index.dim - 1), ids, 0)
+    pairs = index.facet_cells()[ids]
     inside_second = (pairs[:, 1] >= 0) & (pairs[:, 1] < pairs[:, 0])
-    reverse = np.take(ac._table.facet_flip, ids) ^ inside_second
-    rows[reverse, -2:] = rows[reverse][:, [-1, -2]]
-    return rows
+    return facing_out(rows, np.take(index.table.facet_flip, ids), inside_second, rows)

@@ -1,4 +1,6 @@
-"""The Delaunay triangulation (scipy/Qhull), with cells in the canonical form the table uses."""
+"""The triangulations the table is built on, by Qhull (scipy): Delaunay for classic points,
+regular (weighted Delaunay, the lower hull of the lifted points) for weighted ones, with cells
+in the canonical form the table uses (`Triangulation`)."""
 
 from __future__ import annotations
 

@@ -69,17 +69,6 @@ def contains(locator: Locator, queries: np.ndarray, alpha: float,
     return inside
 
 
-def checked_alpha(alpha: object) -> float:
-    """alpha as a float radius >= 0 (inf allowed), or InputError."""
-    try:
-        value = float(alpha)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        value = float("nan")
-    if not value >= 0:
-        raise InputError(f"alpha is a radius and must be a number >= 0, got {alpha!r}")
-    return value
-
-
 def neighbor_cells(face_ids: np.ndarray, facet_cells: np.ndarray) -> np.ndarray:
     """(c, dim + 1) int64 cell across the facet opposite each vertex of each cell, -1 = outside."""
     faces = np.asarray(face_ids, dtype=np.int64)

@@ -21,7 +21,6 @@ table, which every query, cursor, signature and export then uses unchanged:
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,13 +28,13 @@ import numpy as np
 from .anisotropy import attached, stretched_spheres
 from .errors import InputError
 from .neighbourhood import neighbours, orient, pca_normals, spacing
+from .progress import Progress
 from .table import Level, Table, argsort_radii
 
 COMBINES = ("mean", "max")
 NORMAL_SOURCES = ("estimate", "given")
 NORMAL_NEIGHBOURS = 16  #: neighbours of the PCA that estimates normals (8 tilts them
 #: where two sheets are closer than their spacing)
-Progress = Callable[[float, str], None]
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from .forest import spanning_forest
+from .index import TableIndex
 
 #: Share of the points the largest piece must hold: scans carry a few stray points (outliers,
 #: specks) that join only at alphas far beyond the object's own.
@@ -66,11 +67,12 @@ def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndar
     return float(weights[high - 1]) if high > 0 else 0.0
 
 
-def opening_alpha_of(ac) -> float:
-    """`opening_alpha` of an AlphaComplex, from its public table; the largest critical alpha
-    (the whole triangulation) when no alpha reaches the share."""
-    last = float(ac.spectrum()[-1])
-    if len(ac.simplices(2)) == 0:
+def opening_alpha_of(index: TableIndex, n_points: int) -> float:
+    """`opening_alpha` of the table `index` of a complex with `n_points` points; the largest
+    critical alpha (the whole triangulation) when no alpha reaches the share."""
+    last = float(index.spectrum()[-1])
+    if len(index.simplices(2)) == 0:
         return last
-    edge_first = first_cofaces(ac.face_ids(2), ac.intervals(2)[:, 0], len(ac.simplices(1)))
-    return min(opening_alpha(len(ac.points), ac.simplices(1), edge_first), last)
+    edge_first = first_cofaces(index.face_ids(2), index.intervals(2)[:, 0],
+                               len(index.simplices(1)))
+    return min(opening_alpha(n_points, index.simplices(1), edge_first), last)

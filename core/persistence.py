@@ -15,6 +15,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
+from .arrays import contiguous_readonly
 from .errors import InputError
 from .forest import younger_roots
 from .topology import Topology, ascending_order, vertex_spanning_forest
@@ -117,6 +118,4 @@ def _by_lifetime(pairs: np.ndarray) -> np.ndarray:
     """Pairs with death > birth, longest first (ties by birth), read-only."""
     pairs = pairs[pairs[:, 1] > pairs[:, 0]]
     order = np.lexsort((pairs[:, 0], -(pairs[:, 1] - pairs[:, 0])))
-    out = np.ascontiguousarray(pairs[order])
-    out.flags.writeable = False
-    return out
+    return contiguous_readonly(pairs[order])

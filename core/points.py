@@ -1,4 +1,5 @@
-"""Input validation, exact-duplicate merging and flatness detection for point sets."""
+"""Input validation, exact-duplicate merging, flatness detection and a cache-friendly
+spatial (Morton) order for point sets."""
 
 from __future__ import annotations
 

@@ -11,12 +11,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .alpha import threshold
+from .arrays import readonly
+from .index import TableIndex
 from .opening import opening_alpha_of
-from .shape import threshold
 from .topology import Topology, ascending, ascending_order
-
-#: Column order of `Signatures.counts`: the four classes of `AlphaComplex.classify`.
-CLASSES = ("exterior", "singular", "regular", "interior")
 
 
 @dataclass(frozen=True, eq=False)
@@ -42,7 +41,7 @@ class Signatures:
         return int(np.searchsorted(self.alphas, alpha, side="right")) - 1
 
     def counts(self, k: int) -> np.ndarray:
-        """(s, 4) int64 numbers of k-simplices per class (CLASSES order) at every entry."""
+        """(s, 4) int64 numbers of k-simplices per class (core.classes order) at every entry."""
         return class_counts(self._thresholds(k), self.alphas)
 
     def counts_at(self, alpha: float) -> np.ndarray:
@@ -60,25 +59,26 @@ class Signatures:
         return self._sorted[k]
 
 
-def compute_signatures(ac, topology: Topology) -> Signatures:
-    """Signatures of an AlphaComplex over its whole spectrum."""
-    dim = ac.dim
-    alphas = np.asarray(ac.spectrum(), dtype=np.float64)
-    cell_enter = np.asarray(ac.intervals(dim)[:, 0], dtype=np.float64)
+def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology) -> Signatures:
+    """Signatures over the whole spectrum of the table `index` of a complex with (m, dim)
+    `points`, from its `topology`."""
+    dim = index.dim
+    alphas = np.asarray(index.spectrum(), dtype=np.float64)
+    cell_enter = np.asarray(index.intervals(dim)[:, 0], dtype=np.float64)
     order = ascending_order(cell_enter)
     cells_in = np.searchsorted(cell_enter[order], alphas, side="right")
-    measure = np.concatenate([[0.0], np.cumsum(np.asarray(ac.cell_measures())[order])])
-    boundary = boundary_sums(ac.facet_cells(), order,
-                             facet_measures(ac.points, ac.simplices(dim - 1)))
+    measure = np.concatenate([[0.0], np.cumsum(np.asarray(index.cell_measures())[order])])
+    boundary = boundary_sums(index.facet_cells(), order,
+                             facet_measures(points, index.simplices(dim - 1)))
     return Signatures(
         dim=dim,
-        alphas=_ro(alphas),
-        betti=_ro(topology.betti_many(alphas)),
-        solid_components=_ro(topology.solid_components(alphas)),
-        measure=_ro(measure[cells_in]),
-        boundary_measure=_ro(boundary[cells_in]),
-        opening_alpha=opening_alpha_of(ac),
-        intervals=tuple(ac.intervals(k) for k in range(dim + 1)),
+        alphas=readonly(alphas),
+        betti=readonly(topology.betti_many(alphas)),
+        solid_components=readonly(topology.solid_components(alphas)),
+        measure=readonly(measure[cells_in]),
+        boundary_measure=readonly(boundary[cells_in]),
+        opening_alpha=opening_alpha_of(index, len(points)),
+        intervals=tuple(index.intervals(k) for k in range(dim + 1)),
     )
 
 
@@ -113,9 +113,3 @@ def facet_measures(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
         return np.linalg.norm(corners[:, 1] - corners[:, 0], axis=1)
     normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     return np.linalg.norm(normal, axis=1) / math.factorial(2)
-
-
-def _ro(array: np.ndarray) -> np.ndarray:
-    """The array marked read-only."""
-    array.flags.writeable = False
-    return array

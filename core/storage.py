@@ -28,17 +28,22 @@ Optional, for a table built in a mode (core/modes.py; absent = classic): `mode_d
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
+from .arrays import readonly
 from .atomic import atomic_write
 from .build import BuildInfo
 from .errors import FileFormatError, InputError
+from .index import TableIndex
 from .modes import Mode, make_mode
 from .npz import read_npz
+from .opening import opening_alpha_of
 from .points import Frame
+from .signatures import Signatures
 from .table import Level, Table
 from .table_checks import (
     Checker,
@@ -48,15 +53,49 @@ from .table_checks import (
     check_table,
     scalar,
 )
-
-if TYPE_CHECKING:
-    from .complex import AlphaComplex
+from .topology import Topology, ascending
 
 FORMAT, VERSION = "alphascoop-table", 1
 
 
-def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
-    table = ac._table
+class Saveable(Protocol):
+    """What `save` reads of a complex (core.complex.AlphaComplex is one)."""
+
+    index: TableIndex
+    points: np.ndarray
+    input_index: np.ndarray
+    frame: Frame | None
+    dim: int
+    ambient_dim: int
+    mode: Mode
+    weights: np.ndarray | None
+    build_info: BuildInfo
+    has_signatures: bool
+
+    def signatures(self) -> Signatures: ...
+
+    def topology(self) -> Topology: ...
+
+
+@dataclass(frozen=True, eq=False)
+class Saved:
+    """A table as read back: the arguments of AlphaComplex, with the topology and signatures
+    when they were saved (else None)."""
+
+    points: np.ndarray
+    input_index: np.ndarray
+    index: TableIndex
+    frame: Frame | None
+    ambient_dim: int
+    mode: Mode
+    weights: np.ndarray | None
+    build_info: BuildInfo
+    topology: Topology | None
+    signatures: Signatures | None
+
+
+def _arrays(ac: Saveable) -> dict[str, np.ndarray]:
+    table = ac.index.table
     out = {"format": np.array(FORMAT), "version": np.array(VERSION), "dim": np.array(ac.dim),
            "ambient_dim": np.array(ac.ambient_dim), "points": ac.points,
            "input_index": ac.input_index, "facet_cells": table.facet_cells,
@@ -82,11 +121,11 @@ def _arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
     return out
 
 
-def _derived_arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
+def _derived_arrays(ac: Saveable) -> dict[str, np.ndarray]:
     """Signatures and topology forests, if `ac` has computed them (never computed here)."""
-    if "_signatures" not in ac.__dict__:
+    if not ac.has_signatures:
         return {}
-    sig, topo = ac.signatures(), ac._topology
+    sig, topo = ac.signatures(), ac.topology()
     return {"sig_alphas": sig.alphas, "sig_betti": sig.betti, "sig_solid": sig.solid_components,
             "sig_measure": sig.measure, "sig_boundary": sig.boundary_measure,
             "sig_opening": np.array(sig.opening_alpha),
@@ -94,31 +133,28 @@ def _derived_arrays(ac: AlphaComplex) -> dict[str, np.ndarray]:
             "topo_dual_edges": topo.dual_edges, "topo_solid_forest": topo.solid_forest}
 
 
-def _adopt_derived(ac: AlphaComplex, a: dict[str, np.ndarray], check: Checker) -> None:
-    """Hand saved signatures and topology to `ac` once they proved consistent with it."""
-    from .opening import opening_alpha_of
-    from .signatures import Signatures
-    from .topology import Topology, ascending
-
-    dim = ac.dim
-    alphas = check_signature_arrays(check, a, dim)
+def _derived(index: TableIndex, n_points: int, a: dict[str, np.ndarray], check: Checker
+             ) -> tuple[Topology, Signatures]:
+    """Saved topology and signatures, once they proved consistent with the table."""
+    dim = index.dim
     check_forests(check, a, dim)
-    levels = ac._table.levels
+    levels = index.table.levels
     topology = Topology(dim=dim, n_cells=len(levels[dim].enter),
                         enter_sorted=tuple(ascending(level.enter) for level in levels),
-                        vertex_forest=a["topo_vertex_forest"], dual_forest=a["topo_dual_forest"],
-                        dual_edges=a["topo_dual_edges"], solid_forest=a["topo_solid_forest"])
+                        vertex_forest=readonly(a["topo_vertex_forest"]),
+                        dual_forest=readonly(a["topo_dual_forest"]),
+                        dual_edges=readonly(a["topo_dual_edges"]),
+                        solid_forest=readonly(a["topo_solid_forest"]))
     check_signatures(check, a, topology, np.cumsum(a["cell_measure"]))
-    signatures = Signatures(dim=dim, alphas=alphas, betti=a["sig_betti"],
-                            solid_components=a["sig_solid"], measure=a["sig_measure"],
-                            boundary_measure=a["sig_boundary"],
-                            opening_alpha=(float(a["sig_opening"]) if "sig_opening" in a
-                                           else opening_alpha_of(ac)),
-                            intervals=tuple(ac.intervals(k) for k in range(dim + 1)))
-    for arr in (*topology.__dict__.values(), *signatures.__dict__.values()):
-        if isinstance(arr, np.ndarray):
-            arr.flags.writeable = False
-    ac._adopt(topology, signatures)
+    opening = (float(a["sig_opening"]) if "sig_opening" in a
+               else opening_alpha_of(index, n_points))
+    signatures = Signatures(dim=dim, alphas=readonly(index.spectrum()),
+                            betti=readonly(a["sig_betti"]),
+                            solid_components=readonly(a["sig_solid"]),
+                            measure=readonly(a["sig_measure"]),
+                            boundary_measure=readonly(a["sig_boundary"]), opening_alpha=opening,
+                            intervals=tuple(index.intervals(k) for k in range(dim + 1)))
+    return topology, signatures
 
 
 def _mode(a: dict[str, np.ndarray], path: Path) -> Mode:
@@ -141,7 +177,7 @@ def _build_info(a: dict[str, np.ndarray], path: Path) -> BuildInfo:
         raise FileFormatError(f"{path}: not a valid Alpha Scoop table (build info)") from None
 
 
-def save(ac: AlphaComplex, path: str | os.PathLike) -> None:
+def save(ac: Saveable, path: str | os.PathLike) -> None:
     """Write `ac` to `path` (.npz) atomically."""
     atomic_write(path, lambda handle: np.savez(handle, **_arrays(ac)))
 
@@ -156,7 +192,7 @@ def _read(path: Path) -> dict[str, np.ndarray]:
     return arrays
 
 
-def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
+def load(path: str | os.PathLike) -> Saved:
     """Read a table written by `save`; every array is checked (core.table_checks) so that a
     damaged or crafted file is a FileFormatError, never a wrong shape or a crash later."""
     path = Path(path)
@@ -171,10 +207,13 @@ def load(cls: type[AlphaComplex], path: str | os.PathLike) -> AlphaComplex:
         frame = Frame(a["frame_origin"], a["frame_basis"]) if "frame_origin" in a else None
         table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"],
                       a["facet_interior_order"])
-        ac = cls(a["points"], a["input_index"], table, frame, int(a["ambient_dim"]),
-                 _mode(a, path), a.get("weights"), build_info=_build_info(a, path))
-        if "sig_alphas" in a:
-            _adopt_derived(ac, a, check)
-        return ac
+        saved = "sig_alphas" in a
+        spectrum = check_signature_arrays(check, a, dim) if saved else None
+        index = TableIndex(table, "weights" in a, spectrum)
+        topology, signatures = (_derived(index, len(a["points"]), a, check) if saved
+                                else (None, None))
+        return Saved(a["points"], a["input_index"], index, frame, int(a["ambient_dim"]),
+                     _mode(a, path), a.get("weights"), _build_info(a, path), topology,
+                     signatures)
     except KeyError as exc:
         raise FileFormatError(f"{path}: not a valid Alpha Scoop table (missing {exc})") from None

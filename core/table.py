@@ -15,7 +15,6 @@ their first edge).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -36,10 +35,9 @@ from .power import (
     signed_sqrt,
     triangle_powers,
 )
+from .progress import Progress
 from .table_signs import obtuse_bits, settle_cells, settle_facets
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
-
-Progress = Callable[[float, str], None]
 
 
 @dataclass

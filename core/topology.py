@@ -15,8 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .alpha import radius
+from .arrays import owned_readonly
 from .forest import spanning_forest
-from .locate import checked_alpha
 
 
 @dataclass(frozen=True, eq=False)
@@ -33,7 +34,7 @@ class Topology:
 
     def betti(self, alpha: float) -> tuple[int, ...]:
         """(b0, b1) in 2D, (b0, b1, b2) in 3D at one alpha (a radius >= 0)."""
-        at = np.array([checked_alpha(alpha)], dtype=np.float64)
+        at = np.array([radius(alpha)], dtype=np.float64)
         return tuple(int(b) for b in self.betti_many(at)[0])
 
     def betti_many(self, alphas: np.ndarray) -> np.ndarray:
@@ -69,10 +70,10 @@ def build_topology(ac) -> Topology:
         dim=dim,
         n_cells=len(enter[dim]),
         enter_sorted=tuple(ascending(e) for e in enter),
-        vertex_forest=_frozen(vertex_forest),
-        dual_forest=_frozen(dual_values[::-1]),
-        dual_edges=_frozen(dual_edges),
-        solid_forest=_frozen(solid_forest(facet_cells, enter[dim])),
+        vertex_forest=owned_readonly(vertex_forest),
+        dual_forest=owned_readonly(dual_values[::-1]),
+        dual_edges=owned_readonly(dual_edges),
+        solid_forest=owned_readonly(solid_forest(facet_cells, enter[dim])),
     )
 
 
@@ -132,14 +133,4 @@ def ascending(values: np.ndarray) -> np.ndarray:
     values = np.asarray(values, dtype=np.float64)
     if len(values) > 1 and not bool(np.all(values[1:] >= values[:-1])):
         values = np.sort(values)
-    return _frozen(values)
-
-
-def _frozen(array: np.ndarray) -> np.ndarray:
-    """The values as a contiguous read-only array; no copy when the array already is one."""
-    if not array.flags.writeable and array.flags.c_contiguous:
-        return array
-    if array.base is not None or not array.flags.c_contiguous:
-        array = np.array(array, order="C")
-    array.flags.writeable = False
-    return array
+    return owned_readonly(values)

@@ -34,7 +34,7 @@ def test_child_build_equals_the_build_here_and_fills_the_cache(in_process):
     for k in range(4):
         np.testing.assert_array_equal(ac.simplices(k), here.simplices(k))
         np.testing.assert_array_equal(ac.intervals(k), here.intervals(k))
-    assert "_signatures" in ac.__dict__  # came with the table: no topology pass here
+    assert ac.has_signatures  # came with the table: no topology pass here
     np.testing.assert_array_equal(ac.signatures().betti, here.signatures().betti)
     assert ac.optimal_alpha() == here.optimal_alpha()
     assert "Delaunay triangulation" in stages and "topology" in stages
@@ -104,6 +104,6 @@ def test_a_cached_table_without_signatures_is_upgraded_in_place(in_process):
 
     points = np.random.default_rng(5).random((800, 3))
     build_cached(points)  # as `alphascoop export --alpha R` leaves it: no signatures
-    assert "_signatures" not in load_cached(points).__dict__
+    assert not load_cached(points).has_signatures
     ac = build_process.build(points, never, threading.Event())
-    assert "_signatures" in ac.__dict__ and "_signatures" in load_cached(points).__dict__
+    assert ac.has_signatures and load_cached(points).has_signatures

@@ -643,3 +643,4 @@ def test_info_dock_prints_for_people(opened) -> None:
     ]
     text = "\n".join(data_lines(opened.model))
     assert "e+0" not in text and "x " in text and "spacing" in text
+    assert "build: backend qhull" in text  # ac.build_info (core/build.py)

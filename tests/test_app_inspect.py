@@ -11,7 +11,7 @@ from PySide6.QtCore import QPoint, Qt
 
 from app.inspect import alpha_text
 from app.palette import default_styles
-from core.signatures import CLASSES
+from core.classes import CLASSES
 
 
 def blobs(dim: int, n: int = 900, seed: int = 5) -> np.ndarray:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -63,3 +65,18 @@ def test_damaged_build_info_is_a_format_error(points, tmp_path):
     np.savez(tmp_path / "bad.npz", **arrays)
     with pytest.raises(FileFormatError, match="build info"):
         AlphaComplex.load(tmp_path / "bad.npz")
+
+
+def test_info_reports_the_build(tmp_path, monkeypatch, capsys):
+    from app.cli import main
+
+    monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
+    np.savetxt(tmp_path / "p.xyz", np.random.default_rng(3).random((60, 3)))
+    assert main(["info", str(tmp_path / "p.xyz"), "--json"]) == 0
+    build = json.loads(capsys.readouterr().out)["build"]
+    assert build["backend"] == "qhull" and build["uncertified"] == 0  # certified (issue 14)
+    assert {"exact_predicates", "flips"} <= build.keys()
+    assert main(["info", str(tmp_path / "p.xyz")]) == 0
+    assert "build       backend qhull, exact predicates " in capsys.readouterr().out
+    assert BuildInfo().describe() == ("backend qhull, exact predicates 0, flips 0, "
+                                      "uncertified -1")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -18,15 +18,14 @@ import numpy as np
 from core.atomic import atomic_path, atomic_write_text
 from core.errors import AlphaScoopError, FileFormatError
 from core.export.complex_vtu import write_vtu
-from core.export.geographic import geographic_metadata, write_prj
+from core.export.geographic import write_prj
 from core.export.metadata import shape_metadata, sidecar_text
-from core.export.polygons import POLYGON_WRITERS
+from core.export.polygons import POLYGON_WRITERS, geographic_metadata
 from core.export.surface import SURFACE_WRITERS, manifold_meta, surface_arrays
 from core.export.table import TABLE_WRITERS
 from core.export.targets import refuse_source
 from core.georef import Georef
-
-Progress = Callable[[float, str], None]
+from core.progress import Progress
 
 __all__ = ["SHAPE_FORMATS", "TABLE_FORMATS", "ExportReport", "write_shape", "write_table"]
 

@@ -12,7 +12,8 @@ from pathlib import Path
 import numpy as np
 import shapely
 
-from core.georef import WGS84, WGS84_NAME, Georef, geodesic_area_perimeter, geodesic_length
+from core.atomic import atomic_write_text
+from core.georef import WGS84, WGS84_NAME, Georef
 
 WORLD = shapely.box(-180.0, -90.0, 180.0, 90.0)
 CUT_SEGMENT_M = 1000.0  # edges crossing the antimeridian are split this finely before the cut
@@ -58,32 +59,14 @@ def rfc7946(geometry):
     return shapely.orient_polygons(geometry, exterior_cw=False)
 
 
-def geographic_metadata(ac, shape, georef: Georef) -> dict:
-    """Metadata of a geographic export: the projection (lengths in metres), and for 2D shapes
-    the area, perimeter and dangling-edge length measured on the WGS 84 ellipsoid."""
-    from core.export.polygons import shape_polygons, singular_lines
-
-    meta: dict = {"units": "m", "georef": georef.to_dict()}
-    if ac.dim == 2:
-        polygons = to_lonlat(ac, georef, shape_polygons(ac, shape))
-        area, perimeter = (0.0, 0.0) if polygons.is_empty else geodesic_area_perimeter(polygons)
-        lines = to_lonlat(ac, georef, singular_lines(ac, shape))
-        meta["area_m2"] = area
-        meta["perimeter_m"] = perimeter
-        meta["singular_length_m"] = 0.0 if lines.is_empty else geodesic_length(lines)
-    return meta
-
-
 def write_prj(path: Path) -> Path:
     """The `.prj` file naming the CRS (WGS 84 longitude/latitude) beside `path`."""
-    from pyproj import CRS
-
-    from core.atomic import atomic_write_text
+    from pyproj import CRS  # imported when asked: pyproj is slow to import
 
     prj = path.with_suffix(".prj")
     atomic_write_text(prj, CRS.from_user_input(WGS84).to_wkt("WKT1_ESRI") + "\n")
     return prj
 
 
-__all__ = ["WGS84_NAME", "cut_antimeridian", "geographic_metadata", "rfc7946", "to_lonlat",
+__all__ = ["WGS84_NAME", "cut_antimeridian", "rfc7946", "to_lonlat",
            "write_prj"]

@@ -12,6 +12,7 @@ from core.export.csvrows import format_rows, write_rows
 from core.export.geographic import rfc7946, to_lonlat
 from core.export.metadata import sidecar_text
 from core.export.rings import ring_order, successors
+from core.georef import Georef, geodesic_area_perimeter, geodesic_length
 
 
 def boundary_rings(points: np.ndarray, edges: np.ndarray) -> list[np.ndarray]:
@@ -141,3 +142,17 @@ def write_svg(path: Path, ac, shape, meta: dict, georef=None) -> None:
 
 POLYGON_WRITERS = {".geojson": write_geojson, ".json": write_geojson, ".wkt": write_wkt,
                    ".svg": write_svg, ".csv": write_rings_csv}
+
+
+def geographic_metadata(ac, shape, georef: Georef) -> dict:
+    """Metadata of a geographic export: the projection (lengths in metres), and for 2D shapes
+    the area, perimeter and dangling-edge length measured on the WGS 84 ellipsoid."""
+    meta: dict = {"units": "m", "georef": georef.to_dict()}
+    if ac.dim == 2:
+        polygons = to_lonlat(ac, georef, shape_polygons(ac, shape))
+        area, perimeter = (0.0, 0.0) if polygons.is_empty else geodesic_area_perimeter(polygons)
+        lines = to_lonlat(ac, georef, singular_lines(ac, shape))
+        meta["area_m2"] = area
+        meta["perimeter_m"] = perimeter
+        meta["singular_length_m"] = 0.0 if lines.is_empty else geodesic_length(lines)
+    return meta

@@ -6,6 +6,7 @@ a 2-manifold. 2D: the filled triangles (counter-clockwise), lifted to the input'
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -113,4 +114,6 @@ SURFACE_WRITERS = {
 
 def manifold_meta(report: ManifoldReport | None) -> dict:
     """Metadata entries describing a manifold split (empty when none was asked)."""
-    return {} if report is None else {"manifold_split": json.loads(json.dumps(report.__dict__))}
+    if report is None:
+        return {}
+    return {"manifold_split": json.loads(json.dumps(dataclasses.asdict(report)))}

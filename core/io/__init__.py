@@ -1,4 +1,5 @@
-"""Read point sets from scan, mesh and table files into a PointSet with a load report."""
+"""Read point sets from scan, mesh, molecule and table files into a PointSet with a load
+report: `read_points` picks the reader by extension (the README's format table)."""
 
 from __future__ import annotations
 

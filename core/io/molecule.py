@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
-from core.io.report import PointSet
+from core.io.report import PointSet, finish
 
 MOLECULE_EXTENSIONS = (".pdb", ".ent", ".cif", ".mmcif")
 DEFAULT_PROBE = 1.4  # Å, a water molecule
@@ -159,8 +159,6 @@ def molecule_attributes(mol: Molecule, probe: float = DEFAULT_PROBE) -> dict[str
 def read_molecule_pointset(path: str | Path, *, probe: float = DEFAULT_PROBE,
                            keep_water: bool = False) -> tuple[PointSet, Molecule]:
     """(PointSet of the atoms with molecule_attributes for `probe`, the Molecule read)."""
-    from core.io.report import finish
-
     mol = read_molecule(path, keep_water=keep_water)
     ext = molecule_extension(Path(path)) or ""
     ps = finish(Path(path), ext.lstrip(".").upper(), mol.centres,

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
+from core.arrays import contiguous_readonly
 from core.errors import FileFormatError
 from core.georef import Georef
 from core.io.subsample import first_unique, subsample_indices
@@ -85,13 +86,6 @@ class PointSet:
         if self.report is None or self.report.weights_from is None:
             return None
         return self.attributes.get("weights")
-
-
-def _readonly(a: np.ndarray) -> np.ndarray:
-    """C-contiguous read-only copy-free view, so no widget can corrupt shared arrays."""
-    a = np.ascontiguousarray(a)
-    a.flags.writeable = False
-    return a
 
 
 def is_planar(points: np.ndarray) -> bool:
@@ -191,7 +185,7 @@ def finish(
         weights_from=weights_from,
     )
     return PointSet(
-        points=_readonly(points),
-        attributes={k: _readonly(v) for k, v in attributes.items()},
+        points=contiguous_readonly(points),
+        attributes={k: contiguous_readonly(v) for k, v in attributes.items()},
         report=report,
     )

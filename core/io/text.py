@@ -2,31 +2,17 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns, named_attributes, named_coordinates
-from core.io.numbers import NumberStyle, number_style
-from core.io.text_rows import COMMENTS, is_number, pts_note, read_rows, split, uncomment
+from core.io.numbers import number_style
+from core.io.text_rows import COMMENTS, Layout, is_number, pts_note, read_rows, split, uncomment
 
 SNIFF_BYTES = 1 << 16
 DELIMITERS = (",", ";", "\t", "|")
-
-
-@dataclass(frozen=True)
-class Layout:
-    """How a text table is laid out: delimiter (None = whitespace), header names, rows to skip."""
-
-    delimiter: str | None
-    names: list[str] | None
-    skiprows: int
-    n_cols: int
-    first_row: list[str]
-    style: NumberStyle = field(default_factory=NumberStyle)
-    pts: bool = False
 
 
 def _head_lines(path: Path) -> list[str]:

@@ -8,19 +8,30 @@ import csv
 import itertools
 import re
 from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from core.errors import FileFormatError
-
-if TYPE_CHECKING:
-    from core.io.text import Layout
+from core.io.numbers import NumberStyle
 
 MISSING = {"", "na", "nan", "null", "none", "n/a"}
 COMMENTS = ("#", "//", "%")
 PTS_COUNT = re.compile(r"^\s*\d+\s*$")  # a PTS scan's point count line
+
+
+@dataclass(frozen=True)
+class Layout:
+    """How a text table is laid out: delimiter (None = whitespace), header names, rows to skip."""
+
+    delimiter: str | None
+    names: list[str] | None
+    skiprows: int
+    n_cols: int
+    first_row: list[str]
+    style: NumberStyle = field(default_factory=NumberStyle)
+    pts: bool = False
 
 
 def split(line: str, delimiter: str | None) -> list[str]:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core.arrays import contiguous_readonly
 from core.errors import InputError
 
 from .cavities import void_cells, void_volumes
@@ -72,13 +73,8 @@ def measure_molecule(ac, probe: float, alpha2: float = 0.0) -> MoleculeMeasures:
     atom_area = np.where(ac.input_index >= 0, union.atom_area[np.maximum(ac.input_index, 0)], 0)
     return MoleculeMeasures(
         atoms=len(ac.input_index), probe=float(probe), alpha2=float(alpha2),
-        surface_area=union.area, volume=union.volume, atom_area=_frozen(atom_area),
+        surface_area=union.area, volume=union.volume, atom_area=contiguous_readonly(atom_area),
         point_area=union.atom_area,
-        cavities=_frozen(volumes[order]),
-        cavity_errors=_frozen(errors[order]), cavity_cells=_frozen(relabel[labels]))
-
-
-def _frozen(a: np.ndarray) -> np.ndarray:
-    a = np.ascontiguousarray(a)
-    a.flags.writeable = False
-    return a
+        cavities=contiguous_readonly(volumes[order]),
+        cavity_errors=contiguous_readonly(errors[order]),
+        cavity_cells=contiguous_readonly(relabel[labels]))

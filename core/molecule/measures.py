@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core.arrays import readonly
 from core.parallel import together
 
 from .intersections import four_balls, three_balls, two_balls
@@ -69,6 +70,5 @@ def union_measures(centres: np.ndarray, radii: np.ndarray, edges: np.ndarray,
     vol, areas = tets()
     volume -= vol
     atom_area -= areas
-    atom_area = np.maximum(atom_area, 0.0)
-    atom_area.flags.writeable = False
+    atom_area = readonly(np.maximum(atom_area, 0.0))
     return UnionMeasures(float(atom_area.sum()), volume, atom_area)

@@ -1,0 +1,29 @@
+"""Small array helpers shared by the core."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def readonly(arr: np.ndarray) -> np.ndarray:
+    """`arr` with its writeable flag cleared (a widget must not corrupt the table)."""
+    arr.flags.writeable = False
+    return arr
+
+
+def contiguous_readonly(arr: np.ndarray) -> np.ndarray:
+    """`arr` as a C-contiguous read-only array (copied only when it is not contiguous)."""
+    arr = np.ascontiguousarray(arr)
+    arr.flags.writeable = False
+    return arr
+
+
+def owned_readonly(arr: np.ndarray) -> np.ndarray:
+    """`arr` as a read-only C-contiguous array owning its memory (a view is copied, so no
+    writeable base can change it); no copy when it already is one."""
+    if not arr.flags.writeable and arr.flags.c_contiguous:
+        return arr
+    if arr.base is not None or not arr.flags.c_contiguous:
+        arr = np.array(arr, order="C")
+    arr.flags.writeable = False
+    return arr
