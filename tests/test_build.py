@@ -77,6 +77,6 @@ def test_info_reports_the_build(tmp_path, monkeypatch, capsys):
     assert build["backend"] == "qhull" and build["uncertified"] == 0  # certified (issue 14)
     assert {"exact_predicates", "flips"} <= build.keys()
     assert main(["info", str(tmp_path / "p.xyz")]) == 0
-    assert "build       backend qhull, exact predicates " in capsys.readouterr().out
+    assert "build       backend qhull, exact_predicates " in capsys.readouterr().out
     assert BuildInfo().describe() == ("backend qhull, exact predicates 0, flips 0, "
                                       "uncertified -1")
