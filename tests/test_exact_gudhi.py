@@ -111,11 +111,16 @@ def test_exactly_degenerate_input_is_a_valid_deterministic_filtration(name: str)
     for k in range(ac.dim + 1):
         np.testing.assert_array_equal(ac.simplices(k), again.simplices(k))
         np.testing.assert_array_equal(ac.intervals(k), again.intervals(k))
+    assert_same_volume_as_gudhi(ac, pts)
+
+
+def assert_same_volume_as_gudhi(ac, pts: np.ndarray, samples: int = 80) -> None:
+    """The complex's area/volume equals gudhi exact's at alphas between critical values."""
     ref = gudhi_table(pts, precision="exact")
     values = np.sqrt(np.concatenate([ref[k][1] for k in range(ref["dim"] + 1)]))
     probes = probe_alphas(np.asarray(ac.spectrum()), values)
     total = gudhi_measure(pts, ref, float(values.max()) * 2)
-    for alpha in probes[np.linspace(0, len(probes) - 1, 80).astype(int)]:
+    for alpha in probes[np.linspace(0, len(probes) - 1, samples).astype(int)]:
         assert ac.shape(alpha).measure == pytest.approx(
             gudhi_measure(pts, ref, alpha), rel=1e-9, abs=1e-12 * total), f"alpha={alpha!r}"
 
@@ -125,9 +130,12 @@ DATA = data_dir()
 
 @pytest.mark.slow
 @pytest.mark.skipif(DATA is None, reason="shared real-scan data folder is absent")
-@HULL_SLIVERS
 @pytest.mark.parametrize("name", ["bun000_rangegrid.ply", "milk.pcd", "plane_flat.laz"])
 def test_real_grid_like_scans_build_certified_and_equal_gudhi_exact(name: str) -> None:
+    """The whole scan certifies; on a 3,000-point window (gudhi exact is slow on the whole)
+    the volume equals gudhi's exact complex at every alpha between critical values. The
+    scans are quantized, so exactly cospherical groups are triangulated by each side's own
+    perturbation: the simplices may differ there, the complex's volume may not."""
     path = DATA / name
     if not path.is_file():
         pytest.skip(f"{name} is absent")
@@ -136,6 +144,6 @@ def test_real_grid_like_scans_build_certified_and_equal_gudhi_exact(name: str) -
     assert_valid_table(ac)
     assert_certified(ac)
     window = pts[np.argsort(np.linalg.norm(pts - pts[len(pts) // 2], axis=1))[:3000]]
-    part = AlphaComplex.from_points(window)  # gudhi exact is slow on the whole scan
+    part = AlphaComplex.from_points(window)
     assert_certified(part)
-    assert_matches_gudhi(part, gudhi_table(window, precision="exact"))
+    assert_same_volume_as_gudhi(part, window)
