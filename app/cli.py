@@ -52,6 +52,9 @@ def _common(sub: argparse.ArgumentParser) -> None:
     sub.add_argument("--scan", type=index, metavar="N",
                      help="E57: read only scan N (0-based; default all scans, poses applied)")
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
+    sub.add_argument("--backend", choices=("qhull", "gmsh"),
+                     help="triangulation backend (default: gmsh where installed and exact, "
+                          "else qhull)")
     sizes = sub.add_mutually_exclusive_group()
     sizes.add_argument("--weights", metavar="COLUMN",
                        help="weighted points: squared radii from this column")
@@ -118,13 +121,15 @@ def _progress():
 
 def load(args) -> tuple:
     """(PointSet, AlphaComplex, seconds, from cache?) for the file and options."""
-    from core.cache import build_cached, is_cached
+    from core.cache import build_cached, cached_backend, is_cached
     from core.modes import file_normals
 
     mode = _mode(args)
     ps = _read(args)
     normals = file_normals(mode, ps.attributes, args.file)
     cached = not args.no_cache and is_cached(ps, mode, normals)
+    if cached and args.backend is not None:  # a table of the other backend is rebuilt
+        cached = cached_backend(ps, mode, normals) == args.backend
     update, close = _progress()
     start = time.perf_counter()
     try:
@@ -132,7 +137,7 @@ def load(args) -> tuple:
         needs_topology = args.command == "info" or chosen_alpha(args) is None
         ac = build_cached(ps, use_cache=not args.no_cache, progress=update,
                           signatures=needs_topology and not getattr(args, "table", False),
-                          mode=mode, normals=normals)
+                          mode=mode, normals=normals, backend=args.backend)
     finally:
         close()
     return ps, ac, time.perf_counter() - start, cached
@@ -234,6 +239,8 @@ def summary(ps, ac, seconds: float, cached: bool, at: dict | None) -> dict:
         "spectrum": {"count": len(spectrum), "min": float(spectrum[first]),
                      "max": float(spectrum[-1]), "min2": _sq(spectrum[first]),
                      "max2": _sq(spectrum[-1])},
+        "backend": ac.build_info.backend,
+        "backend_note": ac.build_info.backend_note,
         "weighted": weighted,
         "hidden_points": int((np.asarray(ac.input_index) < 0).sum()),
         "optimal_alpha": optimal,
@@ -281,7 +288,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
         + (" (from cache)" if cx["from_cache"] else f" (built in {cx['seconds']:.2f} s)"),
-        f"build       {', '.join(f'{k} {v}' for k, v in info['build'].items())}",
+        f"build       {info['build_text']}",
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
     ]
@@ -318,7 +325,8 @@ def cmd_info(args) -> int:
     info = summary(ps, ac, seconds, cached, chosen_alpha(args))
     if is_molecule(args):
         info["molecule"] = molecule_summary(ac, args.probe)
-    text = None if args.json else _text({**info, "mode_text": ac.mode.describe()},
+    text = None if args.json else _text({**info, "mode_text": ac.mode.describe(),
+                                         "build_text": ac.build_info.describe()},
                                         ps.report.lines())
     if text is not None and "molecule" in info:
         text += "\n" + "\n".join(_molecule_text(info["molecule"]))

@@ -12,12 +12,12 @@ os.environ["QT_API"] = "pyside6"
 from pathlib import Path
 
 import numpy as np
-from PySide6.QtCore import QSettings, Qt
+from PySide6.QtCore import QSettings, Qt, QTimer
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 from pyvistaqt import QtInteractor
 
-from app import file_actions
+from app import file_actions, memory
 from app.alpha_panel import AlphaPanel
 from app.clipping import Clipper
 from app.colour_view import Colourer
@@ -110,6 +110,8 @@ class MainWindow(QMainWindow):
         self.loader.finished.connect(self._on_loaded)
         self.loader.failed.connect(self._on_failed)
         self.loader.cancelled.connect(self._on_cancelled)
+        for outcome in (self.loader.finished, self.loader.failed, self.loader.cancelled):
+            outcome.connect(self._give_back_memory)  # after the slots above dropped the old
         self.progress.cancelRequested.connect(self.loader.cancel)
         self.jobs.progress.connect(self.job_progress.update_progress)
         self.jobs.finished.connect(self._on_job_done)
@@ -199,6 +201,11 @@ class MainWindow(QMainWindow):
             if self.model.dataset is not None:
                 self.set_mode(self.model.dataset.ac.mode, rebuild=False)
             self.status.setText("Opening cancelled.")
+
+    def _give_back_memory(self, *_outcome) -> None:
+        """Once this event is handled (the old dataset or a cancelled load's arrays are
+        dropped by then), return the freed memory to the OS (app.memory)."""
+        QTimer.singleShot(0, memory.give_back)
 
     def _show_dataset(self) -> None:
         """New dataset: new layers and camera (the only time actors are added)."""

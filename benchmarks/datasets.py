@@ -66,3 +66,29 @@ def write_torus(n: int, seed: int, path: str) -> dict:
     """Generate the benchmark torus and save it; returns {'n': n, 'seed': seed} for the log."""
     write_points(noisy_torus(n, seed), path)
     return {"n": n, "seed": seed}
+
+
+def bunny_scan(n: int, seed: int = 0, mesh: str | None = None) -> np.ndarray:
+    """(n, 3) float64 scan-like sample of the Stanford bunny (shared/data/bunny.ply's faces):
+    area-uniform on the mesh, moved along each face normal by Gaussian range noise of sigma
+    0.05 mm, coordinates rounded to 1 µm as the ASCII PLY stores them (metres)."""
+    from plyfile import PlyData
+
+    path = mesh or os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "..", "shared", "data", "bunny.ply")
+    ply = PlyData.read(path)
+    vertex = ply["vertex"]
+    corners = np.column_stack([vertex["x"], vertex["y"], vertex["z"]]).astype(np.float64)
+    faces = np.vstack(ply["face"]["vertex_indices"]).astype(np.int64)
+    a, b, c = (corners[faces[:, k]] for k in range(3))
+    normal = np.cross(b - a, c - a)
+    area = np.linalg.norm(normal, axis=1)
+    rng = np.random.default_rng(seed)
+    pick = rng.choice(len(faces), size=n, p=area / area.sum())
+    u, v = rng.random(n), rng.random(n)
+    flip = u + v > 1
+    u[flip], v[flip] = 1 - u[flip], 1 - v[flip]
+    unit = normal[pick] / area[pick, None]
+    points = (a[pick] + u[:, None] * (b[pick] - a[pick]) + v[:, None] * (c[pick] - a[pick])
+              + rng.normal(0.0, 5e-5, n)[:, None] * unit)
+    return np.round(points, 6)

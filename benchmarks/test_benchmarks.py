@@ -172,3 +172,60 @@ def test_molecule_benchmark_small_run(tmp_path) -> None:
     figures = json.loads(out.read_text())
     assert figures["atoms"] == 1112 and figures["build_s"] > 0
     assert figures["surface_area"] == pytest.approx(figures["freesasa_lr200_area"], rel=1e-3)
+
+
+def test_first_open_ratios_on_both_clocks_and_memory():
+    """bench_first_open: time goals on wall and CPU clocks, the peak of either window process
+    against scipy's, and the soak's worst re-open against the first open."""
+    from bench_first_open import format_report, ratio_rows
+
+    results = {
+        "scipy Delaunay": {"seconds": 40.0, "cpu_seconds": 40.0, "peak_mib": 2000.0},
+        "gudhi fast": {"seconds": 80.0, "cpu_seconds": 80.0, "peak_mib": 2700.0},
+        "window: slider live": {"seconds": 40.0, "cpu_seconds": 60.0},
+        "window": {"peak_mib": 3000.0, "child_peak_mib": 5400.0, "rss_after_mib": 2000.0,
+                   "soak": {"after_open_mib": [2100.0, 2500.0], "after_cancel_mib": [500.0],
+                            "open_seconds": [9.0, 7.0], "build_processes_left": 0,
+                            "old_datasets_alive": 0, "peak_mib": 6000.0}},
+    }
+    rows = {name: (ratio, met) for name, _, _, ratio, _, met in ratio_rows(results)}
+    assert rows["window: slider live / gudhi fast (time)"] == (0.5, True)
+    assert rows["window: slider live / gudhi fast (CPU)"] == (0.75, False)
+    assert rows["window first open peak / scipy peak (MiB)"] == (2.7, False)
+    assert rows["soak: worst RSS after a re-open / after the first open (MiB)"] == (1.25, False)
+    assert rows["soak: worst RSS after a re-open of the torus / after its first (MiB)"] == (
+        1.25, False)
+    assert "soak: worst RSS after a re-open of the cube / after its first (MiB)" not in rows
+    assert not any(name.startswith("core build") for name in rows)  # not measured: no row
+    assert "| window: slider live / gudhi fast (time) | 40 | 80 | 0.5 | <= 0.6 | yes |" in (
+        format_report(1000, results))
+
+
+def test_bunny_scan_lies_near_the_bunny_and_is_deterministic() -> None:
+    from pathlib import Path
+
+    from benchmarks.datasets import bunny_scan
+
+    folder = Path(__file__).resolve().parents[2] / "shared" / "data"
+    if not (folder / "bunny.ply").is_file():
+        pytest.skip("shared/data is absent")
+    points = bunny_scan(3000, seed=2, mesh=str(folder / "bunny.ply"))
+    assert points.shape == (3000, 3)
+    assert np.array_equal(points, bunny_scan(3000, seed=2, mesh=str(folder / "bunny.ply")))
+    assert np.array_equal(points, np.round(points, 6))  # 1 µm, as the ASCII PLY
+    assert points.min(axis=0)[1] > 0.03 and points.max(axis=0)[1] < 0.19  # bunny's bbox
+
+
+def test_backend_benchmark_small_run(tmp_path, capsys) -> None:
+    from benchmarks.bench_backends import main as backends_main
+
+    out = tmp_path / "backends.json"
+    steps = "scipy Delaunay,gmsh triangulation,build qhull"
+    assert backends_main(["--n", "3000", "--sets", "torus", "--steps", steps,
+                          "--json", str(out)]) == 0
+    result = json.loads(out.read_text())["results"]["torus"]
+    delaunay = result["scipy Delaunay"]
+    assert delaunay["cells"] > 0 and result["build qhull"]["backend"] == "qhull"
+    assert "error" not in result["gmsh triangulation"] or "gmsh" in result[
+        "gmsh triangulation"]["error"]
+    assert "gmsh triangulation / scipy Delaunay" in capsys.readouterr().out

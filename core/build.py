@@ -14,8 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .backends import BACKENDS, Choice, check_backend, delaunay
 from .certify import Certified, certified_triangulation
-from .delaunay import Triangulation, regular_triangulate, triangulate
+from .delaunay import Triangulation, regular_triangulate
 from .errors import InputError
 from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
 from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
@@ -23,8 +24,7 @@ from .progress import Progress, Stepper
 from .table import Table, build_table
 from .weights import as_weights, hide_light_duplicates
 
-#: Triangulation backends `backend=` accepts (None picks one automatically).
-BACKENDS = ("qhull", "gmsh")
+__all__ = ["BACKENDS", "BuildInfo", "BuiltComplex", "build_complex", "check_backend"]
 
 
 @dataclass(frozen=True)
@@ -32,7 +32,9 @@ class BuildInfo:
     """How a table was built; saved with it as `build_<field>` scalars (str, int or float
     fields only, so a stage adding a field needs nothing else to have it saved and loaded).
 
-    `backend`: the triangulation backend that made the cells ("qhull" for scipy/Qhull).
+    `backend`: the triangulation backend that made the cells ("qhull" for scipy/Qhull,
+    "gmsh"); `backend_note`: why the automatic choice did not use gmsh ("" when it did, or
+    was not asked to: too few points, gmsh not installed, weights).
     `exact_predicates`: sign decisions (certification and table) that the floating-point
     filter could not settle and exact arithmetic decided; `flips`: cells the certification
     changed (flips and hull repairs, core/certify.py); `uncertified`: facets it could not
@@ -41,6 +43,7 @@ class BuildInfo:
     """
 
     backend: str = "qhull"
+    backend_note: str = ""
     exact_predicates: int = 0
     flips: int = 0
     uncertified: int = -1
@@ -50,9 +53,10 @@ class BuildInfo:
         return dataclasses.asdict(self)
 
     def describe(self) -> str:
-        """One line for people: "backend qhull" (every field, name then value)."""
+        """One line for people: "backend qhull" (every field that is not empty, name then
+        value)."""
         return ", ".join(f"{name.replace('_', ' ')} {value}"
-                         for name, value in self.to_dict().items())
+                         for name, value in self.to_dict().items() if value != "")
 
     def to_arrays(self) -> dict[str, np.ndarray]:
         """The fields as 0-d arrays named `build_<field>` (for core/storage.py)."""
@@ -122,20 +126,6 @@ def power_of_two_scale(centred: np.ndarray) -> float:
     return 2.0 ** math.floor(math.log2(extent)) if extent > 0 else 1.0
 
 
-def check_backend(backend: object) -> str:
-    """The backend name `backend` asks for (None = automatic, today Qhull); InputError for
-    an unknown or unavailable one."""
-    if backend is None:
-        return "qhull"
-    if backend not in BACKENDS:
-        raise InputError(f"backend must be one of {', '.join(BACKENDS)} or None (automatic), "
-                         f"not {backend!r}")
-    if backend == "gmsh":
-        raise InputError("the gmsh triangulation backend is not available in this version; "
-                         "use backend='qhull' or None")
-    return str(backend)
-
-
 def _checked_input(points: object, weights: object, density: int | None, combine: str,
                    anisotropy: float, normals: object) -> _Input:
     """Stage 1: points, weights and mode checked together (InputError otherwise)."""
@@ -168,15 +158,20 @@ def _prepared(given: _Input) -> _Prepared:
     return _Prepared(coords, w, input_index, frame)
 
 
-def _triangulated(prep: _Prepared, backend: str) -> Triangulation:
+def _triangulated(prep: _Prepared, backend: str | None) -> tuple[Triangulation, Choice]:
     """Stage 3 (backend): the Delaunay (regular, when weighted) cells of the points, centred
-    and scaled exactly by a power of two for the triangulator."""
+    and scaled exactly by a power of two for the triangulator, and which backend made them
+    (core.backends; regular triangulations are Qhull's only)."""
     coords, w = prep.coords, prep.weights
     offset = 0.5 * (coords.min(axis=0) + coords.max(axis=0))
     lift_scale = power_of_two_scale(coords - offset)
     if w is None or bool(np.all(w == w[0])):  # equal weights: the Delaunay cells
-        return triangulate((coords - offset) / lift_scale)
-    return regular_triangulate((coords - offset) / lift_scale, w / lift_scale**2)
+        return delaunay((coords - offset) / lift_scale, backend)
+    if backend == "gmsh":
+        raise InputError("the gmsh backend makes Delaunay triangulations only: weighted "
+                         "points need backend='qhull' or None")
+    return (regular_triangulate((coords - offset) / lift_scale, w / lift_scale**2),
+            Choice("qhull"))
 
 
 def _certified(prep: _Prepared, tri: Triangulation) -> Certified:
@@ -250,7 +245,7 @@ def build_complex(points: object, progress: Progress | None = None, *,
     given = _checked_input(points, weights, density, combine, anisotropy, normals)
     prep = _prepared(given)
     step(0.02, "Delaunay triangulation" if prep.weights is None else "regular triangulation")
-    tri = _triangulated(prep, chosen)
+    tri, choice = _triangulated(prep, chosen)
     exact = certify and (prep.weights is None or bool(np.all(prep.weights == prep.weights[0])))
     certified = None
     if exact:
@@ -259,8 +254,8 @@ def build_complex(points: object, progress: Progress | None = None, *,
         tri = certified.triangulation
     prep = _compacted(prep, tri)
     table = _table(prep, tri, given, step, exact)
-    info = BuildInfo(chosen) if certified is None else BuildInfo(
-        chosen, certified.exact_predicates + table.exact_predicates, certified.flips,
-        certified.uncertified)
+    info = BuildInfo(choice.backend, choice.note) if certified is None else BuildInfo(
+        choice.backend, choice.note, certified.exact_predicates + table.exact_predicates,
+        certified.flips, certified.uncertified)
     return BuiltComplex(np.ascontiguousarray(prep.coords), prep.input_index, table, prep.frame,
                         given.points.shape[1], given.mode, prep.weights, info)

@@ -78,6 +78,19 @@ def is_cached(pointset, mode: Mode | None = None, normals: np.ndarray | None = N
         return False
 
 
+def cached_backend(pointset, mode: Mode | None = None,
+                   normals: np.ndarray | None = None) -> str | None:
+    """The triangulation backend of the cached table of these points (BuildInfo.backend;
+    "qhull" for tables saved before it was recorded), None without a readable entry."""
+    try:
+        path = entry_path(np.asarray(getattr(pointset, "points", pointset)), mode, normals,
+                          pointset_weights(pointset))
+        with np.load(path, allow_pickle=False) as saved:
+            return str(saved["build_backend"]) if "build_backend" in saved.files else "qhull"
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        return None
+
+
 def _load(path: Path, n_points: int, mode: Mode) -> AlphaComplex | None:
     """The cached complex, or None (and the entry removed) if it is missing or unusable."""
     try:
@@ -160,24 +173,29 @@ def _stat(path: Path) -> os.stat_result | None:
 def build_cached(pointset, *, use_cache: bool = True, progress: Progress | None = None,
                  signatures: bool = False, mode: Mode | None = None,
                  normals: np.ndarray | None = None,
-                 weights: np.ndarray | None = None) -> AlphaComplex:
+                 weights: np.ndarray | None = None,
+                 backend: str | None = None) -> AlphaComplex:
     """AlphaComplex of pointset.points (or an (n, d) array), from the cache when possible.
 
     With `signatures`, they are computed too and cached with the table, so that re-opening
     needs no topology pass either. `mode` (default classic) and, for its "given" normals,
     `normals` ((n, d) like the points) choose the alpha mode (core/modes.py). `weights` (or
-    the point set's own `weights`) build a weighted complex.
+    the point set's own `weights`) build a weighted complex. `backend` ("qhull", "gmsh",
+    None = automatic) triangulates; a cached table another backend built is rebuilt.
     """
     points = np.asarray(getattr(pointset, "points", pointset), dtype=np.float64)
     mode = mode or Mode()
     weights = pointset_weights(pointset) if weights is None else weights
     build = mode.build_kwargs(normals) | ({} if weights is None else {"weights": weights})
+    build["backend"] = backend
     if not use_cache:
         ac = AlphaComplex.from_points(points, progress=progress, **build)
         if signatures:
             ac.signatures()
         return ac
     ac = load_cached(points, mode, normals, weights)
+    if ac is not None and backend not in (None, ac.build_info.backend):
+        ac = None  # the same table, but the caller asked for the other backend's build
     if ac is not None:
         if progress is not None:
             progress(1.0, "loaded from cache")

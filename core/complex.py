@@ -93,8 +93,10 @@ class AlphaComplex:
         by the local spacing (distance to the k-th neighbour, `combine`d over a simplex's
         vertices by "mean" or "max"); `anisotropy=tau` in [0, 1) compresses the alpha ball
         along the surface normal, taken from `normals` ((n, d) like the points) or estimated.
-        `backend`: the triangulation backend, "qhull", "gmsh" or None (automatic); what was
-        used is `build_info.backend`.
+        `backend`: the triangulation backend, "qhull", "gmsh" (the optional `fast` extra,
+        used only where its cells are certainly Qhull's; InputError otherwise) or None
+        (automatic: gmsh where installed and certain, else Qhull); what was used is
+        `build_info.backend` (core/backends).
         """
         built = build_complex(points, progress, weights=weights, density=density,
                               combine=combine, anisotropy=anisotropy, normals=normals,

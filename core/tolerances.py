@@ -55,3 +55,9 @@ LOWER_FACET_COS = 1e-12
 #: Largest |coordinate| accepted per dimension: squared distances of points this far apart,
 #: and areas (2D) or volumes (3D) of their cells, stay finite in float64 with room to spare.
 MAX_COORDINATE = {2: 1e150, 3: 1e100}
+
+#: A triangulation from another backend (gmsh) is taken as Qhull's only where every in-sphere
+#: test across a facet and every cell's orientation is decided by more than this share of
+#: its magnitude (the sum of the absolute terms): near-cospherical or flat groups, where
+#: Qhull's own rounding picks one of several triangulations, make the build use Qhull.
+BACKEND_CERTAIN_RTOL = 1e-12

@@ -23,10 +23,18 @@ def test_build_info_records_the_backend(points):
     assert AlphaComplex.from_points(points, backend="qhull").build_info.backend == "qhull"
 
 
-@pytest.mark.parametrize("backend", ["gmsh", "cgal", 3])
+@pytest.mark.parametrize("backend", ["cgal", 3])
 def test_unavailable_or_unknown_backend_is_an_input_error(points, backend):
     with pytest.raises(InputError, match="backend"):
         AlphaComplex.from_points(points, backend=backend)
+
+
+def test_gmsh_backend_without_gmsh_is_an_input_error(points, monkeypatch):
+    import core.backends
+
+    monkeypatch.setattr(core.backends.gmsh_backend, "installed", lambda: False)
+    with pytest.raises(InputError, match="backend 'gmsh' needs the optional gmsh"):
+        AlphaComplex.from_points(points, backend="gmsh")
 
 
 def test_from_points_is_the_pipeline(points):
@@ -74,9 +82,9 @@ def test_info_reports_the_build(tmp_path, monkeypatch, capsys):
     np.savetxt(tmp_path / "p.xyz", np.random.default_rng(3).random((60, 3)))
     assert main(["info", str(tmp_path / "p.xyz"), "--json"]) == 0
     build = json.loads(capsys.readouterr().out)["build"]
-    assert build["backend"] == "qhull" and build["uncertified"] == 0  # certified (issue 14)
-    assert {"exact_predicates", "flips"} <= build.keys()
+    assert (build["backend"], build["backend_note"]) == ("qhull", "")
+    assert build["uncertified"] == 0 and {"exact_predicates", "flips"} <= build.keys()
     assert main(["info", str(tmp_path / "p.xyz")]) == 0
-    assert "build       backend qhull, exact_predicates " in capsys.readouterr().out
+    assert "build       backend qhull, exact predicates " in capsys.readouterr().out
     assert BuildInfo().describe() == ("backend qhull, exact predicates 0, flips 0, "
                                       "uncertified -1")

@@ -1,0 +1,163 @@
+"""Measurements in a real window (run in a fresh process under Xvfb): first open and a soak.
+
+`first_open` opens a file in a new MainWindow with an empty table cache, as a user's first
+open is: file -> slider live (the model has the dataset: the slider moves shapes) -> topology
+done (signatures and optimal alpha; the same moment when the window waits for them). With
+`soak`, the same window then opens and cancels the file 10 times and opens the two files
+alternately 10 times; the process RSS is read after each outcome.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import tempfile
+import time
+
+from isolate import MIB, peak_rss_mib, rss_mib
+
+TIMEOUT_MS = 3_600_000
+CANCELS, REOPENS = 10, 10
+CANCEL_AFTER_S = 2.0  # cancel once the build has run this long (the child is started)
+
+
+def _wait(signal, timeout_ms: int = TIMEOUT_MS) -> tuple:
+    """Run the Qt event loop until signal fires; its arguments (TimeoutError if it never)."""
+    from PySide6.QtCore import QEventLoop, QTimer
+
+    loop, got = QEventLoop(), []
+
+    def done(*args) -> None:
+        got.append(args)
+        loop.quit()
+
+    signal.connect(done)
+    QTimer.singleShot(timeout_ms, loop.quit)
+    loop.exec()
+    signal.disconnect(done)
+    if not got:
+        raise TimeoutError("the window did not answer in time")
+    return got[0]
+
+
+def _spin(ms: int) -> None:
+    """Process Qt events for ms milliseconds."""
+    from PySide6.QtCore import QEventLoop, QTimer
+
+    loop = QEventLoop()
+    QTimer.singleShot(ms, loop.quit)
+    loop.exec()
+
+
+def _window(folder: str):
+    """A shown MainWindow with private settings (the QApplication is made once)."""
+    os.environ["QT_API"] = "pyside6"
+    from PySide6.QtCore import QSettings
+    from PySide6.QtWidgets import QApplication
+
+    from app.main_window import MainWindow
+
+    app = QApplication.instance() or QApplication([])
+    win = MainWindow(QSettings(os.path.join(folder, "settings.ini"),
+                               QSettings.Format.IniFormat))
+    win.resize(1280, 800)
+    win.show()
+    app.processEvents()
+    return win
+
+
+def _topology_signal(win):
+    """The loader's 'topology done' signal when the window hands the dataset over before its
+    topology (issue 15), else None (the dataset comes with it)."""
+    return getattr(win.loader, "topologyReady", None)
+
+
+def _cpu_seconds() -> float:
+    """CPU seconds so far of this process (all threads) and of its waited-for children (the
+    build processes)."""
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return time.process_time() + children.ru_utime + children.ru_stime
+
+
+def _open_timed(win, path: str) -> dict:
+    """Open path; seconds (wall, and CPU of this process and its build process) until the
+    slider is live and until the topology is done."""
+    topology = _topology_signal(win)
+    stamps: dict[str, tuple[float, float]] = {}
+
+    def stamp(name: str) -> None:
+        stamps.setdefault(name, (time.perf_counter(), _cpu_seconds()))
+
+    if topology is not None:
+        topology.connect(lambda *_: stamp("topology"))
+    stamp("start")
+    win.open_path(path)
+    _wait(win.model.datasetChanged)
+    stamp("live")
+    _spin(0)  # the first frame is requested; let the event loop run once
+    if topology is not None and "topology" not in stamps:
+        _wait(topology)
+    ds = win.model.dataset
+    info = getattr(ds.ac, "build_info", None)
+    (start, start_cpu), (live, live_cpu) = stamps["start"], stamps["live"]
+    done, done_cpu = stamps.get("topology", stamps["live"])
+    return {"live_seconds": live - start, "live_cpu_seconds": live_cpu - start_cpu,
+            "topology_seconds": done - start, "topology_cpu_seconds": done_cpu - start_cpu,
+            "backend": getattr(info, "backend", "qhull"),
+            "cells": len(ds.ac.simplices(ds.ac.dim)), "points": len(ds.ac.points)}
+
+
+def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool) -> dict:
+    """First open of points_path in a new window (empty cache): times, peaks, and with
+    `soak` the RSS after cancelled opens of cancel_path and re-opens of points_path /
+    other_path."""
+    from app import memory
+
+    with tempfile.TemporaryDirectory(prefix="alphascoop-first-open-") as folder:
+        os.environ["ALPHASCOOP_CACHE_DIR"] = os.path.join(folder, "cache")
+        win = _window(folder)
+        base = rss_mib()
+        result = _open_timed(win, points_path)
+        _spin(200)  # the deferred give-back runs
+        result.update(base_rss_mib=base, rss_after_mib=rss_mib(), peak_mib=peak_rss_mib(),
+                      child_peak_mib=memory.peak_rss_bytes(children=True) / MIB)
+        if soak:
+            result["soak"] = _soak(win, points_path, other_path, cancel_path)
+        win.close()
+    return result
+
+
+def _soak(win, first: str, second: str, cancel: str) -> dict:
+    """Open/cancel `cancel` CANCELS times (its build never finishes, so each one starts the
+    build process), then REOPENS alternate opens (second first); RSS in MiB
+    after each, the seconds of each re-open, and the old datasets still alive at the end."""
+    import gc
+    import multiprocessing
+    import weakref
+
+    cancelled, reopened, seconds, alive = [], [], [], []
+    for _ in range(CANCELS):
+        win.open_path(cancel)
+        _spin(int(CANCEL_AFTER_S * 1000))
+        win.loader.cancel()
+        while win.loader.is_busy():
+            _spin(50)
+        _spin(200)
+        cancelled.append(rss_mib())
+    left = len(multiprocessing.active_children())
+    for i in range(REOPENS):
+        start = time.perf_counter()
+        win.open_path(second if i % 2 == 0 else first)
+        _wait(win.model.datasetChanged)
+        seconds.append(time.perf_counter() - start)
+        topology = _topology_signal(win)
+        while topology is not None and win.loader.is_busy():
+            _spin(50)
+        _spin(200)
+        alive.append(weakref.ref(win.model.dataset))
+        reopened.append(rss_mib())
+    gc.collect()
+    return {"after_cancel_mib": cancelled, "after_open_mib": reopened, "open_seconds": seconds,
+            "build_processes_left": left,
+            "old_datasets_alive": sum(ref() is not None for ref in alive[:-1]),
+            "peak_mib": peak_rss_mib()}

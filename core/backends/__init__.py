@@ -1,0 +1,80 @@
+"""Triangulation backends: Qhull (scipy, always there) and gmsh (optional, faster).
+
+`delaunay(points, backend)` returns Qhull's Delaunay triangulation, made by gmsh where gmsh
+is installed and its result is certainly the same cells (core.backends.certify), else by
+Qhull; which one did it is returned beside it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..delaunay import Triangulation, triangulate
+from ..errors import InputError
+from . import gmsh as gmsh_backend
+from .certify import why_not_delaunay
+from .restore import restored
+
+BACKENDS = ("qhull", "gmsh")
+
+#: Below this many points the automatic choice is Qhull: it is as fast there.
+GMSH_FROM_POINTS = 20_000
+
+
+@dataclass(frozen=True)
+class Choice:
+    """Which backend made a triangulation, and why gmsh was not used where it was asked."""
+
+    backend: str  # "qhull" | "gmsh"
+    note: str = ""  # "" or why the automatic choice fell back to Qhull
+
+
+def check_backend(backend: object) -> str | None:
+    """`backend` validated: "qhull", "gmsh" or None (automatic); InputError otherwise, and
+    for "gmsh" when the optional package is missing."""
+    if backend is None:
+        return None
+    if backend not in BACKENDS:
+        raise InputError(f"backend must be one of {', '.join(BACKENDS)} or None (automatic), "
+                         f"not {backend!r}")
+    if backend == "gmsh" and not gmsh_backend.installed():
+        raise InputError("backend 'gmsh' needs the optional gmsh package (GPL): "
+                         "pip install 'alphascoop[fast]', or use backend='qhull'")
+    return str(backend)
+
+
+def _by_gmsh(points: np.ndarray) -> Triangulation | str:
+    """gmsh's triangulation completed and certified, or the reason it cannot be used."""
+    cells = gmsh_backend.gmsh_cells(points)
+    if not len(cells):
+        return "gmsh found no cell (too few points?)"
+    cells, nbrs, manifold = restored(points, cells)
+    if not manifold:
+        return "a facet is in three cells"
+    reason = why_not_delaunay(points, cells, nbrs)
+    if reason:
+        return reason
+    vertex_of_point = np.arange(len(points), dtype=np.int64)
+    return Triangulation(cells, nbrs, vertex_of_point, vertex_of_point.copy())
+
+
+def delaunay(points: np.ndarray, backend: str | None = None) -> tuple[Triangulation, Choice]:
+    """The Delaunay triangulation of (m, d) distinct, well-scaled points by `backend`
+    ("qhull", "gmsh" or None = gmsh where installed and m >= GMSH_FROM_POINTS).
+
+    gmsh is used only when its cells are certainly Qhull's; otherwise the automatic choice
+    falls back to Qhull (the reason in Choice.note) and a forced "gmsh" is an InputError.
+    """
+    backend = check_backend(backend)
+    auto = backend is None and gmsh_backend.installed() and len(points) >= GMSH_FROM_POINTS
+    if backend == "gmsh" or auto:
+        tri = _by_gmsh(points)
+        if isinstance(tri, Triangulation):
+            return tri, Choice("gmsh")
+        if backend == "gmsh":
+            raise InputError(f"the gmsh backend cannot promise Qhull's exact triangulation "
+                             f"of these points ({tri}); use backend='qhull' or None")
+        return triangulate(points), Choice("qhull", f"gmsh not used: {tri}")
+    return triangulate(points), Choice("qhull")

@@ -1,0 +1,162 @@
+"""Is a set of cells THE Delaunay triangulation (the one Qhull returns)? Checked, never assumed.
+
+A set of cells is the Delaunay triangulation of the points when it is a triangulation of
+their convex hull (every point a vertex, every cell properly oriented, the two cells of every
+inner facet on opposite sides, the outer facets exactly the hull's) and every inner facet is
+locally Delaunay (the Delaunay lemma). Each sign is accepted only when it exceeds a margin
+relative to the magnitude of its terms (tolerances.BACKEND_CERTAIN_RTOL), so the triangulation
+is also unique: Qhull, whatever its rounding, returns the same cells.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import ConvexHull, QhullError
+
+from ..geometry import CHUNK
+from ..parallel import halves
+from ..tolerances import BACKEND_CERTAIN_RTOL
+
+
+def _orient(cols: list[np.ndarray], cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """det[v1 - v0, ..., vd - v0] of (n, d+1) cells and the same sum of absolute terms,
+    from the points' coordinate columns `cols`."""
+    rel = [[np.take(col, cells[:, k]) - np.take(col, cells[:, 0]) for col in cols]
+           for k in range(1, cells.shape[1])]
+    if len(cols) == 2:
+        (bx, by), (cx, cy) = rel
+        return bx * cy - by * cx, np.abs(bx * cy) + np.abs(by * cx)
+    (bx, by, bz), (cx, cy, cz), (dx, dy, dz) = rel
+    det = bx * (cy * dz - cz * dy) - by * (cx * dz - cz * dx) + bz * (cx * dy - cy * dx)
+    perm = (np.abs(bx) * (np.abs(cy * dz) + np.abs(cz * dy))
+            + np.abs(by) * (np.abs(cx * dz) + np.abs(cz * dx))
+            + np.abs(bz) * (np.abs(cx * dy) + np.abs(cy * dx)))
+    return det, perm
+
+
+def _lifted(cols: list[np.ndarray], cells: np.ndarray, query: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """The in-sphere determinant of each query point against its (n, d+1) cell (Shewchuk's
+    incircle/insphere layout, relative to the query point) and its sum of absolute terms."""
+    q = [np.take(col, query) for col in cols]
+    rel = [[np.take(col, cells[:, k]) - qc for col, qc in zip(cols, q, strict=True)]
+           for k in range(cells.shape[1])]
+    lift = [sum(c * c for c in r) for r in rel]
+    if len(cols) == 2:
+        (ax, ay), (bx, by), (cx, cy) = rel
+        minors = ((bx * cy, cx * by), (cx * ay, ax * cy), (ax * by, bx * ay))
+        det = sum(w * (u - v) for w, (u, v) in zip(lift, minors, strict=True))
+        perm = sum(w * (np.abs(u) + np.abs(v)) for w, (u, v) in zip(lift, minors, strict=True))
+        return det, perm
+    (ax, ay, az), (bx, by, bz), (cx, cy, cz), (dx, dy, dz) = rel
+    minor = {}
+    for name, (ux, uy), (vx, vy) in (("ab", (ax, ay), (bx, by)), ("bc", (bx, by), (cx, cy)),
+                                     ("cd", (cx, cy), (dx, dy)), ("da", (dx, dy), (ax, ay)),
+                                     ("ac", (ax, ay), (cx, cy)), ("bd", (bx, by), (dx, dy))):
+        u, v = ux * vy, vx * uy
+        minor[name] = (u - v, np.abs(u) + np.abs(v))
+    det = {k: v[0] for k, v in minor.items()}
+    perm = {k: v[1] for k, v in minor.items()}
+    abc = az * det["bc"] - bz * det["ac"] + cz * det["ab"]
+    bcd = bz * det["cd"] - cz * det["bd"] + dz * det["bc"]
+    cda = cz * det["da"] + dz * det["ac"] + az * det["cd"]
+    dab = dz * det["ab"] + az * det["bd"] + bz * det["da"]
+    az, bz, cz, dz = np.abs(az), np.abs(bz), np.abs(cz), np.abs(dz)
+    abc_p = az * perm["bc"] + bz * perm["ac"] + cz * perm["ab"]
+    bcd_p = bz * perm["cd"] + cz * perm["bd"] + dz * perm["bc"]
+    cda_p = cz * perm["da"] + dz * perm["ac"] + az * perm["cd"]
+    dab_p = dz * perm["ab"] + az * perm["bd"] + bz * perm["da"]
+    a, b, c, d = lift
+    return ((d * abc - c * dab) + (b * cda - a * bcd),
+            d * abc_p + c * dab_p + b * cda_p + a * bcd_p)
+
+
+def _columns(points: np.ndarray) -> list[np.ndarray]:
+    return [np.ascontiguousarray(points[:, k]) for k in range(points.shape[1])]
+
+
+def orientations(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """(t,) int8 sign of det[v1 - v0, ..., vd - v0] of every cell, 0 = not certain."""
+    cols = _columns(points)
+    sign = np.empty(len(cells), dtype=np.int8)
+
+    def part(start: int, stop: int) -> None:
+        for lo in range(start, stop, CHUNK):
+            det, perm = _orient(cols, cells[lo:min(lo + CHUNK, stop)])
+            sign[lo:lo + len(det)] = np.where(np.abs(det) > BACKEND_CERTAIN_RTOL * perm,
+                                              np.sign(det), 0)
+    halves(part, len(cells))
+    return sign
+
+
+def in_sphere(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
+              orientation: np.ndarray) -> np.ndarray:
+    """(n,) int8: +1 where point query[i] is certainly outside the circumsphere of cells[i],
+    -1 certainly inside, 0 undecided (within the margin); `orientation` (n,) is the sign of
+    each cell (orientations)."""
+    cols = _columns(points)
+    out = np.empty(len(cells), dtype=np.int8)
+
+    def part(start: int, stop: int) -> None:
+        for lo in range(start, stop, CHUNK):
+            hi = min(lo + CHUNK, stop)
+            det, perm = _lifted(cols, cells[lo:hi], query[lo:hi])
+            # Shewchuk's incircle is > 0 inside a triangle with det > 0; his insphere is > 0
+            # inside a tetrahedron with det[v1 - v0, v2 - v0, v3 - v0] < 0
+            side = np.sign(det) * orientation[lo:hi] * (1 if len(cols) == 3 else -1)
+            out[lo:hi] = np.where(np.abs(det) > BACKEND_CERTAIN_RTOL * perm, side, 0)
+    halves(part, len(cells))
+    return out
+
+
+def _inner_pairs(neighbors: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Each inner facet once: cell t, its vertex i opposite the facet, the cell u across
+    and u's vertex j opposite it (neighbour tables are symmetric by construction)."""
+    t, i = np.nonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
+    u = neighbors[t, i]
+    j = np.argmax(neighbors[u] == t[:, None].astype(np.int32), axis=1)
+    return t, i, u, j
+
+
+def _outer_facets_are_hull(points: np.ndarray, cells: np.ndarray,
+                           neighbors: np.ndarray) -> bool:
+    """The facets with no cell across are exactly the (triangulated) convex hull facets of
+    their own vertices, i.e. the union of the cells is convex."""
+    t, i = np.nonzero(neighbors < 0)
+    width = cells.shape[1]
+    columns = np.array([[j for j in range(width) if j != k] for k in range(width)])
+    outer = np.take_along_axis(cells[t], columns[i], axis=1)
+    corners = np.unique(outer)
+    if len(corners) < width:
+        return False
+    try:
+        hull = ConvexHull(points[corners])
+    except (QhullError, ValueError):
+        return False
+    facets = np.sort(corners[hull.simplices], axis=1)
+    if len(facets) != len(outer):
+        return False
+    return bool(np.array_equal(np.unique(facets, axis=0), np.unique(outer, axis=0)))
+
+
+def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray) -> str:
+    """"" when (t, d+1) ascending `cells` with their neighbour table are certainly the unique
+    Delaunay triangulation of all (m, d) `points`; else the first reason found."""
+    used = np.zeros(len(points), dtype=bool)
+    used[cells.ravel()] = True
+    if not used.all():
+        return f"{int(np.count_nonzero(~used))} points are in no cell"
+    sign = orientations(points, cells)
+    if not sign.all():
+        return f"{int(np.count_nonzero(sign == 0))} cells are (nearly) flat"
+    t, i, u, j = _inner_pairs(neighbors)
+    same_side = ((i + j) % 2 == 1) == (sign[t] != sign[u])
+    if same_side.any():
+        return f"{int(np.count_nonzero(same_side))} pairs of cells overlap"
+    if not _outer_facets_are_hull(points, cells, neighbors):
+        return "the outer facets are not the convex hull"
+    side = in_sphere(points, cells[t], cells[u, j], sign[t])
+    if (side <= 0).any():
+        return (f"{int(np.count_nonzero(side <= 0))} facets are not certainly Delaunay "
+                "(near-cospherical points)")
+    return ""

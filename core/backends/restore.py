@@ -1,0 +1,109 @@
+"""The cells gmsh leaves out near the convex hull, found again exactly.
+
+gmsh's tetrahedralize/triangulate returns a subset of the Delaunay cells: it drops those whose
+circumsphere reaches its internal bounding box. Every dropped cell has all its vertices on the
+boundary of gmsh's union of cells, so it is a cell of the Delaunay triangulation of those
+boundary vertices, on the outer side of gmsh's boundary. The result is checked afterwards
+(core.backends.certify: every inner facet locally Delaunay, the outer facets the hull), so a
+case this reasoning misses makes the build use Qhull instead; it cannot pass.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import Delaunay, QhullError
+
+from ..delaunay import sort_rows
+from .facets import neighbours
+
+
+def _row_of(rows: np.ndarray, table: np.ndarray) -> np.ndarray:
+    """(n,) int64: the index in (p, k) `table` of each of the (n, k) int rows, -1 where it
+    is none (for the small arrays near the hull)."""
+    _, ids = np.unique(np.concatenate((table, rows)), axis=0, return_inverse=True)
+    ids = ids.ravel()
+    where = np.full(int(ids.max()) + 1, -1, dtype=np.int64)
+    where[ids[:len(table)]] = np.arange(len(table))
+    return where[ids[len(table):]]
+
+
+def _side(points: np.ndarray, facets: np.ndarray, apex: np.ndarray) -> np.ndarray:
+    """(n,) float64 whose sign tells on which side of each (n, d) facet its apex lies."""
+    base = points[facets[:, 0]]
+    rows = [points[facets[:, k]] - base for k in range(1, facets.shape[1])]
+    return np.linalg.det(np.stack([*rows, points[apex] - base], axis=1))
+
+
+def _boundary_facets(cells: np.ndarray, nbrs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(b, d) ascending rows: the facets with no cell across, and (b,) the vertex of the
+    cell behind each (on the inner side)."""
+    t, i = np.nonzero(nbrs < 0)
+    keep = np.arange(cells.shape[1])[None, :] != i[:, None]
+    return cells[t][keep].reshape(len(t), -1), cells[t, i]
+
+
+def _missing(points: np.ndarray, cells: np.ndarray, outer: np.ndarray,
+             behind: np.ndarray) -> np.ndarray:
+    """(k, d+1) ascending cells of the Delaunay triangulation of the vertices of the
+    `outer` facets that lie outside gmsh's union of `cells`: those on the far side of an
+    outer facet from its vertex `behind`, and those reached from them without crossing
+    another outer facet (a flood over that small triangulation)."""
+    width = cells.shape[1]
+    corners = np.unique(outer)
+    try:
+        local = Delaunay(points[corners])
+    except (QhullError, ValueError):
+        return np.empty((0, width), dtype=np.int32)
+    simplices = np.ascontiguousarray(corners[local.simplices], dtype=np.int32)
+    around = np.ascontiguousarray(local.neighbors, dtype=np.int32)
+    sort_rows(simplices, around)
+    on_corners = np.zeros(len(points), dtype=bool)
+    on_corners[corners] = True
+    inside = _row_of(simplices, cells[on_corners[cells].all(axis=1)]) >= 0
+    keep = np.arange(width)[None, :] != np.arange(width)[:, None]
+    faces = simplices[:, None, :].repeat(width, axis=1)[:, keep].reshape(-1, width - 1)
+    wall = _row_of(faces, outer)
+    at = np.flatnonzero(wall >= 0)
+    apex = simplices.ravel()[at]  # face k of a cell is opposite its vertex k
+    beyond = np.sign(_side(points, faces[at], apex)) * np.sign(
+        _side(points, faces[at], behind[wall[at]])) < 0
+    reached = np.zeros(len(simplices), dtype=bool)
+    reached[at[beyond] // width] = True
+    reached &= ~inside
+    wall = (wall >= 0).reshape(len(simplices), width)
+    frontier = np.flatnonzero(reached)
+    while len(frontier):
+        step = np.where(wall[frontier], -1, around[frontier]).ravel()
+        step = np.unique(step[step >= 0])
+        frontier = step[~reached[step] & ~inside[step]]
+        reached[frontier] = True
+    return simplices[reached]
+
+
+def _joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray,
+            extra: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+    """`cells` + `extra` and their neighbours: only the cells that can share a facet with
+    an extra cell (d vertices among the extra cells' vertices) are matched again."""
+    d = cells.shape[1] - 1
+    touched = np.zeros(len(points), dtype=bool)
+    touched[extra] = True
+    near = np.flatnonzero(np.count_nonzero(touched[cells], axis=1) >= d)
+    local, manifold = neighbours(np.concatenate((cells[near], extra)), len(points))
+    ids = np.concatenate((near, len(cells) + np.arange(len(extra)))).astype(np.int32)
+    local = np.where(local >= 0, ids[np.maximum(local, 0)], -1)
+    joined = np.concatenate((nbrs, local[len(near):]))
+    joined[near] = np.where(local[:len(near)] >= 0, local[:len(near)], nbrs[near])
+    return np.concatenate((cells, extra)), joined.astype(np.int32), manifold
+
+
+def restored(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+    """gmsh's (t, d+1) ascending `cells` plus the Delaunay cells it dropped near the hull,
+    their neighbour table ((t', d+1) int32, -1 = none), and whether every facet is in at
+    most two cells."""
+    nbrs, manifold = neighbours(cells, len(points))
+    if not manifold:
+        return cells, nbrs, False
+    extra = _missing(points, cells, *_boundary_facets(cells, nbrs))
+    if not len(extra):
+        return cells, nbrs, True
+    return _joined(points, cells, nbrs, extra)

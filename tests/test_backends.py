@@ -1,0 +1,234 @@
+"""Triangulation backends (core.backends): gmsh's cells, completed near the hull, are exactly
+Qhull's simplex for simplex, or the build falls back to Qhull (automatic) or refuses (forced)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from reference import data_dir, read_scan
+
+import core.backends as backends
+from benchmarks.datasets import noisy_torus
+from core.backends.certify import why_not_delaunay
+from core.backends.facets import neighbours
+from core.delaunay import triangulate
+from core.errors import InputError
+from core.points import check_spread, merge_duplicates, spatial_order
+
+needs_gmsh = pytest.mark.skipif(not backends.gmsh_backend.installed(),
+                                reason="the optional gmsh package is not installed")
+
+
+def prepared(raw: np.ndarray) -> np.ndarray:
+    """Points as the build hands them to a backend: distinct, planar 3D in 2D, spatially
+    ordered, centred and scaled by a power of two."""
+    unique, _ = merge_duplicates(np.asarray(raw, dtype=np.float64))
+    frame = check_spread(unique)
+    coords = unique if frame is None else (unique - frame.origin) @ frame.basis.T
+    coords = coords[spatial_order(coords)]
+    coords = coords - 0.5 * (coords.min(axis=0) + coords.max(axis=0))
+    return coords / 2.0 ** np.floor(np.log2(np.abs(coords).max()))
+
+
+def cell_set(cells: np.ndarray) -> np.ndarray:
+    """Rows sorted lexicographically (cells' rows are ascending already)."""
+    return cells[np.lexsort(cells.T[::-1])]
+
+
+def assert_same_as_qhull(points: np.ndarray) -> None:
+    tri, choice = backends.delaunay(points, "gmsh")
+    ref = triangulate(points)
+    assert choice == backends.Choice("gmsh")
+    assert np.array_equal(cell_set(tri.cells), cell_set(ref.cells))
+    assert np.array_equal(tri.vertex_of_point, ref.vertex_of_point)
+    assert np.array_equal(tri.kept, ref.kept)
+    # the same cell across the same facet: map our cells to Qhull's rows
+    ours, theirs = np.lexsort(tri.cells.T[::-1]), np.lexsort(ref.cells.T[::-1])
+    row = np.empty(len(ours), dtype=np.int64)
+    row[ours] = theirs
+    across = np.where(tri.neighbors >= 0, row[np.maximum(tri.neighbors, 0)], -1)
+    assert np.array_equal(ref.neighbors[row], across)
+
+
+def clustered(rng: np.random.Generator, n: int, d: int) -> np.ndarray:
+    centres = rng.uniform(size=(8, d))
+    return np.concatenate([rng.normal(c, 0.01, size=(n // 8, d)) for c in centres])
+
+
+CASES = {
+    "uniform 3D": lambda rng: rng.uniform(size=(4000, 3)),
+    "clustered 3D": lambda rng: clustered(rng, 4000, 3),
+    "noisy torus 3D": lambda rng: noisy_torus(5000, 3),
+    "uniform 2D": lambda rng: rng.uniform(size=(6000, 2)),
+    "clustered 2D": lambda rng: clustered(rng, 6000, 2),
+    "noisy circle 2D": lambda rng: np.column_stack(
+        (np.cos(t := rng.uniform(0, 2 * np.pi, 5000)), np.sin(t))) * rng.normal(1, 0.003,
+                                                                              (5000, 1)),
+    "planar in 3D": lambda rng: np.column_stack(
+        (rng.uniform(size=(3000, 2)), np.zeros(3000))) @ np.linalg.qr(
+            rng.normal(size=(3, 3)))[0],
+}
+
+
+@needs_gmsh
+@pytest.mark.parametrize("name", list(CASES))
+def test_gmsh_equals_qhull(name: str) -> None:
+    assert_same_as_qhull(prepared(CASES[name](np.random.default_rng(7))))
+
+
+@needs_gmsh
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["bunny.ply", "bunny_dupverts.stl", "autzen_trim.las"])
+def test_gmsh_equals_qhull_on_real_scans(name: str) -> None:
+    folder = data_dir()
+    if folder is None or not (folder / name).exists():
+        pytest.skip("shared real scans are absent")
+    assert_same_as_qhull(prepared(read_scan(folder / name)))
+
+
+def lattice(n: int, d: int) -> np.ndarray:
+    return np.stack(np.meshgrid(*[np.arange(float(n))] * d), axis=-1).reshape(-1, d)
+
+
+def on_sphere(rng: np.random.Generator, n: int, d: int) -> np.ndarray:
+    p = rng.normal(size=(n, d))
+    return p / np.linalg.norm(p, axis=1)[:, None]
+
+
+DEGENERATE = {
+    "lattice 3D": lambda rng: lattice(7, 3),
+    "lattice 2D": lambda rng: lattice(25, 2),
+    "cospherical": lambda rng: on_sphere(rng, 300, 3),
+    "cocircular": lambda rng: on_sphere(rng, 60, 2),
+    "near duplicates": lambda rng: np.concatenate(
+        (p := rng.uniform(size=(2000, 3)), p[:1] + 1e-13)),
+    "integer grid": lambda rng: rng.integers(0, 40, size=(4000, 3)).astype(float),
+    "cube with corners": lambda rng: np.concatenate((rng.uniform(size=(2000, 3)),
+                                                     lattice(2, 3))),
+}
+
+
+@needs_gmsh
+@pytest.mark.parametrize("name", list(DEGENERATE))
+def test_degenerate_input_falls_back_to_qhull(name: str, monkeypatch) -> None:
+    points = prepared(DEGENERATE[name](np.random.default_rng(3)))
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 0)
+    tri, choice = backends.delaunay(points)
+    assert choice.backend == "qhull" and choice.note.startswith("gmsh not used: ")
+    ref = triangulate(points)
+    assert np.array_equal(tri.cells, ref.cells) and np.array_equal(tri.neighbors, ref.neighbors)
+    with pytest.raises(InputError, match="cannot promise Qhull's exact triangulation"):
+        backends.delaunay(points, "gmsh")
+
+
+@needs_gmsh
+@pytest.mark.parametrize("shape", [(5, 3), (6, 3), (8, 3), (4, 2), (5, 2)])
+def test_tiny_sets_never_differ(shape: tuple[int, int], monkeypatch) -> None:
+    """gmsh finds no cell for some tiny sets, or leaves a point out: Qhull then."""
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 0)
+    for seed in range(10):
+        points = prepared(np.random.default_rng(seed).uniform(size=shape))
+        tri, choice = backends.delaunay(points)
+        assert np.array_equal(cell_set(tri.cells), cell_set(triangulate(points).cells))
+        assert (choice.backend == "gmsh") == (choice.note == "")
+
+
+@needs_gmsh
+def test_automatic_choice_uses_gmsh_from_a_size_on(monkeypatch) -> None:
+    points = prepared(np.random.default_rng(1).uniform(size=(3000, 3)))
+    assert backends.delaunay(points)[1] == backends.Choice("qhull")
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 3000)
+    assert backends.delaunay(points)[1] == backends.Choice("gmsh")
+    assert backends.delaunay(points, "qhull")[1] == backends.Choice("qhull")
+
+
+def test_backend_names_are_checked(monkeypatch) -> None:
+    points = prepared(np.random.default_rng(1).uniform(size=(50, 3)))
+    with pytest.raises(InputError, match="backend must be one of qhull, gmsh"):
+        backends.delaunay(points, "cgal")
+    monkeypatch.setattr(backends.gmsh_backend, "installed", lambda: False)
+    with pytest.raises(InputError, match=r"alphascoop\[fast\]"):
+        backends.delaunay(points, "gmsh")
+    assert backends.delaunay(points)[1] == backends.Choice("qhull")
+
+
+@pytest.mark.parametrize("d", [2, 3])
+@pytest.mark.parametrize("n_points", [None, 3_000_000])
+def test_neighbours_from_cells_equal_qhulls(d: int, n_points: int | None) -> None:
+    """Both key layouts (one packed uint64; a lexsort where m**d does not fit)."""
+    points = prepared(np.random.default_rng(d).uniform(size=(2000, d)))
+    ref = triangulate(points)
+    got, manifold = neighbours(ref.cells, n_points or len(points))
+    assert manifold and np.array_equal(got, ref.neighbors)
+
+
+def test_neighbours_report_a_facet_in_three_cells() -> None:
+    cells = np.array([[0, 1, 2], [0, 1, 3], [0, 1, 4]], dtype=np.int32)
+    assert not neighbours(cells, 5)[1]
+
+
+def test_certify_accepts_delaunay_and_rejects_the_rest() -> None:
+    rng = np.random.default_rng(5)
+    points = prepared(rng.uniform(size=(500, 3)))
+    ref = triangulate(points)
+    assert why_not_delaunay(points, ref.cells, ref.neighbors) == ""
+    # a hull cell missing: the outer facets are no longer the hull (or a point is lost)
+    hull_cell = int(np.flatnonzero((ref.neighbors < 0).any(axis=1))[0])
+    keep = np.arange(len(ref.cells)) != hull_cell
+    cells = ref.cells[keep]
+    nbrs, _ = neighbours(cells, len(points))
+    assert why_not_delaunay(points, cells, nbrs) != ""
+
+
+def test_certify_rejects_a_flipped_edge() -> None:
+    """Four points where only one diagonal is Delaunay; the other is caught."""
+    points = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.1]])
+    good = np.array([[0, 1, 2], [1, 2, 3]], dtype=np.int32)
+    bad = np.array([[0, 1, 3], [0, 2, 3]], dtype=np.int32)
+    assert why_not_delaunay(points, good, neighbours(good, 4)[0]) == ""
+    assert "not certainly Delaunay" in why_not_delaunay(points, bad, neighbours(bad, 4)[0])
+
+
+def assert_same_table(a, b) -> None:
+    """Every array of the two complexes equal bit for bit."""
+    assert a.counts() == b.counts()
+    assert np.array_equal(a.points, b.points) and np.array_equal(a.input_index, b.input_index)
+    for k in range(a.dim + 1):
+        assert np.array_equal(a.simplices(k), b.simplices(k))
+        assert np.array_equal(a.intervals(k), b.intervals(k))
+        if k:
+            assert np.array_equal(a.face_ids(k), b.face_ids(k))
+    assert np.array_equal(a.facet_cells(), b.facet_cells())
+    assert np.array_equal(a.cell_measures(), b.cell_measures())
+
+
+@needs_gmsh
+@pytest.mark.parametrize("name", ["uniform 3D", "noisy torus 3D", "uniform 2D", "planar in 3D"])
+def test_tables_equal_bit_for_bit_between_backends(name: str) -> None:
+    from core import AlphaComplex
+
+    points = CASES[name](np.random.default_rng(11)) * 37.5 + 4.0
+    by_gmsh = AlphaComplex.from_points(points, backend="gmsh")
+    by_qhull = AlphaComplex.from_points(points, backend="qhull")
+    assert by_gmsh.build_info.backend == "gmsh" and by_qhull.build_info.backend == "qhull"
+    assert_same_table(by_gmsh, by_qhull)
+    assert by_gmsh.betti(alpha=float(np.median(by_gmsh.spectrum()))) == by_qhull.betti(
+        alpha=float(np.median(by_qhull.spectrum())))
+
+
+@needs_gmsh
+def test_build_records_the_automatic_choice(monkeypatch) -> None:
+    from core import AlphaComplex
+
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 100)
+    rng = np.random.default_rng(2)
+    info = AlphaComplex.from_points(rng.uniform(size=(500, 3))).build_info
+    assert (info.backend, info.backend_note) == ("gmsh", "")
+    info = AlphaComplex.from_points(lattice(6, 3)).build_info
+    assert info.backend == "qhull" and info.backend_note.startswith("gmsh not used: ")
+    weighted = AlphaComplex.from_points(rng.uniform(size=(500, 3)),
+                                        weights=rng.uniform(0, 1e-3, 500))
+    assert weighted.build_info.backend == "qhull"
+    with pytest.raises(InputError, match="Delaunay triangulations only"):
+        AlphaComplex.from_points(rng.uniform(size=(500, 3)), weights=rng.uniform(0, 1e-3, 500),
+                                 backend="gmsh")

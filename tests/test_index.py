@@ -1,0 +1,71 @@
+"""The public TableIndex (core/index.py): frozen, read-only, and facets it orients face out
+of their cell (checked against the cells' geometry, not against our own orientation code)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import core.topology
+from core import AlphaComplex
+from core.index import TableIndex, oriented_facets
+
+
+@pytest.fixture(scope="module", params=[2, 3])
+def ac(request) -> AlphaComplex:
+    dim = request.param
+    return AlphaComplex.from_points(np.random.default_rng(dim).random((150, dim)))
+
+
+def test_the_index_is_frozen_and_its_arrays_read_only(ac):
+    index = ac.index
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        index.table = None
+    arrays = [index.oriented_facets, index.facet_cell0, *index.facets_by_interior,
+              index.cumulative_measure, index.spectrum(), index.facet_cells()]
+    for k in range(ac.dim + 1):
+        arrays += [index.simplices(k), index.intervals(k)]
+    assert not any(arr.flags.writeable for arr in arrays)
+
+
+def test_oriented_facets_face_out_of_their_cell(ac):
+    index, dim = ac.index, ac.dim
+    cells = index.simplices(dim)
+    rows = oriented_facets(index.simplices(dim - 1), index.table.facet_flip)
+    for side in (0, 1):
+        cell = index.facet_cells()[:, side]
+        real = cell >= 0
+        facets = rows[side::2][real]
+        corners = ac.points[facets]
+        opposite = ac.points[[next(iter(set(c) - set(f))) for c, f in
+                              zip(cells[cell[real]].tolist(), facets.tolist(), strict=True)]]
+        if dim == 3:  # the normal (b-a)x(c-a) points away from the cell's fourth vertex
+            normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+            side_of = np.einsum("ij,ij->i", normal, opposite - corners[:, 0])
+            assert np.all(side_of < 0)
+        else:  # the cell lies left of a->b
+            edge, to_third = corners[:, 1] - corners[:, 0], opposite - corners[:, 0]
+            assert np.all(edge[:, 0] * to_third[:, 1] - edge[:, 1] * to_third[:, 0] > 0)
+
+
+def test_a_known_spectrum_is_used_as_given(ac):
+    spectrum = np.array(ac.spectrum())
+    index = TableIndex(ac.index.table, weighted=False, known_spectrum=spectrum)
+    assert index.spectrum() is spectrum and not spectrum.flags.writeable
+
+
+def test_signatures_are_explicit_and_come_back_with_a_saved_table(ac, tmp_path, monkeypatch):
+    fresh = AlphaComplex.from_points(ac.points)
+    assert not fresh.has_signatures
+    fresh.signatures()
+    assert fresh.has_signatures
+    fresh.save(tmp_path / "t.npz")
+    monkeypatch.setattr(core.topology, "build_topology",
+                        lambda _: pytest.fail("saved topology was recomputed"))
+    loaded = AlphaComplex.load(tmp_path / "t.npz")
+    assert loaded.has_signatures
+    last = float(fresh.spectrum()[-1])
+    assert loaded.betti(alpha=last) == fresh.betti(alpha=last)
+    np.testing.assert_array_equal(loaded.signatures().betti, fresh.signatures().betti)
