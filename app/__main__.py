@@ -33,7 +33,7 @@ def parse_size(text: str) -> tuple[int, int]:
     return width, height
 
 
-def build_parser() -> argparse.ArgumentParser:
+def window_parser() -> argparse.ArgumentParser:
     """The window's command line: [FILE] [--alpha R | --optimal] [--columns A,B[,C]]
     [--subsample N] [--screenshot OUT] [--size WxH]."""
     parser = argparse.ArgumentParser(
@@ -79,7 +79,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     if args_list and args_list[0] in SUBCOMMANDS:
         return run_subcommand(args_list)
-    parser = build_parser()
+    parser = window_parser()
     try:
         args = parser.parse_args(args_list)
         try:

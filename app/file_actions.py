@@ -1,4 +1,7 @@
-"""File dialogs and writers behind the File menu: open, export shape/table, save screenshot."""
+"""File dialogs and the writers behind the File menu: open, export shape/table, screenshot.
+
+Each writer returns the line that says what it wrote; app.menus runs it and shows that line.
+"""
 
 from __future__ import annotations
 
@@ -7,10 +10,13 @@ from pathlib import Path
 
 from PySide6.QtWidgets import QFileDialog, QWidget
 
+from app.jobs import Progress
+from app.scene import Scene
 from app.settings import Preferences
-from core.atomic import atomic_path
+from core import AlphaComplex
 from core.complex import at_value
 from core.export import write_shape, write_table
+from core.georef import Georef
 from core.io import READ_FORMATS
 
 
@@ -53,8 +59,9 @@ def ask_save_path(parent: QWidget, prefs: Preferences, title: str, formats: dict
     return path
 
 
-def export_shape(ac, alpha: float, path: Path, progress=None, source: Path | None = None,
-                 georef=None, manifold: bool = True) -> str:
+def write_shape_file(ac: AlphaComplex, alpha: float, path: Path,
+                     progress: Progress | None = None, source: Path | None = None,
+                     georef: Georef | None = None, manifold: bool = True) -> str:
     """Write the shape at alpha to path with core.export (never over `source`, the points'
     file; back in longitude/latitude when the points were read from them: `georef`; 3D
     surfaces split to a 2-manifold unless `manifold` is False); returns what was written.
@@ -65,14 +72,14 @@ def export_shape(ac, alpha: float, path: Path, progress=None, source: Path | Non
                        source=source, georef=georef, manifold=manifold).line()
 
 
-def export_table(ac, path: Path, progress=None, source: Path | None = None) -> str:
+def write_table_file(ac: AlphaComplex, path: Path, progress: Progress | None = None,
+                     source: Path | None = None) -> str:
     """Write the interval table to path with core.export (never over `source`); returns what
     was written."""
     return write_table(ac, path, progress=progress, source=source).line()
 
 
-def save_screenshot(plotter, path: Path) -> str:
-    """Save the view as an image, atomically (core.atomic); returns what was written."""
-    with atomic_path(path) as tmp:
-        plotter.screenshot(tmp)
+def write_screenshot(scene: Scene, path: Path) -> str:
+    """Save the scene's view as a PNG image, atomically; returns what was written."""
+    scene.save_png(path)
     return f"Wrote {path} ({path.stat().st_size:,} bytes)"

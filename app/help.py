@@ -11,6 +11,7 @@ from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QDialog,
     QDialogButtonBox,
+    QDockWidget,
     QHeaderView,
     QMainWindow,
     QMenu,
@@ -131,14 +132,16 @@ class ExplainPanel(QTextBrowser):
         self.setOpenExternalLinks(False)
 
 
-def add_help_actions(window: QMainWindow, menu: QMenu) -> dict[str, QAction]:
-    """Help → Shortcuts (Ctrl+/) and Help → What am I looking at? (F1), on window's menu."""
+def add_help_actions(window: QMainWindow, menu: QMenu,
+                     explain_dock: QDockWidget) -> dict[str, QAction]:
+    """Help → Shortcuts (Ctrl+/), listing window's menu shortcuts, and Help → What am I
+    looking at? (F1), showing explain_dock."""
     shortcuts = menu.addAction("&Keyboard and mouse shortcuts")
     shortcuts.setShortcut(QKeySequence("Ctrl+/"))
     shortcuts.triggered.connect(lambda _=False: show_shortcuts(window))
     looking = menu.addAction("&What am I looking at?")
     looking.setShortcut(QKeySequence(QKeySequence.StandardKey.HelpContents))
-    looking.triggered.connect(lambda _=False: show_explanation(window))
+    looking.triggered.connect(lambda _=False: show_explanation(explain_dock))
     return {"shortcuts": shortcuts, "explain": looking}
 
 
@@ -150,8 +153,7 @@ def show_shortcuts(window: QMainWindow) -> ShortcutsDialog:
     return dialog
 
 
-def show_explanation(window: QMainWindow) -> None:
-    """Show and raise the window's "What am I looking at?" dock."""
-    dock = window.explain_dock
+def show_explanation(dock: QDockWidget) -> None:
+    """Show and raise the "What am I looking at?" dock."""
     dock.show()
     dock.raise_()

@@ -1,27 +1,25 @@
-"""Wires inspection: a click in the view (ViewPicker) -> the table row (app.inspect) -> the
+"""Wires inspection: a click in the view (the scene's picker) -> the table row (app.inspect) -> the
 Inspect dock and the highlight (with the spoon when asked for)."""
 
 from __future__ import annotations
 
 import numpy as np
-import pyvista as pv
 from PySide6.QtWidgets import QDockWidget
 
 from app.inspect import inspect, spoon
 from app.inspect_panel import InspectPanel
 from app.model import ExplorerModel
-from app.picking import ViewPicker
 from app.scene import Scene
 
 
 class Inspector:
     """Owns the picker; keeps the panel and the highlight on the inspected simplex."""
 
-    def __init__(self, model: ExplorerModel, plotter: pv.BasePlotter, scene: Scene,
-                 panel: InspectPanel, dock: QDockWidget) -> None:
-        """Observe clicks in plotter; show results in panel (dock raised on a hit)."""
+    def __init__(self, model: ExplorerModel, scene: Scene, panel: InspectPanel,
+                 dock: QDockWidget) -> None:
+        """Observe clicks in the scene; show results in panel (dock raised on a hit)."""
         self.model, self.panel, self.dock = model, panel, dock
-        self.picker = ViewPicker(plotter, scene, self.inspect_vertices, panel.clear)
+        self.picker = scene.add_picker(self.inspect_vertices, panel.clear)
         panel.cleared.connect(self.picker.clear)
         panel.spoonToggled.connect(lambda _on: self.redraw())
 

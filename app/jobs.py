@@ -1,8 +1,12 @@
-"""Run exports off the GUI thread, one at a time, with progress and cancel.
+"""The window's one background runner: loads and exports run through it, off the GUI thread.
 
-A job is `job(progress) -> str`: it reports through progress(fraction, stage), which raises
-core.errors.Cancelled once Cancel was pressed (the core writers then leave the target as it
-was), and returns the line that says what it wrote.
+A job is a `Job`: `work(progress, cancel) -> result` plus a title and how its failures read.
+Every start gets a new request id. The worker reports through progress(fraction, stage),
+which raises core.errors.Cancelled once Cancel was pressed (core writers then leave their
+target as it was); long steps that never report can watch `cancel` themselves (a child
+process build). Outcomes come back to the GUI thread through one slot, `_deliver`, the only
+place where a stale request's progress and outcome (a newer request was started, or the
+runner was shut down) are dropped: listeners see exactly one outcome of the current request.
 """
 
 from __future__ import annotations
@@ -11,13 +15,35 @@ import sys
 import threading
 import traceback
 from collections.abc import Callable
+from dataclasses import dataclass
 
 from PySide6.QtCore import QObject, QThreadPool, Signal
 
 from core.errors import AlphaScoopError, Cancelled
 from core.progress import Progress
 
-Job = Callable[[Progress], str]
+Work = Callable[[Progress, threading.Event], object]
+PROGRESS, FINISHED, FAILED, CANCELLED = "progress", "finished", "failed", "cancelled"
+
+
+def title_failed(title: str, error: Exception) -> str:
+    """The default failure line: 'Export shape failed: disk full'."""
+    return f"{title} failed: {error or type(error).__name__}"
+
+
+@dataclass(frozen=True)
+class Job:
+    """What a runner runs: `work(progress, cancel)` returning its result, a `title` (shown
+    with its progress and in its dialogs) and `explain(error) -> str`, the one line a
+    failure shows (never a traceback)."""
+
+    title: str
+    work: Work
+    explain: Callable[[Exception], str] | None = None
+
+    def failure(self, error: Exception) -> str:
+        """The line shown for error."""
+        return self.explain(error) if self.explain else title_failed(self.title, error)
 
 
 def cancellable(cancel: threading.Event, report: Progress, why: str) -> Progress:
@@ -32,58 +58,105 @@ def cancellable(cancel: threading.Event, report: Progress, why: str) -> Progress
     return progress
 
 
-class JobRunner(QObject):
-    """One background job at a time; its outcome comes back through queued signals."""
+class Runner(QObject):
+    """Runs one job at a time in a thread of its own; its outcome arrives as exactly one of
+    finished(request, result), failed(request, message) or cancelled(request); a stale
+    request's outcome is only announced as dropped(request, kind).
 
-    progress = Signal(float, str)
-    finished = Signal(str, str)  # title, what was written
-    failed = Signal(str, str)  # title, why
-    cancelled = Signal(str)  # title
+    `exclusive=False` (loads): a new start cancels the running request and supersedes it.
+    `exclusive=True` (exports): start refuses (returns None) while a job runs.
+    """
 
-    def __init__(self, parent: QObject | None = None) -> None:
-        """A one-thread pool of its own (loading uses another)."""
+    progress = Signal(int, float, str)  # request, fraction 0..1, stage
+    finished = Signal(int, object)  # request, the job's result
+    failed = Signal(int, str)  # request, the one-line reason
+    cancelled = Signal(int)  # request
+    dropped = Signal(int, str)  # a stale request's outcome, not passed on: request, kind
+    _report = Signal(int, str, object)  # worker thread -> _deliver (queued)
+
+    def __init__(self, parent: QObject | None = None, *, exclusive: bool = False) -> None:
+        """A one-thread pool: a new job waits for the previous one to stop."""
         super().__init__(parent)
+        self.exclusive = exclusive
         self._pool = QThreadPool(self)
         self._pool.setMaxThreadCount(1)
+        self._current = 0
+        self._job: Job | None = None
         self._cancel = threading.Event()
-        self._busy = False
-        for outcome in (self.finished, self.failed, self.cancelled):
-            outcome.connect(self._idle)  # queued: runs in the GUI thread, after the job ends
+        self._unfinished: set[int] = set()  # requests whose outcome has not been delivered
+        self._report.connect(self._deliver)
+
+    @property
+    def current(self) -> int:
+        """Id of the newest request (0 before the first)."""
+        return self._current
+
+    @property
+    def job(self) -> Job | None:
+        """The newest request's job (its title names it in messages)."""
+        return self._job
 
     def is_busy(self) -> bool:
-        """True from start() until the job's outcome has reached the GUI thread."""
-        return self._busy
+        """True from start() until every started job's outcome has reached the GUI thread."""
+        return bool(self._unfinished) or self._pool.activeThreadCount() > 0
 
-    def start(self, title: str, job: Job) -> bool:
-        """Run job in the background; False (nothing started) while another one runs."""
-        if self._busy:
-            return False
-        self._busy = True
-        self._cancel = cancel = threading.Event()
-        self._pool.start(lambda: self._run(title, job, cancel))
-        return True
-
-    def _idle(self, *_outcome) -> None:
-        self._busy = False
+    def start(self, job: Job) -> int | None:
+        """Run job in the background; returns its request id, or None when the runner is
+        exclusive and another job is still running."""
+        if self.exclusive and self._unfinished:
+            return None
+        self.cancel()
+        self._current += 1
+        request, cancel = self._current, threading.Event()
+        self._job, self._cancel = job, cancel
+        self._unfinished.add(request)
+        self._pool.start(lambda: self._run(request, job, cancel))
+        return request
 
     def cancel(self) -> None:
-        """Ask the running job to stop at its next progress report."""
+        """Ask the running job to stop (at its next progress report)."""
         self._cancel.set()
 
     def wait(self, msecs: int = -1) -> bool:
-        """Block until the worker is idle (used on close); False on timeout."""
+        """Block until the worker thread is idle; False on timeout."""
         return self._pool.waitForDone(msecs)
 
-    def _run(self, title: str, job: Job, cancel: threading.Event) -> None:
-        """Worker-thread body: emit exactly one of finished/failed/cancelled."""
-        progress = cancellable(cancel, self.progress.emit, f"{title} cancelled")
+    def shut_down(self, msecs: int) -> bool:
+        """Cancel, wait up to msecs, then drop whatever the job still reports (its result can
+        no longer reach a closed window); False when the job had not stopped in time."""
+        self.cancel()
+        stopped = self.wait(msecs)
+        self._current += 1  # every outstanding request is stale from now on
+        return stopped
+
+    def _run(self, request: int, job: Job, cancel: threading.Event) -> None:
+        """Worker-thread body: report exactly one outcome of request."""
+        progress = cancellable(cancel, lambda fraction, stage: self._report.emit(
+            request, PROGRESS, (fraction, stage)), f"{job.title} cancelled")
         try:
-            message = job(progress)
+            result = job.work(progress, cancel)
         except Cancelled:
-            self.cancelled.emit(title)
-        except Exception as error:  # every failure becomes a dialog; none escapes the thread
-            if not isinstance(error, AlphaScoopError):  # a bug: keep its traceback too
-                traceback.print_exc(file=sys.stderr)
-            self.failed.emit(title, f"{title} failed: {error or type(error).__name__}")
+            self._report.emit(request, CANCELLED, None)
+        except Exception as error:  # every failure becomes a message; none escapes the thread
+            if not isinstance(error, AlphaScoopError) and not isinstance(error, MemoryError):
+                traceback.print_exc(file=sys.stderr)  # a bug: keep its traceback too
+            self._report.emit(request, FAILED, job.failure(error))
         else:
-            self.finished.emit(title, message)
+            self._report.emit(request, CANCELLED if cancel.is_set() else FINISHED, result)
+
+    def _deliver(self, request: int, kind: str, payload: object) -> None:
+        """GUI thread: pass the current request's reports on; drop stale ones (the one place)."""
+        if kind != PROGRESS:
+            self._unfinished.discard(request)
+        if request != self._current:
+            if kind != PROGRESS:
+                self.dropped.emit(request, kind)
+            return
+        if kind == PROGRESS:
+            self.progress.emit(request, *payload)
+        elif kind == FINISHED:
+            self.finished.emit(request, payload)
+        elif kind == FAILED:
+            self.failed.emit(request, payload)
+        else:
+            self.cancelled.emit(request)

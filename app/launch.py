@@ -14,7 +14,7 @@ from app.dataset import ImportOptions
 from app.resources import SAMPLE_PATH
 
 
-def import_options(args: argparse.Namespace) -> ImportOptions:
+def options_from_args(args: argparse.Namespace) -> ImportOptions:
     """How the command line asks the file to be read (--columns, --subsample)."""
     return ImportOptions(columns=args.columns, subsample=args.subsample)
 
@@ -37,5 +37,5 @@ def run_window(args: argparse.Namespace) -> int:
         window.set_mode(args.mode, rebuild=False)
     window.start_optimal = bool(args.optimal)
     window.show()
-    window.open_path(args.file or SAMPLE_PATH, import_options(args))
+    window.open_path(args.file or SAMPLE_PATH, options_from_args(args))
     return app.exec()

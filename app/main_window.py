@@ -1,6 +1,8 @@
-"""The explorer's main window: composes the view, docks, menus and the loader (no logic of its own).
+"""The explorer's main window: composes the view, docks, menus and the runners (no logic of
+its own).
 
-State lives in ExplorerModel, geometry in Scene, loading in Loader; this class only wires them.
+State lives in ExplorerModel, every VTK object in the Scene, background work in two
+app.jobs.Runner (loads, exports); this class only wires them.
 """
 
 from __future__ import annotations
@@ -11,15 +13,12 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
-import numpy as np
 from PySide6.QtCore import QSettings, Qt, QTimer
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
-from pyvistaqt import QtInteractor
 
-from app import file_actions, memory
+from app import memory
 from app.alpha_panel import AlphaPanel
-from app.clipping import Clipper
 from app.colour_view import Colourer
 from app.dataset import ImportOptions
 from app.help import ExplainPanel
@@ -27,18 +26,19 @@ from app.import_dialog import ask_import_options
 from app.info_panel import InfoPanel
 from app.inspect_panel import InspectPanel
 from app.inspector import Inspector
-from app.jobs import JobRunner
+from app.jobs import Runner
 from app.layers_panel import LayersPanel
-from app.menus import build_menus
+from app.menus import MenuTools, build_menus
 from app.mode_panel import ModePanel
 from app.model import ExplorerModel
 from app.palette import ATOM_STYLE, CAVITY_STYLE, cpk_rgb
 from app.progress_widget import ProgressWidget
 from app.resources import ICON_PATH
-from app.scene import Scene, as_xyz
+from app.scene import scene_data
+from app.scene.interactive import interactive_scene
 from app.settings import Preferences
 from app.signatures_dock import SignaturesPanel
-from app.worker import Loader
+from app.worker import load_job
 from core.modes import Mode
 
 CLOSE_WAIT_MS = 2000  # how long closing waits for a running build before leaving it behind
@@ -59,12 +59,10 @@ class MainWindow(QMainWindow):
         self.last_options: ImportOptions | None = None  # how the last file was read
         self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
         self.model = ExplorerModel()
-        self.loader = Loader(self)
-        self.jobs = JobRunner(self)
-        self.plotter = QtInteractor(self, auto_update=False)
-        self.plotter.setAcceptDrops(False)
-        self.setCentralWidget(self.plotter)
-        self.scene = Scene(self.plotter, render=self.plotter.update)
+        self.loader = Runner(self)  # loads and rebuilds: a newer one supersedes the older
+        self.jobs = Runner(self, exclusive=True)  # exports: one at a time
+        self.scene, view = interactive_scene(self)
+        self.setCentralWidget(view)
         self.alpha_panel = AlphaPanel(self.model)
         self.layers_panel = LayersPanel()
         self.info_panel = InfoPanel(self.model)
@@ -85,14 +83,15 @@ class MainWindow(QMainWindow):
         self._add_dock("Signatures", self.signatures_panel, Qt.DockWidgetArea.BottomDockWidgetArea)
         left = Qt.DockWidgetArea.LeftDockWidgetArea
         self.inspect_panel = InspectPanel(self.model)
-        self.inspector = Inspector(self.model, self.plotter, self.scene, self.inspect_panel,
+        self.inspector = Inspector(self.model, self.scene, self.inspect_panel,
                                    self._add_dock("Inspect", self.inspect_panel, left))
         self.explain_dock = self._add_dock("Help", ExplainPanel(), left)
         self.explain_dock.setWindowTitle("What am I looking at?")
         self.explain_dock.hide()
-        self.colourer = Colourer(self.plotter, self.scene, self.model)
-        self.clipper = Clipper(self.plotter, self.scene)
-        self.menus = build_menus(self)
+        self.colourer = Colourer(self.scene, self.model)
+        self.menus = build_menus(self, MenuTools(
+            self, self.prefs, self.model, self.scene, self.jobs, self.job_progress, self.report,
+            self.open_asking), self.colourer, self.explain_dock)
         self._connect()
         self._restore_layout()
 
@@ -110,10 +109,12 @@ class MainWindow(QMainWindow):
         self.loader.finished.connect(self._on_loaded)
         self.loader.failed.connect(self._on_failed)
         self.loader.cancelled.connect(self._on_cancelled)
-        for outcome in (self.loader.finished, self.loader.failed, self.loader.cancelled):
+        for outcome in (self.loader.finished, self.loader.failed, self.loader.cancelled,
+                        self.loader.dropped):  # a superseded load's arrays are freed too
             outcome.connect(self._give_back_memory)  # after the slots above dropped the old
         self.progress.cancelRequested.connect(self.loader.cancel)
-        self.jobs.progress.connect(self.job_progress.update_progress)
+        self.jobs.progress.connect(lambda _request, fraction, stage:
+                                   self.job_progress.update_progress(fraction, stage))
         self.jobs.finished.connect(self._on_job_done)
         self.jobs.failed.connect(self._on_job_failed)
         self.jobs.cancelled.connect(self._on_job_cancelled)
@@ -130,7 +131,7 @@ class MainWindow(QMainWindow):
         self.prefs.set_last_dir(path)
         self.progress.start(f"opening {path.name}")
         self.last_options = options
-        return self.loader.open(path, self.mode, options)
+        return self.loader.start(load_job(path, self.mode, options))
 
     def open_asking(self, path: str | Path) -> int | None:
         """Open path as a user does (File → Open, a drop): text and big files first show the
@@ -148,32 +149,29 @@ class MainWindow(QMainWindow):
         if not rebuild or dataset is None:
             return None
         self.progress.start(f"rebuilding {dataset.path.name}: {mode.describe()}")
-        return self.loader.open(dataset.path, mode, self.last_options)
+        return self.loader.start(load_job(dataset.path, mode, self.last_options))
 
-    def _on_job_done(self, title: str, message: str) -> None:
+    def _on_job_done(self, _request: int, message: str) -> None:
         """An export finished: say what it wrote."""
         self.job_progress.stop()
         self.report(message)
 
-    def _on_job_failed(self, title: str, message: str) -> None:
+    def _on_job_failed(self, _request: int, message: str) -> None:
         """An export failed: one dialog naming what failed."""
         self.job_progress.stop()
-        QMessageBox.warning(self, title, message)
+        QMessageBox.warning(self, self.jobs.job.title, message)
 
-    def _on_job_cancelled(self, title: str) -> None:
+    def _on_job_cancelled(self, _request: int) -> None:
         """An export was cancelled: nothing was written (an old file stays as it was)."""
         self.job_progress.stop()
-        self.report(f"{title} cancelled; nothing was written")
+        self.report(f"{self.jobs.job.title} cancelled; nothing was written")
 
-    def _on_progress(self, request: int, fraction: float, stage: str) -> None:
-        """Show the current request's progress (older requests are ignored)."""
-        if request == self.loader.current:
-            self.progress.update_progress(fraction, stage)
+    def _on_progress(self, _request: int, fraction: float, stage: str) -> None:
+        """Show the open's progress (the runner drops older requests' reports)."""
+        self.progress.update_progress(fraction, stage)
 
-    def _on_loaded(self, request: int, dataset) -> None:
-        """Adopt the dataset of the current request; drop stale ones."""
-        if request != self.loader.current:
-            return
+    def _on_loaded(self, _request: int, dataset) -> None:
+        """Adopt the dataset of the current request (the runner drops stale ones)."""
         self.progress.stop()
         self.prefs.add_recent(dataset.path)
         self.mode_panel.show_built(dataset.ac.mode)
@@ -185,22 +183,19 @@ class MainWindow(QMainWindow):
             self.model.set_index(self.model.optimal_index())
         self.start_optimal = False
 
-    def _on_failed(self, request: int, message: str) -> None:
+    def _on_failed(self, _request: int, message: str) -> None:
         """Show why the current request failed; the previous dataset stays."""
-        if request != self.loader.current:
-            return
         self.progress.stop()
         if self.model.dataset is not None:  # the shown table's mode stays the current one
             self.set_mode(self.model.dataset.ac.mode, rebuild=False)
         QMessageBox.warning(self, "Could not open the file", message)
 
-    def _on_cancelled(self, request: int) -> None:
+    def _on_cancelled(self, _request: int) -> None:
         """Note a cancelled open in the status bar."""
-        if request == self.loader.current:
-            self.progress.stop()
-            if self.model.dataset is not None:
-                self.set_mode(self.model.dataset.ac.mode, rebuild=False)
-            self.status.setText("Opening cancelled.")
+        self.progress.stop()
+        if self.model.dataset is not None:
+            self.set_mode(self.model.dataset.ac.mode, rebuild=False)
+        self.status.setText("Opening cancelled.")
 
     def _give_back_memory(self, *_outcome) -> None:
         """Once this event is handled (the old dataset or a cancelled load's arrays are
@@ -210,18 +205,13 @@ class MainWindow(QMainWindow):
     def _show_dataset(self) -> None:
         """New dataset: new layers and camera (the only time actors are added)."""
         ds = self.model.dataset
-        ac = ds.ac
-        weighted = ac.weights is not None
-        styles = self.prefs.styles(ac.dim, weighted)
-        radii = np.sqrt(np.maximum(ac.weights, 0.0)) if weighted else None
+        styles = self.prefs.styles(ds.ac.dim, ds.ac.weights is not None)
         rgb = None
         if ds.atomic_numbers is not None:  # a molecule: atoms in CPK colours, its cavities
             styles["balls"], styles["cavities"] = ATOM_STYLE, CAVITY_STYLE
             rgb = cpk_rgb(ds.atomic_numbers)
-        self.scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                               radii, ds.frame, ds.unit, rgb)
+        self.scene.set_dataset(scene_data(ds, styles, rgb))
         self.colourer.set_dataset(ds.attributes)
-        self.clipper.set_enabled(self.clipper.enabled)
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
@@ -281,19 +271,11 @@ class MainWindow(QMainWindow):
         self.jobs.cancel()
         if self.loader.is_busy() or self.jobs.is_busy():
             self.hide()
-        if not self.loader.wait(CLOSE_WAIT_MS):
-            self.loader.blockSignals(True)  # the late result must not reach a closed window
-        if not self.jobs.wait(CLOSE_WAIT_MS):
-            self.jobs.blockSignals(True)
-        self.plotter.close()
+        for runner in (self.loader, self.jobs):  # a late result never reaches a closed window
+            runner.shut_down(CLOSE_WAIT_MS)
+        self.scene.close()
         super().closeEvent(event)
 
     def report(self, message: str) -> None:
         """Show a short result message (exports, screenshots) in the status bar."""
         self.status.setText(message)
-
-    def ask_and_open(self) -> None:
-        """File → Open."""
-        path = file_actions.ask_open_path(self, self.prefs)
-        if path:
-            self.open_asking(path)

@@ -1,7 +1,8 @@
 """Non-interactive mode: render a file's shape at one alpha into a PNG and exit (no Qt).
 
-`alphascoop FILE --alpha R --screenshot OUT.png [--size WxH]` (or `--optimal`) uses an
-off-screen VTK plotter, so it also works with no display at all.
+`alphascoop FILE --alpha R --screenshot OUT.png [--size WxH]` (or `--optimal`) draws the
+same scene as the window (app.scene) into an off-screen plotter, so it also works with no
+display at all.
 """
 
 from __future__ import annotations
@@ -10,13 +11,10 @@ import argparse
 import sys
 from pathlib import Path
 
-import pyvista as pv
-
 from app.dataset import Dataset, ImportOptions, load_dataset
 from app.palette import default_styles
 from app.resources import SAMPLE_PATH
-from app.scene import Scene, as_xyz
-from core.atomic import atomic_path
+from app.scene import Scene, scene_data
 from core.complex import at_value
 from core.errors import AlphaScoopError
 
@@ -31,25 +29,14 @@ def render_png(dataset: Dataset, alpha: float, out: Path, size: tuple[int, int],
                legend: bool = True) -> None:
     """Render dataset's shape at alpha into out (PNG, written atomically) at size pixels, with
     the legend, alpha, scale bar and orientation marker unless `legend` is False."""
-    ac = dataset.ac
-    plotter = pv.Plotter(off_screen=True, window_size=list(size))
+    scene = Scene.off_screen(size)
     try:
-        scene = Scene(plotter)
-        scene.set_dataset(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1),
-                          default_styles(ac.dim), frame=dataset.frame, unit=dataset.unit)
+        scene.set_dataset(scene_data(dataset, default_styles(dataset.ac.dim)))
         scene.overlay.set_visible(legend)
-        scene.set_shape(ac.shape(**at_value(alpha)))  # weighted: may be below zero
-        with atomic_path(out) as tmp:
-            save_png(plotter, tmp)
+        scene.set_shape(dataset.ac.shape(**at_value(alpha)))  # weighted: may be below zero
+        scene.save_png(out)
     finally:
-        plotter.close()
-
-
-def save_png(plotter: pv.Plotter, path: Path) -> None:
-    """Write the plotter's image to path as PNG, whatever path's extension."""
-    from PIL import Image
-
-    Image.fromarray(plotter.screenshot(return_img=True)).save(path, format="PNG")
+        scene.close()
 
 
 def run_screenshot(args: argparse.Namespace) -> int:

@@ -1,95 +1,40 @@
-"""Load and build datasets off the GUI thread, with progress, cancel and request ids.
+"""The load job: read and build a dataset in the window's background runner (app.jobs).
 
-Every open gets a new request id and cancels the one before; results of a request that is no
-longer current are dropped, so a slow old build can never replace a newer dataset. Big
-triangulations run in a child process (app.build_process) that Cancel kills at once.
+Big triangulations run in a child process (app.build_process) that Cancel kills at once;
+request ids, cancel and dropping stale results are the runner's.
 """
 
 from __future__ import annotations
 
-import sys
 import threading
-import traceback
 from pathlib import Path
 
-from PySide6.QtCore import QObject, QThreadPool, Signal
-
 from app import build_process
-from app.dataset import ImportOptions, load_dataset
-from app.jobs import cancellable
-from core.errors import AlphaScoopError, Cancelled
+from app.dataset import Dataset, ImportOptions, load_dataset
+from app.jobs import Job, Progress
+from core.errors import AlphaScoopError
 from core.modes import Mode
 
 
-class Loader(QObject):
-    """Runs load_dataset in a one-thread pool and reports back through queued signals."""
+def load_job(path: str | Path, mode: Mode | None = None,
+             options: ImportOptions | None = None) -> Job:
+    """A job that loads path (read with `options`) and builds it in the alpha `mode`
+    (default classic); its result is the app.dataset.Dataset."""
+    path, mode = Path(path), mode or Mode()
 
-    progress = Signal(int, float, str)
-    finished = Signal(int, object)
-    failed = Signal(int, str)
-    cancelled = Signal(int)
+    def work(progress: Progress, cancel: threading.Event) -> Dataset:
+        def build(points, report, **kwargs):
+            return build_process.build(points, report, cancel, **kwargs)
 
-    def __init__(self, parent: QObject | None = None) -> None:
-        """One worker thread: a new build waits for the previous one to stop."""
-        super().__init__(parent)
-        self._pool = QThreadPool(self)
-        self._pool.setMaxThreadCount(1)
-        self._current = 0
-        self._cancel: threading.Event | None = None
+        return load_dataset(path, progress, build, mode=mode, options=options)
 
-    @property
-    def current(self) -> int:
-        """Id of the newest request (0 before the first)."""
-        return self._current
+    return Job(f"opening {path.name}", work, lambda error: load_failure(path, error))
 
-    def is_busy(self) -> bool:
-        """True while a request is queued or running."""
-        return self._pool.activeThreadCount() > 0
 
-    def open(self, path: str | Path, mode: Mode | None = None,
-             options: ImportOptions | None = None) -> int:
-        """Start loading path (read with `options`) in the alpha `mode` (default classic);
-        cancels the previous request; returns the new request id."""
-        self.cancel()
-        self._current += 1
-        request, cancel = self._current, threading.Event()
-        self._cancel = cancel
-        self._pool.start(lambda: self._run(request, Path(path), cancel, mode or Mode(), options))
-        return request
-
-    def cancel(self) -> None:
-        """Ask the running request to stop at its next progress step."""
-        if self._cancel is not None:
-            self._cancel.set()
-
-    def wait(self, msecs: int = -1) -> bool:
-        """Block until the worker is idle (used on close); False on timeout."""
-        return self._pool.waitForDone(msecs)
-
-    def _run(self, request: int, path: Path, cancel: threading.Event, mode: Mode,
-             options: ImportOptions | None = None) -> None:
-        """Worker-thread body: emit exactly one of finished/failed/cancelled."""
-        progress = cancellable(
-            cancel, lambda fraction, stage: self.progress.emit(request, fraction, stage),
-            "cancelled by the user")
-        try:
-            dataset = load_dataset(
-                path, progress,
-                lambda points, report, **kwargs: build_process.build(points, report, cancel,
-                                                                     **kwargs),
-                mode=mode, options=options)
-        except Cancelled:
-            self.cancelled.emit(request)
-        except AlphaScoopError as error:
-            self.failed.emit(request, str(error))
-        except MemoryError:
-            self.failed.emit(request, f"{path.name}: not enough memory to build this point set")
-        except Exception as error:
-            traceback.print_exc(file=sys.stderr)
-            self.failed.emit(request, f"{path.name}: unexpected error ({type(error).__name__}: "
-                                      f"{error})")
-        else:
-            if cancel.is_set():
-                self.cancelled.emit(request)
-            else:
-                self.finished.emit(request, dataset)
+def load_failure(path: Path, error: Exception) -> str:
+    """The one line a failed open shows: the core's own message, or what went wrong."""
+    if isinstance(error, AlphaScoopError):
+        return str(error)
+    if isinstance(error, MemoryError):
+        return f"{path.name}: not enough memory to build this point set"
+    return f"{path.name}: unexpected error ({type(error).__name__}: {error})"

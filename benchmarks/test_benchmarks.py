@@ -174,6 +174,26 @@ def test_molecule_benchmark_small_run(tmp_path) -> None:
     assert figures["surface_area"] == pytest.approx(figures["freesasa_lr200_area"], rel=1e-3)
 
 
+def test_bench_passes_compares_two_checkouts_stage_by_stage(tmp_path, capsys) -> None:
+    import os
+
+    import bench_passes
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(bench_passes.__file__)))
+    out = tmp_path / "passes.json"
+    assert bench_passes.main(["--before", root, "--n", "300", "--rounds", "1",
+                              "--json", str(out)]) == 0
+    printed = capsys.readouterr().out
+    for stage in ("circumspheres of cells", "facets", "edges", "topology", "signatures",
+                  "table passes (sum)", "topology pass (sum)"):
+        assert f"| {stage} |" in printed
+    runs = json.loads(out.read_text())["300"]
+    assert len(runs["before"]) == len(runs["after"]) == 1
+    assert runs["after"][0]["peak MiB"] > 0 and runs["gudhi"] is None
+    with pytest.raises(SystemExit):
+        bench_passes.main(["--before", str(tmp_path)])  # no core/ there
+
+
 def test_first_open_ratios_on_both_clocks_and_memory():
     """bench_first_open: time goals on wall and CPU clocks, the peak of either window process
     against scipy's, and the soak's worst re-open against the first open."""
@@ -192,7 +212,10 @@ def test_first_open_ratios_on_both_clocks_and_memory():
     assert rows["window: slider live / gudhi fast (time)"] == (0.5, True)
     assert rows["window: slider live / gudhi fast (CPU)"] == (0.75, False)
     assert rows["window first open peak / scipy peak (MiB)"] == (2.7, False)
-    assert rows["soak: worst RSS after a re-open / after the first (MiB)"] == (1.25, False)
+    assert rows["soak: worst RSS after a re-open / after the first open (MiB)"] == (1.25, False)
+    assert rows["soak: worst RSS after a re-open of the torus / after its first (MiB)"] == (
+        1.25, False)
+    assert "soak: worst RSS after a re-open of the cube / after its first (MiB)" not in rows
     assert not any(name.startswith("core build") for name in rows)  # not measured: no row
     assert "| window: slider live / gudhi fast (time) | 40 | 80 | 0.5 | <= 0.6 | yes |" in (
         format_report(1000, results))

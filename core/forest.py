@@ -1,7 +1,8 @@
 """Union-find over a filtration, done by scipy's compiled graph routines instead of Python loops.
 
-`spanning_forest` gives the edges that merge components when edges arrive in order of weight
-(Kruskal's minimum spanning forest). `younger_roots` applies the
+`ordered_forest` gives the edges that merge components when edges arrive in a given order
+(Kruskal's filter), `spanning_forest` the same by weight, `rank_forest` for edges that arrive
+with the later of their nodes (solid components). `younger_roots` applies the
 elder rule to those merges (which component dies at each one) by divide and conquer over the
 arrival order, one `connected_components` call per halving level: O(m log m) in C plus numpy.
 """
@@ -14,17 +15,59 @@ from scipy.sparse.csgraph import connected_components, minimum_spanning_tree
 
 
 def spanning_forest(n_nodes: int, u: np.ndarray, v: np.ndarray, weight: np.ndarray) -> tuple:
-    """A minimum spanning forest of edges (u, v) with positive weights, edges by weight.
+    """A minimum spanning forest of edges (u, v), edges by weight (ties in the given order).
 
     For every w, its edges of weight <= w span the subgraph of all edges of weight <= w, so
-    they count the merges of a filtration in which edges arrive by weight (ties in any order).
-    Pairs (u, v) must be distinct (scipy would sum duplicates) and weights > 0 (0 = no edge).
+    they count the merges of a filtration in which edges arrive by weight.
     Returns (weights, a, b): (f,) float64 ascending and (f,) int64 end nodes of each edge.
     """
-    graph = coo_matrix((np.asarray(weight, dtype=np.float64), (u, v)), shape=(n_nodes, n_nodes))
-    tree = minimum_spanning_tree(graph.tocsr()).tocoo()
-    order = np.argsort(tree.data, kind="stable")
-    return tree.data[order], tree.row[order].astype(np.int64), tree.col[order].astype(np.int64)
+    weight = np.asarray(weight, dtype=np.float64)
+    order = np.argsort(weight, kind="stable")
+    joined = order[ordered_forest(n_nodes, np.asarray(u)[order], np.asarray(v)[order])]
+    return (weight[joined], np.asarray(u, dtype=np.int64)[joined],
+            np.asarray(v, dtype=np.int64)[joined])
+
+
+def ordered_forest(n_nodes: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(f,) int64 ascending positions of the edges (u, v), taken in the given order, that
+    join two components (Kruskal's filter; the same edges as a spanning forest with weights
+    1, 2, 3, ...). Any pairs allowed, self-loops and repeats included.
+
+    scipy's Kruskal argsorts its weights, the slow part on millions of edges in random
+    order. Here edge i becomes a node n + i hung from u[i] (weight 1, always joining) and
+    tied to v[i] (weight i + 2): laid out by row (all u rows first, then n + i ascending)
+    the weights already ascend, so that sort is one linear pass and Kruskal meets the
+    edges in their order; edge i joins exactly when u[i] and v[i] are still apart.
+    """
+    k = len(u)
+    if k == 0:
+        return np.zeros(0, dtype=np.int64)
+    size = n_nodes + k
+    index = np.int32 if size < 2**31 else np.int64
+    ids = np.arange(n_nodes, size, dtype=index)
+    rows = np.concatenate((np.asarray(u, dtype=index), ids))
+    cols = np.concatenate((ids, np.asarray(v, dtype=index)))
+    del ids
+    data = np.concatenate((np.ones(k), np.arange(2.0, k + 2.0)))  # i + 2 for edge i
+    graph = coo_matrix((data, (rows, cols)), shape=(size, size)).tocsr()
+    del rows, cols, data
+    tree = minimum_spanning_tree(graph, overwrite=True).tocoo()
+    joined = tree.row[tree.row >= n_nodes].astype(np.int64) - n_nodes
+    return np.sort(joined)
+
+
+def rank_forest(rank: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(f,) int64 ascending ranks at which an edge (u, v) first joins two components when
+    each edge arrives with the later of its two nodes: node x arrives at rank[x] (1..n,
+    distinct). Pairs must be distinct. Laid out in rank space with the later node as row,
+    scipy's Kruskal gets its weights already in order (no random-order sort)."""
+    ru, rv = rank[u].astype(np.int64) - 1, rank[v].astype(np.int64) - 1
+    later, earlier = np.maximum(ru, rv), np.minimum(ru, rv)
+    del ru, rv
+    n = len(rank)
+    graph = coo_matrix(((later + 1).astype(np.float64), (later, earlier)), shape=(n, n))
+    tree = minimum_spanning_tree(graph.tocsr(), overwrite=True)
+    return np.sort(tree.data.astype(np.int64))
 
 
 def younger_roots(key: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .parallel import in_chunks
 from .tolerances import (
     DEGENERATE_RTOL,
     EXTENDED_DEGENERATE_RTOL,
@@ -18,15 +19,27 @@ from .tolerances import (
 CHUNK = 1 << 19
 
 
+_CROSS = ((1, 2), (2, 0), (0, 1))  # component i of a x b is a[j] b[k] - a[k] b[j]
+
+
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.stack(
-        (
-            a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
-            a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
-            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0],
-        ),
-        axis=1,
-    )
+    """(n, 3) a x b of (n, 3) rows."""
+    out = np.empty((len(a), 3), dtype=np.result_type(a, b))
+    for i, (j, k) in enumerate(_CROSS):
+        np.subtract(a[:, j] * b[:, k], a[:, k] * b[:, j], out=out[:, i])
+    return out
+
+
+def _duals(vec: np.ndarray) -> np.ndarray:
+    """(3, n, 3) b x c, c x a, a x b of the rows a, b, c of (n, 3, 3) `vec`: the same
+    products as _cross, read from contiguous coordinate planes instead of strided columns."""
+    planes = np.ascontiguousarray(vec.transpose(1, 2, 0))  # (vector, coordinate, n)
+    out = np.empty((3, len(vec), 3), dtype=vec.dtype)
+    for slot, (u, w) in enumerate(_CROSS):
+        first, second = planes[u], planes[w]
+        for i, (j, k) in enumerate(_CROSS):
+            np.subtract(first[j] * second[k], first[k] * second[j], out=out[slot, :, i])
+    return out
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -109,8 +122,7 @@ def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
         scale = np.sqrt(det * sq[:, 0] * sq[:, 1])  # det is |a x b|²: compare |a x b|
         duals = None
     else:
-        c = vec[:, 2]
-        duals = np.stack((_cross(b, c), _cross(c, a), _cross(a, b)))
+        duals = _duals(vec)
         det = _dot(a, duals[0])
         num = rhs[:, :1] * duals[0] + rhs[:, 1:2] * duals[1] + rhs[:, 2:3] * duals[2]
         scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
@@ -187,9 +199,11 @@ def cell_spheres(
     n = len(cells)
     r2, dets = np.empty(n), np.empty(n)
     flat, bits = np.empty(n, dtype=bool), np.empty(n, dtype=np.uint8)
-    for lo in range(0, n, CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        _, r2[sl], dets[sl], flat[sl], bits[sl] = _spheres(points, cells[sl])
+
+    def part(lo: int, hi: int) -> None:
+        _, r2[lo:hi], dets[lo:hi], flat[lo:hi], bits[lo:hi] = _spheres(points, cells[lo:hi])
+
+    in_chunks(part, n, CHUNK)
     return r2, dets, flat, bits
 
 
@@ -208,25 +222,51 @@ def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np
         return 0.25 * np.einsum("nd,nd->n", diff, diff), None
     out = np.empty(len(facets))
     bits = np.empty(len(facets), dtype=np.uint8)
-    tol = ON_SPHERE_RTOL
-    for lo in range(0, len(facets), CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        vec = edge_vectors(points, facets[sl])
-        a, b = vec[:, 0], vec[:, 1]  # p1 - p0, p2 - p0
-        c = np.take(points, facets[sl, 2], 0) - np.take(points, facets[sl, 1], 0)  # p2 - p1
-        saa, sbb, scc = _dot(a, a), _dot(b, b), _dot(c, c)
-        # the longest side is left out of the cross product: a x b = a x c = b x c exactly
-        longest_a = (saa >= sbb) & (saa >= scc)
-        first = np.where(longest_a[:, None], b, a)
-        second = np.where(((sbb >= saa) & (sbb >= scc) | longest_a)[:, None], c, b)
-        n = _cross(first, second)
-        nn, short = _dot(n, n), _dot(first, first) * _dot(second, second)
-        bad = nn <= (DEGENERATE_RTOL ** 2) * short
-        out[sl] = saa * sbb * scc / (4.0 * np.where(bad, 1.0, nn))
-        if bad.any():
-            out[sl][bad] = least_squares(vec[bad])[1]
-        chunk = (_dot(a, b) < -tol * (saa + sbb)).astype(np.uint8)  # angle at p0
-        chunk |= (_dot(a, c) > tol * (saa + scc)).astype(np.uint8) << 1  # p1: (-a).c < 0
-        chunk |= (_dot(b, c) < -tol * (sbb + scc)).astype(np.uint8) << 2  # p2: (-b).(-c)
-        bits[sl] = chunk
+
+    def part(lo: int, hi: int) -> None:
+        out[lo:hi], bits[lo:hi] = _triangle_radii2(points, facets[lo:hi])
+
+    in_chunks(part, len(facets), CHUNK)
     return out, bits
+
+
+def _triangle_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One chunk of facet_radii2 for triangles: (n,) radii² and (n,) uint8 obtuse bits."""
+    p0, p1, p2 = (np.take(points, facets[:, i], 0) for i in range(3))
+    a, b, c = p1 - p0, p2 - p0, p2 - p1
+    del p0, p1, p2
+    saa, sbb, scc = _dot(a, a), _dot(b, b), _dot(c, c)
+    # the longest side is left out of the cross product: a x b = a x c = b x c exactly
+    longest_a = (saa >= sbb) & (saa >= scc)
+    first = np.where(longest_a[:, None], b, a)
+    second = np.where(((sbb >= saa) & (sbb >= scc) | longest_a)[:, None], c, b)
+    n = _cross(first, second)
+    nn, short = _dot(n, n), _dot(first, first) * _dot(second, second)
+    bad = nn <= (DEGENERATE_RTOL ** 2) * short
+    out = saa * sbb * scc / (4.0 * np.where(bad, 1.0, nn))
+    if bad.any():
+        out[bad] = least_squares(np.stack((a[bad], b[bad]), axis=1))[1]
+    tol = ON_SPHERE_RTOL
+    bits = (_dot(a, b) < -tol * (saa + sbb)).astype(np.uint8)  # angle at p0
+    bits |= (_dot(a, c) > tol * (saa + scc)).astype(np.uint8) << 1  # p1: (-a).c < 0
+    bits |= (_dot(b, c) < -tol * (sbb + scc)).astype(np.uint8) << 2  # p2: (-b).(-c)
+    return out, bits
+
+
+def facet_sizes(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
+    """(n,) float64 length (edges) or area (triangles in 3D) of (n, 2|3) int facets, in
+    chunks on two threads: three row gathers per chunk instead of one (n, k, d) fancy index."""
+    out = np.empty(len(facets))
+
+    def part(lo: int, hi: int) -> None:
+        rows = facets[lo:hi]
+        first = np.take(points, rows[:, 0], 0)
+        side = np.take(points, rows[:, 1], 0) - first
+        if rows.shape[1] == 3:
+            side = _cross(side, np.take(points, rows[:, 2], 0) - first)
+        np.sqrt(np.add.reduce(side * side, axis=1), out=out[lo:hi])
+        if rows.shape[1] == 3:
+            out[lo:hi] /= 2.0
+
+    in_chunks(part, len(facets), CHUNK)
+    return out

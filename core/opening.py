@@ -14,8 +14,9 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from .forest import spanning_forest
+from .forest import ordered_forest
 from .index import TableIndex
+from .table import argsort_radii
 
 #: Share of the points the largest piece must hold: scans carry a few stray points (outliers,
 #: specks) that join only at alphas far beyond the object's own.
@@ -49,12 +50,11 @@ def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndar
     """
     values = np.asarray(edge_first_triangle, dtype=np.float64)
     finite = np.flatnonzero(np.isfinite(values))
-    order = finite[np.argsort(values[finite], kind="stable")]
+    order = finite[argsort_radii(values[finite])]
     edges = np.asarray(edges, dtype=np.int64)[order]
-    # ranks as weights: scipy needs them > 0, and weighted tables hold signed radii
-    ranks, a, b = spanning_forest(n_points, edges[:, 0], edges[:, 1],
-                                  np.arange(1.0, len(order) + 1))
-    weights = values[order[ranks.astype(np.int64) - 1]]
+    joined = ordered_forest(n_points, edges[:, 0], edges[:, 1])  # in order of arrival
+    a, b = edges[joined, 0], edges[joined, 1]
+    weights = values[order[joined]]
     low, high = 0, len(weights)  # the first `high` merges reach the share; `low` do not
     if n_points == 0 or joined_share(n_points, a, b) < share:
         return float("inf")

@@ -16,14 +16,16 @@ import numpy as np
 
 PARALLEL_ABOVE = 1 << 19  # elements: longer passes are split between two threads
 HELPER = "alphascoop-helper"
+PASSES = "passes"  # the helper role of the build's and the topology's passes
 _lock = threading.Lock()
 _pools: dict[str, ThreadPoolExecutor] = {}
 T = TypeVar("T")
 
 
 def _pool(role: str) -> ThreadPoolExecutor:
-    """The one-thread helper for `role`: split passes and background jobs get separate
-    ones, so a slider step never queues behind a cursor being set up for the next file."""
+    """The one-thread helper for `role`: the slider's split passes ("halves"), the build's
+    and topology's ("passes") and background jobs get separate ones, so a slider step never
+    queues behind a cursor being set up or a table being built in the same process."""
     with _lock:
         if role not in _pools:
             _pools[role] = ThreadPoolExecutor(1, thread_name_prefix=f"{HELPER}-{role}")
@@ -36,16 +38,93 @@ def together(job: Callable[[], T]) -> Callable[[], T]:
     return _pool("jobs").submit(job).result
 
 
-def halves(part: Callable[[int, int], object], n: int) -> None:
-    """part(start, stop) over [0, n): long ranges in two halves at once, one of them in a
-    helper thread. These numpy passes release the GIL and are bound by memory latency, so
-    the second core nearly halves them."""
-    if n < PARALLEL_ABOVE or threading.current_thread().name.startswith(f"{HELPER}-halves"):
-        part(0, n)  # short, or already in that helper (waiting on itself would deadlock)
+def _inside(role: str) -> bool:
+    """Whether this thread is `role`'s helper (waiting on itself would deadlock)."""
+    return threading.current_thread().name.startswith(f"{HELPER}-{role}")
+
+
+def halves(part: Callable[[int, int], object], n: int, role: str = "halves") -> None:
+    """part(start, stop) over [0, n): long ranges in two halves at once, one of them in
+    `role`'s helper thread. These numpy passes release the GIL and are bound by memory
+    latency, so the second core nearly halves them."""
+    if n < PARALLEL_ABOVE or _inside(role):
+        part(0, n)  # short, or already in that helper
         return
-    other = _pool("halves").submit(part, n // 2, n)
+    other = _pool(role).submit(part, n // 2, n)
     part(0, n // 2)
     other.result()
+
+
+def in_chunks(part: Callable[[int, int], object], n: int, size: int) -> None:
+    """part(start, stop) over [0, n) in chunks of `size` (the same boundaries as a plain
+    loop, so every row sees the same arithmetic), alternate chunks in a helper thread."""
+    starts = range(0, n, size)
+    if len(starts) < 2 or _inside(PASSES):
+        for lo in starts:
+            part(lo, min(lo + size, n))
+        return
+
+    def run(mine: range) -> None:
+        for lo in mine:
+            part(lo, min(lo + size, n))
+
+    other = _pool(PASSES).submit(run, starts[1::2])
+    try:
+        run(starts[0::2])
+    finally:
+        other.result()
+
+
+def take(source: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    """source[ids] along the first axis (ids in [-len, len), negatives from the end as in
+    Python), gathered in halves: random gathers are bound by memory latency."""
+    out = np.empty((len(ids), *source.shape[1:]), dtype=source.dtype)
+
+    def part(start: int, stop: int) -> None:
+        np.take(source, ids[start:stop], axis=0, out=out[start:stop], mode="wrap")
+
+    halves(part, len(ids), PASSES)
+    return out
+
+
+def searchsorted(ascending: np.ndarray, values: np.ndarray, side: str = "left") -> np.ndarray:
+    """np.searchsorted(ascending, values, side) as (n,) intp, the values in halves."""
+    out = np.empty(len(values), dtype=np.intp)
+
+    def part(start: int, stop: int) -> None:
+        out[start:stop] = np.searchsorted(ascending, values[start:stop], side=side)
+
+    halves(part, len(values), PASSES)
+    return out
+
+
+def sort(values: np.ndarray) -> None:
+    """values.sort() in place: long arrays as two halves at once, then one merge pass
+    (numpy's stable sort merges two sorted runs in linear time)."""
+    if len(values) < PARALLEL_ABOVE or _inside(PASSES):
+        values.sort()
+        return
+    half = len(values) // 2
+    other = _pool(PASSES).submit(values[half:].sort)
+    values[:half].sort()
+    other.result()
+    values.sort(kind="stable")
+
+
+def reduce_segments(ufunc: np.ufunc, values: Callable[[int, int], np.ndarray],
+                    starts: np.ndarray, n: int, dtype: type) -> np.ndarray:
+    """ufunc.reduceat over the segments [starts[i], starts[i+1]) of an n-long sequence
+    whose items [lo, hi) `values(lo, hi)` gives; the segments in halves (each half gathers
+    only its own items)."""
+    out = np.empty(len(starts), dtype=dtype)
+
+    def part(first: int, last: int) -> None:
+        lo = int(starts[first])
+        hi = int(starts[last]) if last < len(starts) else n
+        out[first:last] = ufunc.reduceat(values(lo, hi), starts[first:last] - lo)
+
+    halves(part, len(starts), PASSES)
+    return out
 
 
 def select(keep: np.ndarray, pairs: list[tuple[np.ndarray, np.ndarray]],

@@ -6,13 +6,13 @@ from sorted event arrays and cumulative sums, so the whole spectrum costs O(n lo
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .alpha import threshold
 from .arrays import readonly
+from .geometry import facet_sizes
 from .index import TableIndex
 from .opening import opening_alpha_of
 from .topology import Topology, ascending, ascending_order
@@ -91,7 +91,7 @@ def boundary_sums(facet_cells: np.ndarray, cell_order: np.ndarray, sizes: np.nda
     rank = np.empty(len(cell_order), dtype=np.int64)
     rank[cell_order] = np.arange(len(cell_order))
     sides = np.where(facet_cells >= 0, rank[np.maximum(facet_cells, 0)], len(cell_order))
-    first, second = sides.min(axis=1), sides.max(axis=1)
+    first, second = np.minimum(sides[:, 0], sides[:, 1]), np.maximum(sides[:, 0], sides[:, 1])
     width = len(cell_order) + 1
     change = np.bincount(first, sizes, width) - np.bincount(second, sizes, width)
     return np.concatenate([[0.0], np.cumsum(change[:-1])])
@@ -108,8 +108,4 @@ def class_counts(thresholds: tuple, alphas: np.ndarray) -> np.ndarray:
 
 def facet_measures(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
     """(n_f,) float64 length (2D edges) or area (3D triangles) of (n_f, dim) facets."""
-    corners = np.asarray(points, dtype=np.float64)[np.asarray(facets)]
-    if corners.shape[1] == 2:
-        return np.linalg.norm(corners[:, 1] - corners[:, 0], axis=1)
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    return np.linalg.norm(normal, axis=1) / math.factorial(2)
+    return facet_sizes(np.asarray(points, dtype=np.float64), np.asarray(facets))

@@ -15,6 +15,7 @@ their first edge).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,6 +28,7 @@ from .geometry import (
     edge_vectors,
     facet_radii2,
 )
+from .parallel import in_chunks, reduce_segments, sort, take
 from .power import (
     any_point_below,
     cell_orthospheres,
@@ -63,19 +65,22 @@ class Table:
 
 def _permute(level: Level, order: np.ndarray) -> np.ndarray:
     """Reorder `level` by `order` in place; return the inverse permutation."""
-    level.simplices = level.simplices[order]
-    level.enter, level.regular, level.interior = (
-        level.enter[order], level.regular[order], level.interior[order])
+    level.simplices = take(level.simplices, order)
+    shared = level.regular is level.enter and level.interior is level.enter  # cells
+    level.enter = take(level.enter, order)
+    level.regular = level.enter.copy() if shared else take(level.regular, order)
+    level.interior = level.enter.copy() if shared else take(level.interior, order)
     if level.face_ids is not None:
-        level.face_ids = level.face_ids[order]
+        level.face_ids = take(level.face_ids, order)
     inverse = np.empty(len(order), dtype=np.int32)
     inverse[order] = np.arange(len(order), dtype=np.int32)
     return inverse
 
 
 def _remap(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
-    """Apply an inverse permutation to an id array that uses -1 for none."""
-    return np.where(ids >= 0, inverse[np.maximum(ids, 0)], -1).astype(np.int32)
+    """Apply an inverse permutation to an int32 id array that uses -1 for none: one gather
+    from the inverse with -1 appended (index -1 reads it)."""
+    return take(np.append(inverse, np.int32(-1)), ids.ravel()).reshape(ids.shape)
 
 
 def argsort_radii(values: np.ndarray) -> np.ndarray:
@@ -183,7 +188,8 @@ def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     level = Level(cells, enter, enter, enter)
     order = argsort_radii(enter)
     inverse = _permute(level, order)
-    return level, _remap(neighbors[order], inverse), det[order], bits[order], measure[order]
+    return (level, _remap(take(neighbors, order), inverse), take(det, order), take(bits, order),
+            take(measure, order))
 
 
 def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
@@ -228,13 +234,13 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     """Level d-1 from the cells' neighbour table: each shared facet taken once."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
-    t0, i0 = np.nonzero(keep)
+    slot0 = np.flatnonzero(keep)  # cell-major, as np.nonzero lists them
     del keep
-    t1 = neighbors[t0, i0]
-    others = np.array([[j for j in range(width) if j != i] for i in range(width)])
-    simplices = np.take_along_axis(cells.simplices[t0], others[i0], axis=1)
+    t0, i0 = np.divmod(slot0, width)
+    t1 = take(neighbors.ravel(), slot0)
+    simplices = _drop_vertex(cells.simplices, t0, i0)
     has1 = np.flatnonzero(t1 >= 0)
-    j1 = np.argmax(neighbors[t1[has1]] == t0[has1, None], axis=1)
+    j1 = _slot_of(neighbors, t1[has1], t0[has1])
 
     radius, obtuse, global_test = _facet_spheres(points, simplices, weights)
     attached = ((bits[t0] >> i0) & 1).astype(bool)
@@ -260,8 +266,8 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
 
     fid = np.arange(len(t0), dtype=np.int32)
     cell_faces = np.full((n_cells, width), -1, dtype=np.int32)
-    cell_faces[t0, i0] = fid
-    cell_faces[t1[has1], j1] = fid[has1]
+    cell_faces.ravel()[slot0] = fid
+    cell_faces.ravel()[t1[has1].astype(np.int64) * width + j1] = fid[has1]
     level = Level(simplices.astype(np.int32), enter, regular, interior)
     facet_cells = np.stack((t0, t1), axis=1).astype(np.int32)
     order = argsort_radii(enter)
@@ -269,6 +275,25 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     cells.face_ids = inverse[cell_faces]
     return (level, facet_cells[order], flip[order], near_flat[order],
             None if obtuse is None else obtuse[order])
+
+
+def _drop_vertex(simplices: np.ndarray, rows: np.ndarray, drop: np.ndarray) -> np.ndarray:
+    """(n, w-1) the ascending rows `rows` of (c, w) `simplices` without column `drop`."""
+    full = take(simplices, rows)
+    out = np.empty((len(rows), simplices.shape[1] - 1), dtype=simplices.dtype)
+    for c in range(out.shape[1]):
+        np.copyto(out[:, c], np.where(drop > c, full[:, c], full[:, c + 1]))
+    return out
+
+
+def _slot_of(neighbors: np.ndarray, cells: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """(n,) int64 first column of neighbors[cells] holding target (0 if none), as argmax
+    would give, by one compare per column instead of a (n, w) boolean argmax."""
+    rows = take(neighbors, cells)
+    slot = np.zeros(len(cells), dtype=np.int64)
+    for c in range(neighbors.shape[1] - 1, -1, -1):
+        slot[rows[:, c] == target] = c
+    return slot
 
 
 def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bool]:
@@ -289,7 +314,7 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
         cols = [triangles[:, c].astype(np.uint64) for c in range(3)]
         packed = np.concatenate([((cols[i] * m + cols[j]) << shift) | tid for i, j in pairs])
         del cols, tid
-        packed.sort()
+        sort(packed)
         tri_ids = (packed & np.uint64((1 << tri_bits) - 1)).astype(np.int32)
         packed >>= shift
         return packed.view(np.int64), tri_ids, True
@@ -297,6 +322,37 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
                            for i, j in pairs])
     order = np.argsort(keys)
     return keys[order], (order % nt).astype(np.int32), False
+
+
+def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
+                tris: np.ndarray, bits: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """For the sorted incidences (edge key, triangle id): (n,) bool attach bit of each
+    (the triangle's vertex opposite the edge is inside its diametral sphere) and the
+    (3 t,) int32 edge number of every triangle's three edges; in chunks on two threads."""
+    inside = np.empty(len(keys), dtype=bool)
+    face_ids = np.empty(tris.size, dtype=np.int32)
+    first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
+    size = 4 * CHUNK
+    base = np.cumsum([0] + [np.count_nonzero(is_start[lo:lo + size])
+                            for lo in range(0, len(keys), size)])
+
+    def part(lo: int, hi: int) -> None:
+        t = tri_ids[lo:hi]
+        a, b = np.divmod(keys[lo:hi], m)
+        local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
+        inside[lo:hi] = (bits[t] >> local) & 1
+        edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
+        face_ids[3 * t.astype(np.int64) + local] = edge_of
+
+    in_chunks(part, len(keys), size)
+    return inside, face_ids
+
+
+def _gathered(source: np.ndarray, ids: np.ndarray | None) -> Callable[[int, int], np.ndarray]:
+    """(lo, hi) -> source[ids[lo:hi]] (source[lo:hi] without ids), for reduce_segments."""
+    if ids is None:
+        return lambda lo, hi: source[lo:hi]
+    return lambda lo, hi: np.take(source, ids[lo:hi])
 
 
 def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
@@ -314,27 +370,19 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     np.not_equal(keys[1:], keys[:-1], out=is_start[1:])
     starts = np.flatnonzero(is_start)
 
-    inside = np.empty(len(keys), dtype=bool)
-    face_ids = np.empty(tris.size, dtype=np.int32)
-    first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
-    edge_base = 0
-    for lo in range(0, len(keys), 4 * CHUNK):
-        sl = slice(lo, lo + 4 * CHUNK)
-        t = tri_ids[sl]
-        a, b = np.divmod(keys[sl], m)
-        local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
-        inside[sl] = (bits[t] >> local) & 1
-        edge_of = np.cumsum(is_start[sl], dtype=np.int64) + (edge_base - 1)
-        edge_base = int(edge_of[-1]) + 1
-        face_ids[3 * t.astype(np.int64) + local] = edge_of
+    inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m)
     del is_start, bits
+    n = len(keys)
     if ids_ascend:
-        regular = triangles.enter[tri_ids[starts]]
+        regular = take(triangles.enter, take(tri_ids, starts))
     else:
-        regular = np.minimum.reduceat(triangles.enter[tri_ids], starts)
-    interior = np.maximum.reduceat(triangles.interior[tri_ids], starts)
-    attached = np.logical_or.reduceat(inside, starts)
-    check = np.flatnonzero(np.logical_or.reduceat(near_flat[tri_ids], starts))
+        regular = reduce_segments(np.minimum, _gathered(triangles.enter, tri_ids), starts, n,
+                                  np.float64)
+    interior = reduce_segments(np.maximum, _gathered(triangles.interior, tri_ids), starts, n,
+                               np.float64)
+    attached = reduce_segments(np.logical_or, _gathered(inside, None), starts, n, bool)
+    check = np.flatnonzero(reduce_segments(np.logical_or, _gathered(near_flat, tri_ids),
+                                           starts, n, bool))
     edge_keys = keys[starts]
     del keys, tri_ids, inside
     a, b = np.divmod(edge_keys, m)
@@ -351,7 +399,7 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     enter = np.where(attached, regular, np.minimum(half, regular))
     level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
     inverse = _sort_by_enter(level)
-    triangles.face_ids = inverse[face_ids.reshape(-1, 3)]
+    triangles.face_ids = take(inverse, face_ids).reshape(-1, 3)
     return level
 
 

@@ -17,7 +17,8 @@ import numpy as np
 
 from .alpha import radius
 from .arrays import owned_readonly
-from .forest import spanning_forest
+from .forest import ordered_forest, rank_forest
+from .parallel import searchsorted
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,9 +41,9 @@ class Topology:
     def betti_many(self, alphas: np.ndarray) -> np.ndarray:
         """(s, dim) int32 Betti numbers at every alpha of the (s,) array `alphas`."""
         alphas = np.asarray(alphas, dtype=np.float64)
-        n_in = [np.searchsorted(e, alphas, side="right") for e in self.enter_sorted]
-        b0 = n_in[0] - np.searchsorted(self.vertex_forest, alphas, side="right")
-        open_forest = len(self.dual_forest) - np.searchsorted(self.dual_forest, alphas, "right")
+        n_in = [searchsorted(e, alphas, side="right") for e in self.enter_sorted]
+        b0 = n_in[0] - searchsorted(self.vertex_forest, alphas, side="right")
+        open_forest = len(self.dual_forest) - searchsorted(self.dual_forest, alphas, "right")
         cavities = (self.n_cells - n_in[self.dim]) - open_forest
         if self.dim == 2:
             return np.stack([b0, cavities], axis=1).astype(np.int32)
@@ -52,8 +53,8 @@ class Topology:
     def solid_components(self, alphas: np.ndarray) -> np.ndarray:
         """(s,) int32 number of facet-connected groups of cells in the complex at each alpha."""
         alphas = np.asarray(alphas, dtype=np.float64)
-        cells_in = np.searchsorted(self.enter_sorted[self.dim], alphas, side="right")
-        return (cells_in - np.searchsorted(self.solid_forest, alphas, side="right")).astype(
+        cells_in = searchsorted(self.enter_sorted[self.dim], alphas, side="right")
+        return (cells_in - searchsorted(self.solid_forest, alphas, side="right")).astype(
             np.int32
         )
 
@@ -80,14 +81,10 @@ def build_topology(ac) -> Topology:
 def vertex_spanning_forest(n_vertices: int, edges: np.ndarray, edge_enter: np.ndarray):
     """(enter, a, b) of the edges that join components, by entry: (f,) float64, (f,) int64.
 
-    Edges are (n_e, 2) int64 sorted by their (n_e,) enter values; values <= 0 (weighted
-    complexes) go through their ranks, as the spanning forest takes positive weights only.
+    Edges are (n_e, 2) int64 sorted by their (n_e,) enter values (ties: in the given order).
     """
-    if len(edge_enter) == 0 or edge_enter[0] > 0:
-        return spanning_forest(n_vertices, edges[:, 0], edges[:, 1], edge_enter)
-    ranks, a, b = spanning_forest(n_vertices, edges[:, 0], edges[:, 1],
-                                  np.arange(1.0, len(edge_enter) + 1.0))
-    return edge_enter[ranks.astype(np.int64) - 1], a, b
+    joined = ordered_forest(n_vertices, edges[:, 0], edges[:, 1])
+    return edge_enter[joined], edges[joined, 0], edges[joined, 1]
 
 
 def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) -> tuple:
@@ -98,27 +95,28 @@ def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int) 
     n_cells for the outside). A cell with several hull facets keeps its first to arrive.
     """
     order = ascending_order(facet_enter)[::-1]
-    sides = np.where(facet_cells[order] < 0, n_cells, facet_cells[order])
-    u, v = sides.min(axis=1), sides.max(axis=1)
+    sides = facet_cells[order]
+    sides = np.where(sides < 0, n_cells, sides)
+    u, v = np.minimum(sides[:, 0], sides[:, 1]), np.maximum(sides[:, 0], sides[:, 1])
+    del sides
     hull = v == n_cells
     first_hull = np.full(n_cells + 1, len(order), dtype=np.int64)
     np.minimum.at(first_hull, u[hull], np.flatnonzero(hull))
     keep = (u != v) & (~hull | (np.arange(len(order)) == first_hull[u]))
     arrival = np.flatnonzero(keep)
-    ranks, a, b = spanning_forest(n_cells + 1, u[keep], v[keep], arrival + 1.0)
-    facets = order[ranks.astype(np.int64) - 1]
-    return facet_enter[facets], np.stack([a, b], axis=1)
+    joined = arrival[ordered_forest(n_cells + 1, u[arrival], v[arrival])]
+    facets = order[joined]
+    return facet_enter[facets], np.stack([u[joined], v[joined]], axis=1)
 
 
 def solid_forest(facet_cells: np.ndarray, cell_enter: np.ndarray) -> np.ndarray:
     """(fs,) float64 ascending alphas at which an inner facet first joins two separate solids."""
-    inner = facet_cells[(facet_cells >= 0).all(axis=1)]
-    a, b = inner.min(axis=1), inner.max(axis=1)
+    inner = facet_cells[(facet_cells[:, 0] >= 0) & (facet_cells[:, 1] >= 0)]
+    a, b = np.minimum(inner[:, 0], inner[:, 1]), np.maximum(inner[:, 0], inner[:, 1])
     order = ascending_order(cell_enter)
-    rank = np.empty(len(cell_enter), dtype=np.float64)
+    rank = np.empty(len(cell_enter), dtype=np.int64)
     rank[order] = np.arange(1, len(cell_enter) + 1)
-    joined, _, _ = spanning_forest(len(cell_enter), a, b, np.maximum(rank[a], rank[b]))
-    return cell_enter[order[joined.astype(np.int64) - 1]]
+    return cell_enter[order[rank_forest(rank, a, b) - 1]]
 
 
 def ascending_order(values: np.ndarray) -> np.ndarray:

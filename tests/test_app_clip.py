@@ -30,9 +30,9 @@ def opened(window, qtbot, tmp_path):
 
 def shot(win, qtbot) -> np.ndarray:
     """The view as an (h, w, 3) image."""
-    win.plotter.render()
+    win.scene.plotter.render()
     qtbot.wait(20)
-    return win.plotter.screenshot(return_img=True)[..., :3]
+    return win.scene.plotter.screenshot(return_img=True)[..., :3]
 
 
 def covered(image: np.ndarray) -> float:
@@ -48,20 +48,20 @@ def test_clipping_cuts_the_picture_and_keeps_the_geometry(opened, qtbot) -> None
     before = {name: layer.cells for name, layer in win.scene.layers.items()}
     plain = shot(win, qtbot)
     win.menus["clip"].trigger()
-    assert win.clipper.enabled and win.menus["clip"].isChecked()
+    assert win.scene.clipper.enabled and win.menus["clip"].isChecked()
     for layer in win.scene.layers.values():
         planes = layer.actor.mapper.GetClippingPlanes()
         assert planes is not None and planes.GetNumberOfItems() == 1
-    assert len(win.plotter.widgets.plane_widgets) == 1  # the handle that moves the plane
-    win.plotter.widgets.plane_widgets[0].Off()  # measure what the layers draw, not the handle
+    assert len(win.scene.plotter.widgets.plane_widgets) == 1  # the handle that moves the plane
+    win.scene.plotter.widgets.plane_widgets[0].Off()  # measure what the layers draw, not the handle
     cut = shot(win, qtbot)
     assert covered(cut) < 0.8 * covered(plain)
     assert {name: layer.cells for name, layer in win.scene.layers.items()} == before
-    win.clipper.set_plane(np.zeros(3), (0.0, 0.0, 1.0))
+    win.scene.clipper.set_plane(np.zeros(3), (0.0, 0.0, 1.0))
     turned = shot(win, qtbot)
     assert np.abs(turned.astype(int) - cut.astype(int)).sum() > 0
     win.menus["clip"].trigger()
-    assert not win.clipper.enabled and not win.plotter.widgets.plane_widgets
+    assert not win.scene.clipper.enabled and not win.scene.plotter.widgets.plane_widgets
     restored = shot(win, qtbot)
     assert covered(restored) == pytest.approx(covered(plain), abs=0.01)
 
@@ -77,5 +77,5 @@ def test_clipping_survives_a_slider_step_and_a_new_dataset(opened, qtbot, tmp_pa
     open_and_wait(qtbot, win, path)
     for layer in win.scene.layers.values():
         assert layer.actor.mapper.GetClippingPlanes().GetNumberOfItems() == 1
-    origin = np.asarray(win.clipper.plane.GetOrigin())
+    origin = np.asarray(win.scene.clipper.plane.GetOrigin())
     assert np.linalg.norm(origin) < 0.5  # placed through the new data's centre

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from conftest import image_contrast, open_and_wait
 
-from app.colour_view import SCALARS
 from app.palette import LAYER_TITLES, default_styles
+from app.scene.painting import SCALARS
 from core.components import solid_labels
 from core.spheres import find_simplex
 
@@ -70,7 +70,7 @@ def test_colour_by_enter_alpha_shows_the_tables_values(opened, qtbot) -> None:
         assert mapper.GetScalarRange()[1] == pytest.approx(win.model.alpha)
         if step == 0:
             win.model.set_index(win.model.index - 40)
-    assert "enters at alpha (r)" in win.plotter.scalar_bars
+    assert "enters at alpha (r)" in win.scene.plotter.scalar_bars
 
 
 def test_colour_by_component_uses_the_cores_labels(opened) -> None:
@@ -109,10 +109,10 @@ def test_colour_by_point_attributes(opened) -> None:
     mesh = win.scene.meshes["surface"]
     np.testing.assert_allclose(np.asarray(mesh.point_data[SCALARS])[ac.input_index], intensity)
     assert win.scene.layers["surface"].actor.mapper.GetScalarVisibility()
-    assert "Intensity" in win.plotter.scalar_bars
+    assert "Intensity" in win.scene.plotter.scalar_bars
     win.colourer.set_mode("attribute:colors")
     np.testing.assert_array_equal(np.asarray(mesh.point_data[SCALARS])[ac.input_index], rgb)
-    assert win.plotter.scalar_bars == {} or "Intensity" not in win.plotter.scalar_bars
+    assert win.scene.plotter.scalar_bars == {} or "Intensity" not in win.scene.plotter.scalar_bars
 
 
 def test_menu_lists_the_modes_and_class_restores_layer_colours(opened, qtbot) -> None:
@@ -125,19 +125,20 @@ def test_menu_lists_the_modes_and_class_restores_layer_colours(opened, qtbot) ->
     assert titles[:3] == ["Class (layer colours)", "Alpha at which it appears",
                           "Solid component"]
     assert "Intensity" in titles and "RGB colours" in titles
-    win.plotter.render()
+    win.scene.plotter.render()
     qtbot.wait(20)
-    plain = win.plotter.screenshot(return_img=True)
+    plain = win.scene.plotter.screenshot(return_img=True)
     next(a for a in menu.actions() if a.text() == "Alpha at which it appears").trigger()
-    win.plotter.render()
+    win.scene.plotter.render()
     qtbot.wait(20)
-    coloured = win.plotter.screenshot(return_img=True)
+    coloured = win.scene.plotter.screenshot(return_img=True)
     assert image_contrast(coloured) > 10
     assert np.abs(coloured.astype(int) - plain.astype(int)).sum(axis=2).astype(bool).mean() > 0.02
     next(a for a in menu.actions() if a.text() == "Class (layer colours)").trigger()
     assert not any(layer.actor.mapper.GetScalarVisibility()
                    for layer in win.scene.layers.values())
-    assert win.plotter.scalar_bars == {} or "enters at alpha (r)" not in win.plotter.scalar_bars
+    bars = win.scene.plotter.scalar_bars
+    assert bars == {} or "enters at alpha (r)" not in bars
 
 
 def legend_lines(win) -> list[tuple[str, bool]]:

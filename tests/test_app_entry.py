@@ -58,9 +58,9 @@ def test_window_and_subcommands_refuse_the_same_alphas(text, capsys) -> None:
 def test_window_and_subcommands_accept_the_same_alphas(text, value) -> None:
     """Finite radii >= 0 parse to the same value in both parsers."""
     from app import cli
-    from app.__main__ import build_parser
+    from app.__main__ import window_parser
 
-    assert build_parser().parse_args(["--alpha", text]).alpha == value
+    assert window_parser().parse_args(["--alpha", text]).alpha == value
     parsed = cli.build_parser().parse_args(["info", "x.ply", "--alpha", text])
     assert parsed.alpha == value
 

@@ -182,9 +182,9 @@ def test_page_keys_take_bigger_steps_and_layers_follow(opened, qtbot) -> None:
 
 def test_slider_steps_keep_the_same_actors(opened, qtbot) -> None:
     """Moving alpha swaps connectivity in place: no actor is added or replaced."""
-    actors = dict(opened.plotter.renderer.actors)
+    actors = dict(opened.scene.plotter.renderer.actors)
     press(qtbot, opened, Qt.Key.Key_Right, times=2)
-    assert dict(opened.plotter.renderer.actors) == actors
+    assert dict(opened.scene.plotter.renderer.actors) == actors
 
 
 def test_typed_radius_snaps_to_the_shape_at_that_value(opened, qtbot) -> None:
@@ -222,9 +222,9 @@ def test_toggling_a_layer_hides_its_actor(opened, qtbot) -> None:
 
 def screenshot(win, qtbot) -> np.ndarray:
     """(h, w, 3) uint8 image of the view after one render."""
-    win.plotter.interactor.update()
+    win.scene.plotter.interactor.update()
     qtbot.wait(50)
-    return win.plotter.screenshot(return_img=True)
+    return win.scene.plotter.screenshot(return_img=True)
 
 
 def test_screenshots_have_contrast_and_differ_between_alphas(opened, qtbot) -> None:
@@ -239,8 +239,8 @@ def test_screenshots_have_contrast_and_differ_between_alphas(opened, qtbot) -> N
 def test_2d_data_gets_a_parallel_top_down_view(window, qtbot, points_file) -> None:
     """2D points: parallel projection looking down z, boundary drawn as edges."""
     open_and_wait(qtbot, window, points_file(disc_2d()))
-    assert window.plotter.camera.parallel_projection
-    assert np.allclose(np.abs(window.plotter.camera.direction), [0, 0, 1])
+    assert window.scene.plotter.camera.parallel_projection
+    assert np.allclose(np.abs(window.scene.plotter.camera.direction), [0, 0, 1])
     assert window.scene.layers["boundary"].kind == "lines"
     assert set(window.layers_panel.rows) == set(window.scene.layers)
     assert "surface" not in window.layers_panel.rows
@@ -303,7 +303,8 @@ def test_newer_open_kills_a_big_build_in_its_triangulation(window, qtbot, points
     with qtbot.waitSignal(window.loader.progress, timeout=BUILD_TIMEOUT_MS,
                           check_params_cb=lambda r, f, stage: stage == "Delaunay triangulation"):
         first = window.open_path(big)
-    with qtbot.waitSignals([window.loader.cancelled, window.model.datasetChanged],
+    with qtbot.waitSignals([window.loader.dropped, window.model.datasetChanged],
+                           check_params_cbs=[lambda request, kind: kind == "cancelled", None],
                            timeout=BUILD_TIMEOUT_MS):
         window.open_path(small)
     window.loader.wait()
@@ -385,8 +386,8 @@ def test_file_menu_shows_any_writer_error_in_a_dialog(opened, qtbot, tmp_path, m
     def broken(*args, **kwargs):
         raise RuntimeError("renderer fell over")
 
-    name = {"export_shape": "export_shape", "export_table": "export_table",
-            "screenshot": "save_screenshot"}[action]
+    name = {"export_shape": "write_shape_file", "export_table": "write_table_file",
+            "screenshot": "write_screenshot"}[action]
     monkeypatch.setattr(f"app.file_actions.{name}", broken)
     warnings: list[tuple[str, str]] = []
     monkeypatch.setattr("app.menus.QMessageBox.warning",
@@ -545,7 +546,7 @@ def test_3d_surface_is_one_surface_with_an_optional_highlight(window, qtbot, poi
     styles = default_styles(3)
     assert styles["surface"].visible and not styles["singular_highlight"].visible
     open_and_wait(qtbot, window, points_file(blobs_3d(), "fresh.npy"))
-    assert window.plotter.renderer.GetTwoSidedLighting()
+    assert window.scene.plotter.renderer.GetTwoSidedLighting()
     assert not window.layers_panel.rows["singular_highlight"].visible.isChecked()
     assert not window.scene.layers["singular_highlight"].actor.GetVisibility()
     window.layers_panel.rows["singular_highlight"].visible.setChecked(True)
@@ -602,7 +603,7 @@ def test_view_presets_and_reset_follow_the_data_frame(window, qtbot, points_file
     from app.camera import Z_UP
 
     open_and_wait(qtbot, window, points_file(blobs_3d(), "frame.npy"))
-    camera = window.plotter.camera
+    camera = window.scene.plotter.camera
     opening = np.array(camera.direction)
     bounds = np.array(window.scene.layers["points"].mesh.bounds).reshape(3, 2)
     for key, preset in (("T", "top"), ("F", "front"), ("S", "side"), ("I", "iso")):
@@ -624,12 +625,12 @@ def test_the_view_does_not_move_when_alpha_changes(opened, qtbot) -> None:
     put from the first critical value to the hull."""
     model = opened.model
     qtbot.wait(20)
-    before = opened.plotter.geometry()
+    before = opened.scene.plotter.geometry()
     for index in (0, 1, model.default_index(), model.optimal_index(), model.hull_index() - 1,
                   model.hull_index(), 2):
         model.set_index(index)
         qtbot.wait(20)
-        assert opened.plotter.geometry() == before, index
+        assert opened.scene.plotter.geometry() == before, index
 
 
 def test_info_dock_prints_for_people(opened) -> None:

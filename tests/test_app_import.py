@@ -12,7 +12,7 @@ import pytest
 from conftest import BUILD_TIMEOUT_MS
 from PIL import Image
 
-from app.__main__ import build_parser
+from app.__main__ import window_parser
 from app.dataset import ImportOptions
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -143,7 +143,7 @@ def test_window_command_line_reads_with_columns_and_subsample(qtbot, table_csv, 
     monkeypatch.setattr(MainWindow, "open_path", lambda self, path, options=None:
                         opened.append((self, Path(path), options)))
     monkeypatch.setattr(QApplication, "exec", lambda self: 0)
-    args = build_parser().parse_args([str(table_csv), "--columns", "alt,lon",
+    args = window_parser().parse_args([str(table_csv), "--columns", "alt,lon",
                                       "--subsample", "90"])
     try:
         assert launch.run_window(args) == 0

@@ -29,7 +29,7 @@ def opened(request, window, qtbot, tmp_path):
     open_and_wait(qtbot, window, path)
     window.layers_panel._edit("interior", visible=True,
                               opacity=default_styles(request.param)["interior"].opacity)
-    window.plotter.render()
+    window.scene.plotter.render()
     return window
 
 
@@ -40,7 +40,7 @@ def surface(win) -> str:
 
 def display_point(win, world: np.ndarray) -> tuple[float, float]:
     """Display coordinates (pixels, origin bottom left) of a world point in the view."""
-    renderer = win.plotter.renderer
+    renderer = win.scene.plotter.renderer
     renderer.SetWorldPoint(*world, 1.0)
     renderer.WorldToDisplay()
     x, y, _ = renderer.GetDisplayPoint()
@@ -49,7 +49,7 @@ def display_point(win, world: np.ndarray) -> tuple[float, float]:
 
 def click_view(win, qtbot, x: float, y: float) -> None:
     """A left click (press and release, no drag) on the view at display (x, y)."""
-    widget = win.plotter
+    widget = win.scene.plotter
     ratio = widget.devicePixelRatioF()
     pos = QPoint(round(x / ratio), round(widget.height() - 1 - y / ratio))
     qtbot.mouseClick(widget, Qt.MouseButton.LeftButton, pos=pos)
@@ -60,7 +60,7 @@ def visible_target(win, layer: str) -> np.ndarray:
     """The centroid of a cell of layer whose centroid projects inside the view."""
     mesh_points = np.asarray(win.scene.meshes[layer].points)
     cells = win.scene.layers[layer].cells
-    width, height = win.plotter.renderer.GetSize()
+    width, height = win.scene.plotter.renderer.GetSize()
     for row in np.linspace(0, len(cells) - 1, 50).astype(int):
         centre = mesh_points[cells[row]].mean(axis=0)
         x, y = display_point(win, centre)
@@ -130,13 +130,13 @@ def test_class_follows_the_slider_and_clear_removes_the_highlight(opened, qtbot)
     win = opened
     layer = win.scene.layers[surface(win)]
     win.inspector.inspect_vertices(layer.cells[len(layer.cells) // 2])
-    assert "inspect_simplex" in win.plotter.actors
+    assert "inspect_simplex" in win.scene.plotter.actors
     for index in (0, win.model.index // 2, win.model.hull_index()):
         win.model.set_index(index)
         assert_shows_the_table(win)
     win.inspect_panel.clear_button.click()
     assert win.inspect_panel.item is None
-    assert "inspect_simplex" not in win.plotter.actors
+    assert "inspect_simplex" not in win.scene.plotter.actors
 
 
 def test_spoon_is_drawn_through_the_simplex(opened, qtbot) -> None:
@@ -149,7 +149,7 @@ def test_spoon_is_drawn_through_the_simplex(opened, qtbot) -> None:
     win.inspector.inspect_vertices(layer.cells[0])
     item = win.inspect_panel.item
     win.inspect_panel.spoon.setChecked(True)
-    actor = win.plotter.actors["inspect_spoon"]
+    actor = win.scene.plotter.actors["inspect_spoon"]
     centre, radius = simplex_sphere(win.model.dataset.ac, item.k, item.row)
     assert radius == pytest.approx(item.intervals[0])
     bounds = np.asarray(actor.GetBounds()).reshape(-1, 2)
@@ -157,14 +157,14 @@ def test_spoon_is_drawn_through_the_simplex(opened, qtbot) -> None:
     np.testing.assert_allclose(np.diff(bounds[: len(centre)], axis=1).ravel(), 2 * radius,
                                rtol=0.02)
     win.inspect_panel.spoon.setChecked(False)
-    assert "inspect_spoon" not in win.plotter.actors
+    assert "inspect_spoon" not in win.scene.plotter.actors
 
 
 def test_a_drag_does_not_pick(opened, qtbot) -> None:
     """Press, move and release (a rotation) inspects nothing."""
     win = opened
     x, y = display_point(win, visible_target(win, surface(win)))
-    widget = win.plotter
+    widget = win.scene.plotter
     start = QPoint(round(x), round(widget.height() - 1 - y))
     qtbot.mousePress(widget, Qt.MouseButton.LeftButton, pos=start)
     qtbot.mouseMove(widget, start + QPoint(40, 25))

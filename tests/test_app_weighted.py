@@ -53,9 +53,9 @@ def test_balls_layer_draws_each_point_with_its_radius(window, qtbot, balls_csv) 
     np.testing.assert_allclose(bounds[:, 0], lo, atol=facets)
     np.testing.assert_allclose(bounds[:, 1], hi, atol=facets)
     assert (bounds[:, 0] < ac.points.min(axis=0) - 0.01).all()  # the balls, not the points
-    actors = set(window.plotter.renderer.actors)
+    actors = set(window.scene.plotter.renderer.actors)
     window.model.set_index(window.model.index + 1)  # a static layer: no new actor
-    assert set(window.plotter.renderer.actors) == actors
+    assert set(window.scene.plotter.renderer.actors) == actors
 
 
 def test_ball_count_is_capped() -> None:
@@ -82,7 +82,7 @@ def test_export_at_a_negative_alpha2(window, qtbot, balls_csv, tmp_path) -> None
     window.model.set_index(5)
     model = window.model
     assert model.alpha2 < 0
-    line = file_actions.export_shape(model.dataset.ac, model.alpha, tmp_path / "low.vtu")
+    line = file_actions.write_shape_file(model.dataset.ac, model.alpha, tmp_path / "low.vtu")
     assert f"alpha² {model.alpha2:.6g}" in line
     assert (tmp_path / "low.vtu").is_file()
 

@@ -44,9 +44,9 @@ def test_window_shows_the_sample_points(sample_window) -> None:
 def test_window_screenshot_is_not_blank(sample_window, qtbot) -> None:
     """A screenshot of the window's view has contrast (a black or empty frame fails)."""
     window = sample_window
-    window.plotter.interactor.update()
+    window.scene.plotter.interactor.update()
     qtbot.wait(50)
-    image = window.plotter.screenshot(return_img=True)
+    image = window.scene.plotter.screenshot(return_img=True)
     assert image.shape[0] > 100 and image.shape[1] > 100
     assert image_contrast(image) > MIN_CONTRAST
 

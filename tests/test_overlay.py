@@ -9,8 +9,8 @@ from PIL import Image
 
 from app.__main__ import main
 from app.numbers import coordinate, plural, quantity
-from app.overlay import alpha_text, length_label, round_length
 from app.palette import BACKGROUND
+from app.scene.overlay import alpha_caption, length_label, round_length
 
 CORNER = (0.16, 0.12)  # the top-left share of the picture where the legend sits
 
@@ -32,8 +32,8 @@ def test_scale_bar_takes_a_round_length(target, length) -> None:
 
 def test_labels_read_as_people_write_them() -> None:
     assert length_label(5e6, "m") == "5,000 km" and length_label(0.05, None) == "0.05"
-    assert alpha_text(0.00110545, None) == "alpha: r 0.001105, r² 1.222e-06"
-    assert alpha_text(2.0, "m") == "alpha: r 2.000 m, r² 4.000 m²"
+    assert alpha_caption(0.00110545, None) == "alpha: r 0.001105, r² 1.222e-06"
+    assert alpha_caption(2.0, "m") == "alpha: r 2.000 m, r² 4.000 m²"
     assert coordinate(4918340.123, 40.0) == "4918340.123" and quantity(4918339.5) == "4,918,340"
     assert plural(1, "point") == "1 point" and plural(2, "vertex", "vertices") == "2 vertices"
 
@@ -53,17 +53,17 @@ def test_screenshot_has_a_legend_unless_asked_not_to(tmp_path, capsys) -> None:
 def test_window_screenshot_carries_the_legend_and_alpha(window, qtbot, tmp_path) -> None:
     """File → Save screenshot: the legend lists the visible layers, the alpha text follows the
     slider, and the saved picture has the legend in its corner."""
-    from app.file_actions import save_screenshot
+    from app.file_actions import write_screenshot
 
     np.save(tmp_path / "p.npy", np.random.default_rng(1).normal(size=(500, 3)))
     open_and_wait(qtbot, window, tmp_path / "p.npy")
     overlay = window.scene.overlay
-    assert overlay.alpha.GetInput() == alpha_text(window.model.alpha, None)
+    assert overlay.alpha.GetInput() == alpha_caption(window.model.alpha, None)
     window.model.set_index(window.model.index + 1)
-    assert overlay.alpha.GetInput() == alpha_text(window.model.alpha, None)
+    assert overlay.alpha.GetInput() == alpha_caption(window.model.alpha, None)
     labels = [overlay.legend.GetEntryString(i) for i in range(overlay.legend.GetNumberOfEntries())]
     assert "Surface" in labels and "Interior cells" not in labels
-    window.plotter.interactor.update()
+    window.scene.plotter.interactor.update()
     qtbot.wait(50)
-    save_screenshot(window.plotter, tmp_path / "shot.png")
+    write_screenshot(window.scene, tmp_path / "shot.png")
     assert corner_differs(tmp_path / "shot.png") > 0.05

@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from core.forest import spanning_forest, younger_roots
+from core.forest import ordered_forest, rank_forest, spanning_forest, younger_roots
 
 
 @st.composite
@@ -40,6 +40,48 @@ def test_forest_counts_components_at_every_threshold(graph) -> None:
     for w in range(7):
         low = weight <= w
         assert components(n, u[low], v[low]) == n - np.count_nonzero(forest <= w)
+
+
+def python_kruskal(n: int, u: list[int], v: list[int]) -> list[int]:
+    """Positions of the edges, in the given order, that join two components (textbook)."""
+    parent = list(range(n))
+
+    def find(x: int) -> int:
+        while parent[x] != x:
+            x = parent[x]
+        return x
+
+    joined = []
+    for i, (x, y) in enumerate(zip(u, v, strict=True)):
+        rx, ry = find(x), find(y)
+        if rx != ry:
+            parent[rx] = ry
+            joined.append(i)
+    return joined
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(1, 30).flatmap(lambda n: st.tuples(
+    st.just(n), st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)), max_size=90))))
+def test_ordered_forest_is_kruskal_in_the_given_order(graph) -> None:
+    n, pairs = graph  # self-loops, repeats and both orientations included
+    u = np.array([a for a, _ in pairs], dtype=np.int64)
+    v = np.array([b for _, b in pairs], dtype=np.int64)
+    joined = ordered_forest(n, u, v)
+    assert joined.dtype == np.int64
+    assert joined.tolist() == python_kruskal(n, u.tolist(), v.tolist())
+
+
+@settings(max_examples=200, deadline=None)
+@given(graphs(), st.randoms(use_true_random=False))
+def test_rank_forest_joins_as_edges_arrive_with_their_later_node(graph, rnd) -> None:
+    n, u, v, _ = graph
+    rank = np.arange(1, n + 1, dtype=np.int64)
+    rnd.shuffle(rank)
+    arrival = np.maximum(rank[u], rank[v])
+    order = np.argsort(arrival, kind="stable")
+    expected = arrival[order][python_kruskal(n, u[order].tolist(), v[order].tolist())]
+    assert rank_forest(rank, u, v).tolist() == expected.tolist()
 
 
 def python_elder_rule(key: np.ndarray, a: np.ndarray, b: np.ndarray) -> list[int]:

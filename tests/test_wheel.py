@@ -124,6 +124,7 @@ def cached_tables(folder: Path) -> list[Path]:
     return [path for path in folder.glob("*.npz") if not path.name.startswith(".")]
 
 
+@pytest.mark.gui
 def test_installed_window_opens_on_the_sample(venv: Path, tmp_path: Path) -> None:
     """The installed `alphascoop` (no file, the session's display) opens the window and builds
     the bundled sample: its table lands in a private cache while the window is still up."""

@@ -17,7 +17,8 @@ from PySide6.QtCore import QTimer
 from vtkmodules.vtkRenderingCore import vtkCellPicker
 
 from app.inspect import Inspection
-from app.scene import Scene, as_xyz
+from app.scene.data import as_xyz
+from app.scene.layers import Layer
 
 PICK_TOLERANCE = 0.004  # of the window diagonal: lines and points are thin targets
 CLICK_SLOP_PX = 4  # a press and release further apart than this are a drag, not a click
@@ -47,12 +48,14 @@ def spoon_mesh(centre: np.ndarray, radius: float) -> pv.PolyData:
 
 
 class ViewPicker:
-    """Picks cells of a Scene's visible layers under a click; draws the inspected simplex."""
+    """Picks cells of the scene's visible layers under a click; draws the inspected simplex."""
 
-    def __init__(self, plotter: pv.BasePlotter, scene: Scene,
-                 on_pick: Callable[[np.ndarray], None], on_escape: Callable[[], None]) -> None:
-        """Observe plotter's interactor (when it has one); on_pick(vertices) after a hit."""
-        self.plotter, self.scene = plotter, scene
+    def __init__(self, plotter: pv.BasePlotter, layers: dict[str, Layer],
+                 render: Callable[[], None], on_pick: Callable[[np.ndarray], None],
+                 on_escape: Callable[[], None]) -> None:
+        """Observe plotter's interactor (when it has one) over the scene's `layers`;
+        on_pick(vertices) after a hit (made by Scene.add_picker)."""
+        self.plotter, self.layers, self.render = plotter, layers, render
         self.on_pick, self.on_escape = on_pick, on_escape
         self.picker = vtkCellPicker()
         self.picker.SetTolerance(PICK_TOLERANCE)
@@ -101,7 +104,7 @@ class ViewPicker:
         if not self.picker.Pick(x, y, 0, self.plotter.renderer):
             return None
         actor, cell = self.picker.GetActor(), self.picker.GetCellId()
-        for layer in self.scene.layers.values():
+        for layer in self.layers.values():
             if layer.actor is actor and 0 <= cell < len(layer.cells):
                 return np.asarray(layer.cells[cell])
         return None
@@ -117,10 +120,10 @@ class ViewPicker:
             self.plotter.add_mesh(spoon_mesh(*spoon), name=OVERLAY_NAMES[1], color=SPOON_COLOUR,
                                   opacity=0.3, pickable=False, reset_camera=False,
                                   line_width=2, smooth_shading=True)
-        self.scene.render()
+        self.render()
 
     def clear(self) -> None:
         """Remove the highlight and the spoon."""
         for name in OVERLAY_NAMES:
             self.plotter.remove_actor(name, reset_camera=False, render=False)
-        self.scene.render()
+        self.render()

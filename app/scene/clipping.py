@@ -1,4 +1,5 @@
-"""A clipping plane to look inside the shape: interior cells, voids, the far side of a surface.
+"""The scene's clipping plane, to look inside the shape: interior cells, voids, the far side
+of a surface.
 
 The plane clips in the mappers (rendering only): no geometry is recomputed, the layers'
 connectivity and cell ids stay as they are (so picking still maps to the table), and a slider
@@ -7,21 +8,22 @@ step needs nothing from here. In the window a plane widget moves and turns it.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import pyvista as pv
-from PySide6.QtGui import QAction, QKeySequence
-from PySide6.QtWidgets import QMenu
 from vtkmodules.vtkCommonDataModel import vtkPlane
 
-from app.scene import Scene
+from app.scene.layers import Layer
 
 
 class Clipper:
     """One plane shared by every layer's mapper while clipping is on."""
 
-    def __init__(self, plotter: pv.BasePlotter, scene: Scene) -> None:
-        """Off until set_enabled(True)."""
-        self.plotter, self.scene = plotter, scene
+    def __init__(self, plotter: pv.BasePlotter, layers: dict[str, Layer],
+                 render: Callable[[], None]) -> None:
+        """Clip the scene's `layers` (its one dict) in plotter; off until set_enabled(True)."""
+        self.plotter, self.layers, self.render = plotter, layers, render
         self.plane = vtkPlane()
         self.enabled = False
 
@@ -29,22 +31,22 @@ class Clipper:
         """Clip every layer with the plane, placed through the data's centre (without data the
         wish is kept for the next dataset)."""
         self.enabled = bool(on)
-        if not self.scene.layers:
+        if not self.layers:
             return
         if self.enabled:
             self._place_default()
         self.apply()
         self._widget(self.enabled)
-        self.scene.render()
+        self.render()
 
     def _place_default(self) -> None:
         """Through the centre of the points, facing along x (the widget turns it)."""
-        bounds = np.asarray(self.scene.meshes["points"].bounds).reshape(-1, 2)
+        bounds = np.asarray(self.layers["points"].mesh.bounds).reshape(-1, 2)
         self.set_plane(bounds.mean(axis=1), (1.0, 0.0, 0.0), render=False)
 
     def apply(self) -> None:
         """Attach (or detach) the plane to every layer's mapper: after a new dataset too."""
-        for layer in self.scene.layers.values():
+        for layer in self.layers.values():
             mapper = layer.actor.mapper
             mapper.RemoveAllClippingPlanes()
             if self.enabled:
@@ -55,7 +57,7 @@ class Clipper:
         self.plane.SetOrigin(*np.asarray(origin, dtype=np.float64))
         self.plane.SetNormal(*(-np.asarray(normal, dtype=np.float64)))
         if render:
-            self.scene.render()
+            self.render()
 
     def _widget(self, on: bool) -> None:
         """The interactive plane (window only): dragging it moves the cut."""
@@ -65,15 +67,6 @@ class Clipper:
         origin, normal = self.plane.GetOrigin(), -np.asarray(self.plane.GetNormal())
         self.plotter.add_plane_widget(
             lambda n, o: self.set_plane(o, n), normal=tuple(normal), origin=origin,
-            bounds=self.scene.meshes["points"].bounds, implicit=True, outline_opacity=0.3,
+            bounds=self.layers["points"].mesh.bounds, implicit=True, outline_opacity=0.3,
             interaction_event="always", color="#ffd400", tubing=False, normal_rotation=True)
 
-
-def add_clip_action(menu: QMenu, clipper: Clipper) -> QAction:
-    """View → Clipping plane (Ctrl+K), checkable."""
-    action = menu.addAction("Clipping &plane")
-    action.setCheckable(True)
-    action.setShortcut(QKeySequence("Ctrl+K"))
-    action.setToolTip("cut the shape open with a plane you can drag and turn")
-    action.toggled.connect(clipper.set_enabled)
-    return action

@@ -52,7 +52,7 @@ def legend_entries(styles: dict[str, LayerStyle], colour_by: str | None = None,
     return entries
 
 
-def alpha_text(alpha: float, unit: str | None) -> str:
+def alpha_caption(alpha: float, unit: str | None) -> str:
     """'alpha: r 0.001105 m, r² 1.222e-06 m²' (weighted alphas may be negative: r² keeps the
     sign of the squared value)."""
     return (f"alpha: r {with_unit(quantity(alpha), unit)}, "
@@ -115,7 +115,7 @@ class Overlay:
 
     def set_alpha(self, alpha: float) -> None:
         """Show the current alpha (a radius; signed for weighted data)."""
-        self.alpha.SetInput(alpha_text(alpha, self.unit))
+        self.alpha.SetInput(alpha_caption(alpha, self.unit))
 
     def set_layers(self, styles: dict[str, LayerStyle]) -> None:
         """Legend of the visible layers, in their colours (only on a style change)."""

@@ -1,0 +1,47 @@
+"""What the scene draws of a dataset, as plain arrays: one function for the window and the
+off-screen screenshot alike (no VTK here)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from app.camera import Z_UP, ViewFrame
+from app.dataset import Dataset
+from app.palette import LayerStyle
+
+
+def as_xyz(points: np.ndarray) -> np.ndarray:
+    """(m, 3) float64 copy of (m, 2) or (m, 3) points (2D gets z = 0)."""
+    points = np.asarray(points, dtype=np.float64)
+    if points.shape[1] == 3:
+        return np.ascontiguousarray(points)
+    return np.column_stack([points, np.zeros(len(points))])
+
+
+@dataclass(frozen=True)
+class SceneData:
+    """A dataset as the scene takes it: (m, 3) float64 points `xyz`, the complex dimension,
+    (e, 2) Delaunay `edges`, the layer `styles`, for weighted points their (m,) `radii` (the
+    balls layer, when styles has it) and (m, 3) uint8 `rgb` ball colours (atoms by element;
+    else None), the view `frame` (which way is up, app.camera) and the length `unit` the file
+    declares (or None). A "cavities" style adds a layer of cells set by Scene.set_cells."""
+
+    xyz: np.ndarray
+    dim: int
+    edges: np.ndarray
+    styles: dict[str, LayerStyle]
+    radii: np.ndarray | None = None
+    rgb: np.ndarray | None = None
+    frame: ViewFrame = Z_UP
+    unit: str | None = None
+
+
+def scene_data(dataset: Dataset, styles: dict[str, LayerStyle],
+               rgb: np.ndarray | None = None) -> SceneData:
+    """The arrays the scene draws of dataset, with these layer styles (and ball colours)."""
+    ac = dataset.ac
+    radii = None if ac.weights is None else np.sqrt(np.maximum(ac.weights, 0.0))
+    return SceneData(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
+                     radii, rgb, dataset.frame, dataset.unit)

@@ -1,0 +1,24 @@
+"""The window's scene: a Qt render widget (pyvistaqt.QtInteractor) owned by a Scene.
+
+Kept apart from app.scene.view so the off-screen screenshot never imports Qt.
+"""
+
+from __future__ import annotations
+
+import os
+
+os.environ["QT_API"] = "pyside6"
+
+from PySide6.QtWidgets import QWidget
+from pyvistaqt import QtInteractor
+
+from app.scene.view import Scene
+
+
+def interactive_scene(parent: QWidget) -> tuple[Scene, QWidget]:
+    """A scene drawing into a new Qt render widget of parent, and that widget (to place in
+    a layout). It renders only when asked (auto_update=False) and takes no drops (the
+    window does)."""
+    plotter = QtInteractor(parent, auto_update=False)
+    plotter.setAcceptDrops(False)
+    return Scene(plotter, render=plotter.update), plotter

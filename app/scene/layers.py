@@ -1,0 +1,102 @@
+"""The scene's layers: one persistent mesh per drawn layer, its kind, and the arrays it draws.
+
+A new alpha only swaps a layer's connectivity in place (zero-copy numpy -> vtkCellArray).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pyvista as pv
+
+from app.palette import MAX_BALLS
+
+SHRINK_FACTOR = 0.8
+KINDS_3D = {
+    "delaunay": "lines", "points": "verts", "interior": "tets", "surface": "tris",
+    "singular_highlight": "tris", "singular_edges": "lines", "singular_points": "verts",
+}
+KINDS_2D = {
+    "delaunay": "lines", "points": "verts", "interior": "tris", "boundary": "lines",
+    "singular_edges": "lines", "singular_points": "verts",
+}
+STATIC_LAYERS = ("points", "delaunay", "balls", "cavities")
+BALL_RESOLUTION = 10  # sphere glyph: 10 x 10 facets, about 160 triangles per ball
+DRAW_OPTIONS = {
+    "points": {"point_size": 3.0},
+    "singular_points": {"point_size": 5.0, "render_points_as_spheres": True},
+    "singular_edges": {"line_width": 3.0},
+    "boundary": {"line_width": 2.0},
+    "delaunay": {"line_width": 1.0},
+}
+
+
+def cell_array(cells: np.ndarray) -> pv.CellArray:
+    """vtkCellArray sharing memory with (k, s) int32 cells (copies only to fix the dtype)."""
+    cells = np.ascontiguousarray(cells, dtype=np.int32)
+    return pv.CellArray.from_regular_cells(cells if cells.ndim == 2 else cells[:, None])
+
+
+def shape_cells(shape, name: str) -> np.ndarray:
+    """(k, s) int32 simplices an AlphaShape gives the named layer.
+
+    The 3D surface is what a scan looks like: regular and singular triangles as one surface
+    (at small alphas much of a thin scan is singular); `singular_highlight` marks the latter.
+    """
+    if name == "interior":
+        return shape.cells
+    if name == "boundary":
+        return shape.regular_facets
+    if name == "surface":
+        return np.concatenate([shape.regular_facets, shape.singular(2)])
+    order = {"singular_points": 0, "singular_edges": 1, "singular_highlight": 2}[name]
+    return shape.singular(order).reshape(-1, order + 1)
+
+
+@dataclass
+class Layer:
+    """One drawn layer: its mesh (connectivity swapped in place) and actor."""
+
+    kind: str
+    mesh: pv.DataSet
+    actor: pv.Actor | None = None
+    dirty: bool = False
+    cells: np.ndarray = field(default_factory=lambda: np.zeros((0, 1), dtype=np.int32))
+
+    def set_cells(self, cells: np.ndarray) -> None:
+        """Replace the layer's (k, s) connectivity in place (points stay)."""
+        array = cell_array(cells)
+        if self.kind == "tets":
+            self.mesh.SetCells(pv.CellType.TETRA, array)
+        elif self.kind == "tris":
+            self.mesh.faces = array
+        elif self.kind == "lines":
+            self.mesh.lines = array
+        else:
+            self.mesh.verts = array
+        self.mesh.Modified()
+        self.cells = cells
+        self.dirty = False
+
+
+def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS,
+              rgb: np.ndarray | None = None) -> pv.PolyData:
+    """Spheres of the given (m,) radii around at most `limit` of the (m, 3) points (evenly
+    picked, so a big set still shows its spread); `rgb` (m, 3) uint8 colours them (point
+    data "rgb" of the glyphs)."""
+    pick = np.unique(np.linspace(0, len(xyz) - 1, min(limit, len(xyz))).round().astype(np.int64))
+    centres = pv.PolyData(np.ascontiguousarray(xyz[pick]))
+    centres["radius"] = np.asarray(radii, dtype=np.float64)[pick]
+    if rgb is not None:
+        centres["rgb"] = np.ascontiguousarray(rgb[pick], dtype=np.uint8)
+    sphere = pv.Sphere(radius=1.0, theta_resolution=BALL_RESOLUTION,
+                       phi_resolution=BALL_RESOLUTION)
+    return centres.glyph(scale="radius", geom=sphere, orient=False)
+
+
+def new_mesh(kind: str, xyz: np.ndarray) -> pv.DataSet:
+    """An empty mesh of the kind's type on the shared (m, 3) points."""
+    mesh = pv.UnstructuredGrid() if kind == "tets" else pv.PolyData()
+    mesh.points = xyz
+    return mesh

@@ -1,0 +1,223 @@
+"""The scene: the one owner of the plotter and every VTK object drawn in it, for the window
+(app.scene.interactive) and the off-screen screenshot alike.
+
+A new dataset replaces the layers' points once; a new alpha only swaps their connectivity in
+place, so a slider step never adds or removes an actor. Hidden layers are not updated until
+shown again. Other modules hand the scene numpy arrays (SceneData, shapes) and styles.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import pyvista as pv
+from vtkmodules.vtkFiltersGeneral import vtkShrinkFilter
+
+from app.camera import Z_UP
+from app.palette import BACKGROUND, LayerStyle
+from app.scene.clipping import Clipper
+from app.scene.data import SceneData
+from app.scene.layers import (
+    DRAW_OPTIONS,
+    KINDS_2D,
+    KINDS_3D,
+    SHRINK_FACTOR,
+    STATIC_LAYERS,
+    Layer,
+    ball_mesh,
+    new_mesh,
+    shape_cells,
+)
+from app.scene.overlay import Overlay
+from app.scene.painting import Painter
+from app.scene.picking import ViewPicker
+from core.atomic import atomic_path
+
+
+class Scene:
+    """Layers of one dataset drawn into a pyvista plotter (QtInteractor or off-screen), with
+    their overlay, clipping plane (`clipper`) and colour-by mapper state (`painter`)."""
+
+    def __init__(self, plotter: pv.BasePlotter, render: Callable[[], None] | None = None) -> None:
+        """Draw into plotter; render() defaults to plotter.render (QtInteractor: pass update).
+        Made by Scene.off_screen or app.scene.interactive.interactive_scene."""
+        self.plotter = plotter
+        self.plotter.theme.allow_empty_mesh = True
+        self.plotter.set_background(BACKGROUND)
+        self.plotter.renderer.SetTwoSidedLighting(True)  # singular triangles face either way
+        self._render = render or plotter.render
+        self.layers: dict[str, Layer] = {}  # one dict for the scene's life (helpers share it)
+        self.styles: dict[str, LayerStyle] = {}
+        self.shape = None
+        self.dim = 3
+        self.frame = Z_UP
+        self.overlay = Overlay(plotter)
+        self.clipper = Clipper(plotter, self.layers, self.render)
+        self.painter = Painter(plotter, self.layers, self.overlay)
+
+    @classmethod
+    def off_screen(cls, size: tuple[int, int]) -> Scene:
+        """A scene drawing into an off-screen plotter of size (width, height) pixels."""
+        return cls(pv.Plotter(off_screen=True, window_size=list(size)))
+
+    @property
+    def meshes(self) -> dict[str, pv.DataSet]:
+        """Layer name -> its mesh (read the drawn geometry here)."""
+        return {name: layer.mesh for name, layer in self.layers.items()}
+
+    def visible_layers(self) -> list[str]:
+        """Names of the layers drawn now."""
+        return [name for name in self.layers if self.styles[name].visible]
+
+    def set_dataset(self, data: SceneData) -> None:
+        """New data (app.scene.data.scene_data): new layers, camera fitted; the only time
+        actors are added. A clipping plane that is on stays on, through the new data."""
+        self.clear()
+        self.dim, self.shape, self.frame = data.dim, None, data.frame
+        self.overlay.unit = data.unit
+        self.painter.reset()
+        styles = data.styles
+        for name, kind in (KINDS_2D if data.dim == 2 else KINDS_3D).items():
+            self._add_layer(name, Layer(kind, new_mesh(kind, data.xyz)), styles[name])
+        if data.radii is not None and "balls" in styles:
+            self._add_layer("balls", Layer("balls", ball_mesh(data.xyz, data.radii, rgb=data.rgb)),
+                            styles["balls"])
+        if "cavities" in styles and data.dim == 3:
+            self._add_layer("cavities", Layer("tets", new_mesh("tets", data.xyz)),
+                            styles["cavities"])
+        self.layers["points"].set_cells(np.arange(len(data.xyz), dtype=np.int32)[:, None])
+        self.layers["delaunay"].set_cells(data.edges)
+        self.overlay.set_layers(self.styles)
+        self.fit_view()
+        if self.clipper.enabled:
+            self.clipper.set_enabled(True)
+
+    def _add_layer(self, name: str, layer: Layer, style: LayerStyle) -> None:
+        """Keep layer under name and add its one actor (only on a new dataset)."""
+        self.layers[name] = layer
+        self.styles[name] = style
+        layer.actor = self._add_actor(name, style)
+
+    def _add_actor(self, name: str, style: LayerStyle) -> pv.Actor:
+        """Add the layer's one actor."""
+        layer = self.layers[name]
+        source = layer.mesh
+        if layer.kind == "tets":
+            source = vtkShrinkFilter()
+            source.SetInputData(layer.mesh)
+            source.SetShrinkFactor(SHRINK_FACTOR)
+        coloured = "rgb" in getattr(layer.mesh, "point_data", {})
+        actor = self.plotter.add_mesh(
+            source, color=None if coloured else style.colour, opacity=style.opacity,
+            scalars="rgb" if coloured else None, rgb=coloured, name=name, reset_camera=False,
+            lighting=layer.kind in ("tris", "tets", "balls") and (self.dim == 3
+                                                                   or layer.kind == "balls"),
+            **DRAW_OPTIONS.get(name, {}),
+        )
+        if name == "singular_highlight":  # drawn over the surface's own triangles
+            actor.mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(-2.0, -2.0)
+        actor.SetVisibility(style.visible)
+        return actor
+
+    def clear(self) -> None:
+        """Remove every layer's actor (only when the dataset changes)."""
+        for name in self.layers:
+            self.plotter.remove_actor(name, reset_camera=False, render=False)
+        self.layers.clear()
+        self.styles.clear()
+
+    def set_shape(self, shape) -> None:
+        """Show an AlphaShape: swap the connectivity of visible layers, mark hidden ones dirty."""
+        self.shape = shape
+        self.overlay.set_alpha(shape.alpha)
+        for name, layer in self.layers.items():
+            if name in STATIC_LAYERS:
+                continue
+            if self.styles[name].visible:
+                layer.set_cells(shape_cells(shape, name))
+            else:
+                layer.dirty = True
+
+    def set_cells(self, name: str, cells: np.ndarray) -> None:
+        """Swap one static layer's cells (the cavities at a new alpha), if it exists."""
+        if name in self.layers:
+            self.layers[name].set_cells(cells)
+
+    def set_style(self, name: str, style: LayerStyle) -> None:
+        """Change one layer's visibility, colour or opacity (no geometry work unless dirty)."""
+        if name not in self.layers:
+            return
+        layer = self.layers[name]
+        self.styles[name] = style
+        if style.visible and layer.dirty and self.shape is not None:
+            layer.set_cells(shape_cells(self.shape, name))
+        prop = layer.actor.prop
+        prop.color = style.colour
+        prop.opacity = style.opacity
+        layer.actor.SetVisibility(style.visible)
+        self.overlay.set_layers(self.styles)
+
+    def set_clipping(self, on: bool) -> None:
+        """Cut the layers open with the clipping plane (kept for the next dataset)."""
+        self.clipper.set_enabled(on)
+
+    def add_picker(self, on_pick: Callable[[np.ndarray], None],
+                   on_escape: Callable[[], None]) -> ViewPicker:
+        """Pick the visible layers' cells under a click: on_pick(vertices); Esc: on_escape()."""
+        return ViewPicker(self.plotter, self.layers, self.render, on_pick, on_escape)
+
+    def fit_view(self) -> None:
+        """Fit the camera to all points: the frame's opening preset in perspective (3D), or
+        top-down parallel (2D)."""
+        renderer = self.plotter.renderer
+        bounds = self.layers["points"].mesh.bounds if self.layers else None
+        interactive = getattr(self.plotter, "iren", None) is not None
+        if self.dim == 2 and self.is_flat():
+            renderer.enable_parallel_projection()
+            renderer.view_xy(render=False, bounds=bounds)
+            if interactive:
+                self.plotter.enable_2d_style()
+            renderer.reset_camera(render=False, bounds=bounds)
+            return
+        renderer.disable_parallel_projection()
+        if interactive:
+            self.plotter.enable_trackball_style()
+        self.view_preset(self.frame.start)
+
+    def view_preset(self, preset: str) -> None:
+        """Look at all points from a preset of app.camera.PRESETS (top, front, side, iso),
+        centred and fitted; a 2D dataset keeps its top-down view."""
+        if not self.layers or (self.dim == 2 and self.is_flat()):
+            return
+        bounds = self.layers["points"].mesh.bounds
+        look, up = self.frame.direction(preset)
+        centre = np.array([(bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+                           (bounds[4] + bounds[5]) / 2])
+        camera = self.plotter.renderer.camera
+        camera.focal_point = tuple(centre)
+        camera.position = tuple(centre - look)
+        camera.up = tuple(up)
+        self.plotter.renderer.reset_camera(render=False, bounds=bounds)
+
+    def is_flat(self) -> bool:
+        """True when all points lie in the z = 0 plane (2D input)."""
+        points = self.layers["points"].mesh.points
+        return bool(len(points) == 0 or not np.any(points[:, 2]))
+
+    def render(self) -> None:
+        """Request one render."""
+        self._render()
+
+    def save_png(self, path: Path) -> None:
+        """Write the view as a PNG image to path, atomically (core.atomic), whatever path's
+        extension."""
+        from PIL import Image
+
+        with atomic_path(path) as tmp:
+            Image.fromarray(self.plotter.screenshot(return_img=True)).save(tmp, format="PNG")
+
+    def close(self) -> None:
+        """Release the plotter and its render window (before Qt goes)."""
+        self.plotter.close()
