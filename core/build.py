@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .backends import BACKENDS, Choice, check_backend, delaunay
+from .certify import Certified, certified_triangulation
 from .delaunay import Triangulation, regular_triangulate
 from .errors import InputError
 from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
@@ -34,10 +35,18 @@ class BuildInfo:
     `backend`: the triangulation backend that made the cells ("qhull" for scipy/Qhull,
     "gmsh"); `backend_note`: why the automatic choice did not use gmsh ("" when it did, or
     was not asked to: too few points, gmsh not installed, weights).
+    `exact_predicates`: sign decisions (certification and table) that the floating-point
+    filter could not settle and exact arithmetic decided; `flips`: cells the certification
+    changed (flips and hull repairs, core/certify.py); `uncertified`: facets it could not
+    certify (left as the backend made them; 0 = a certified Delaunay triangulation, -1 = not
+    certified: weighted builds, tables saved before certification).
     """
 
     backend: str = "qhull"
     backend_note: str = ""
+    exact_predicates: int = 0
+    flips: int = 0
+    uncertified: int = -1
 
     def to_dict(self) -> dict[str, str | int | float]:
         """The fields by name (JSON-ready: for `alphascoop info --json`)."""
@@ -165,6 +174,12 @@ def _triangulated(prep: _Prepared, backend: str | None) -> tuple[Triangulation, 
             Choice("qhull"))
 
 
+def _certified(prep: _Prepared, tri: Triangulation) -> Certified:
+    """Stage 3b: the backend's Delaunay cells certified with exact predicates on the points
+    themselves (scaled by a power of two, exactly), repaired by flips (core/certify.py)."""
+    return certified_triangulation(prep.coords / power_of_two_scale(prep.coords), tri)
+
+
 def _compacted(prep: _Prepared, tri: Triangulation) -> _Prepared:
     """The points the triangulation kept as vertices (others merged or hidden)."""
     if len(tri.kept) == len(prep.coords):
@@ -184,7 +199,8 @@ def _point_normals(normals: np.ndarray, input_index: np.ndarray, m: int,
     return unit_rows(out if frame is None else out @ frame.basis.T)
 
 
-def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper) -> Table:
+def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper,
+           exact: bool = True) -> Table:
     """Stages 4-6: the interval table on the points scaled exactly by a power of two (its
     arithmetic is relative to a vertex, so no rounding shift), the mode's scaling, and the
     values and measures scaled back to the input units."""
@@ -193,6 +209,7 @@ def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper) ->
     step(0.6, "interval table")
     share = 0.3 if mode.active else 0.4
     table = build_table(coords / scale, tri.cells, tri.neighbors, step.part(0.6, share),
+                        exact=exact,
                         weights=None if w is None else w / scale**2)
     for level in table.levels:
         for arr in (level.enter, level.regular, level.interior):
@@ -214,11 +231,13 @@ def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper) ->
 def build_complex(points: object, progress: Progress | None = None, *,
                   weights: object = None, density: int | None = None, combine: str = "mean",
                   anisotropy: float = 0.0, normals: object = None,
-                  backend: str | None = None) -> BuiltComplex:
+                  backend: str | None = None, certify: bool = True) -> BuiltComplex:
     """Run the pipeline on (n, 2) or (n, 3) points (arguments as AlphaComplex.from_points).
 
     `progress(fraction, stage)` is called between stages; raising core.errors.Cancelled
-    from it stops the build. InputError for input that makes no complex.
+    from it stops the build. InputError for input that makes no complex. `certify=False`
+    skips the exact certification and sign decisions (the floating-point build, for the
+    benchmark that measures what they cost).
     """
     step = Stepper(progress)
     step(0.0, "checking points")
@@ -227,8 +246,16 @@ def build_complex(points: object, progress: Progress | None = None, *,
     prep = _prepared(given)
     step(0.02, "Delaunay triangulation" if prep.weights is None else "regular triangulation")
     tri, choice = _triangulated(prep, chosen)
+    exact = certify and (prep.weights is None or bool(np.all(prep.weights == prep.weights[0])))
+    certified = None
+    if exact:
+        step(0.55, "certifying the triangulation")
+        certified = _certified(prep, tri)
+        tri = certified.triangulation
     prep = _compacted(prep, tri)
-    table = _table(prep, tri, given, step)
+    table = _table(prep, tri, given, step, exact)
+    info = BuildInfo(choice.backend, choice.note) if certified is None else BuildInfo(
+        choice.backend, choice.note, certified.exact_predicates + table.exact_predicates,
+        certified.flips, certified.uncertified)
     return BuiltComplex(np.ascontiguousarray(prep.coords), prep.input_index, table, prep.frame,
-                        given.points.shape[1], given.mode, prep.weights,
-                        BuildInfo(choice.backend, choice.note))
+                        given.points.shape[1], given.mode, prep.weights, info)

@@ -24,7 +24,7 @@ from core.complex import AlphaComplex
 from core.errors import AlphaScoopError
 from core.modes import Mode
 
-CACHE_VERSION = 1  # bump when the saved table layout or the build rules change
+CACHE_VERSION = 2  # bump when the saved table layout or the build rules change
 MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this
 
 

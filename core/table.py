@@ -38,6 +38,7 @@ from .power import (
     triangle_powers,
 )
 from .progress import Progress
+from .table_signs import obtuse_bits, settle_cells, settle_facets
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
 
 
@@ -61,6 +62,7 @@ class Table:
     facet_flip: np.ndarray  # (f,) bool: reverse the last two vertices to face out of cell 0
     cell_measure: np.ndarray  # (c,) float64 unsigned volume/area of every cell
     facet_interior_order: np.ndarray  # (f,) int32 facet rows sorted by interior
+    exact_predicates: int = 0  # sign decisions that needed exact arithmetic (core.table_signs)
 
 
 def _permute(level: Level, order: np.ndarray) -> np.ndarray:
@@ -170,12 +172,15 @@ def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: n
 
 
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
-           weights: np.ndarray | None = None):
+           weights: np.ndarray | None = None, exact: list[int] | None = None):
     """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
-    cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas."""
+    cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas.
+    Counts of exactly decided predicates are appended to `exact`."""
     if weights is None:
         r2, det, flat, bits = cell_spheres(points, cells)
         enter = np.sqrt(r2)
+        if exact is not None:
+            exact.append(settle_cells(points, cells, enter, det, flat))
     else:
         power, det, flat, bits = cell_orthospheres(points, weights, cells)
         enter = signed_sqrt(power)
@@ -206,11 +211,15 @@ def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
     return np.einsum("nd,nd->n", normal, to_centre) > 0
 
 
-def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarray | None):
+def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarray | None,
+                   exact: list[int] | None = None):
     """Facet values (radii, or signed radii of powers), (3D) attach bits of their edges, and
     the global attachment test for the listed facets."""
     if weights is None:
         r2, obtuse = facet_radii2(points, simplices)
+        if exact is not None and obtuse is not None:
+            obtuse, n_exact = obtuse_bits(points, simplices)
+            exact.append(n_exact)
 
         def global_test(ids: np.ndarray) -> np.ndarray:
             offsets, _, _, _ = circumspheres(points, simplices[ids])
@@ -230,7 +239,8 @@ def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarra
 
 
 def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray,
-            bits: np.ndarray, weights: np.ndarray | None = None):
+            bits: np.ndarray, weights: np.ndarray | None = None,
+            exact: list[int] | None = None):
     """Level d-1 from the cells' neighbour table: each shared facet taken once."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
@@ -242,9 +252,16 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     has1 = np.flatnonzero(t1 >= 0)
     j1 = _slot_of(neighbors, t1[has1], t0[has1])
 
-    radius, obtuse, global_test = _facet_spheres(points, simplices, weights)
-    attached = ((bits[t0] >> i0) & 1).astype(bool)
-    attached[has1] |= ((bits[t1[has1]] >> j1) & 1).astype(bool)
+    radius, obtuse, global_test = _facet_spheres(points, simplices, weights, exact)
+    inside0 = ((bits[t0] >> i0) & 1).astype(bool)
+    inside1 = ((bits[t1[has1]] >> j1) & 1).astype(bool)
+    attached = inside0.copy()
+    attached[has1] |= inside1
+    if weights is None and exact is not None:  # doubtful float decisions made exact
+        sides = [(np.arange(len(t0)), t0, i0, inside0), (has1, t1[has1], j1, inside1)]
+        attached, n_exact = settle_facets(points, cells.simplices, cells.enter, det, simplices,
+                                          radius, sides)
+        exact.append(n_exact)
     near_flat = det[t0] == 0
     near_flat[has1] |= det[t1[has1]] == 0
     if near_flat.any():
@@ -425,21 +442,25 @@ def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
 
 
 def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
-                progress: Progress | None = None, weights: np.ndarray | None = None) -> Table:
+                progress: Progress | None = None, weights: np.ndarray | None = None,
+                exact: bool = True) -> Table:
     """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled).
 
     With (m,) `weights` (squared radii >= 0, same scale), the cells are the regular
-    triangulation's and the values signed radii of powers (module docstring)."""
+    triangulation's and the values signed radii of powers (module docstring). `exact`: the
+    classic table's doubtful sign decisions and ill-conditioned radii are made exact
+    (core/table_signs.py); False keeps the floating-point ones."""
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
 
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
-    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights)
+    exact_counts: list[int] | None = [] if exact else None
+    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights, exact_counts)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
-                                                           weights)
+                                                           weights, exact_counts)
     del neighbors
     levels = [facets, top]
     if d == 3:
@@ -449,5 +470,5 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     levels.insert(0, _vertices(len(points), levels[0], points, weights))
     by_interior = argsort_radii(facets.interior).astype(np.int32)
     step(1.0, "done")
-    return Table(levels, facet_cells, flip, measure, by_interior)
+    return Table(levels, facet_cells, flip, measure, by_interior, sum(exact_counts or []))
 

@@ -27,6 +27,19 @@ FOLD_CANDIDATE_RTOL = 1e-9
 #: squared distances involved: cospherical points of lattices and scans count as on the sphere.
 ON_SPHERE_RTOL = 1e-13
 
+#: A facet whose smallest sphere's radius² is within this share of its cell's (the cell's
+#: centre close to the facet's plane) gets its attachment decided by an exact predicate.
+NEAR_SPHERE_RTOL = 1e-6
+
+#: A cell whose |determinant| (d! volume) is below this times r^d (r its circumradius) is
+#: ill-conditioned: its flatness (orientation) is decided by an exact predicate.
+SLIVER_RTOL = 1e-6
+
+#: Simplices whose shape |det| / prod |v_i| (v_i the edge vectors from a vertex) is below
+#: this may miss 1e-9 relative on r² (cells: extended precision, error ~ 2**-64 / shape;
+#: triangles: float64, ~ 2**-53 / shape): their radius is computed in rational arithmetic.
+EXACT_RADIUS_SHAPE = {"cell": 1e-9, "triangle": 1e-7}
+
 #: A power |c|² - w below this share of |c|² + |w| has lost digits to cancellation: it is
 #: recomputed in extended precision (values near zero must keep their relative accuracy).
 POWER_CANCEL_RTOL = 1e-3

@@ -232,3 +232,18 @@ def test_build_records_the_automatic_choice(monkeypatch) -> None:
     with pytest.raises(InputError, match="Delaunay triangulations only"):
         AlphaComplex.from_points(rng.uniform(size=(500, 3)), weights=rng.uniform(0, 1e-3, 500),
                                  backend="gmsh")
+
+
+@needs_gmsh
+def test_2d_real_data_builds_the_same_table_with_both_backends() -> None:
+    """US airports (longitude/latitude projected to metres, very uneven density)."""
+    from core import AlphaComplex
+    from core.io import read_points
+
+    folder = data_dir()
+    if folder is None or not (folder / "us_airports.csv").exists():
+        pytest.skip("shared real data is absent")
+    points = read_points(folder / "us_airports.csv").points
+    by_gmsh = AlphaComplex.from_points(points, backend="gmsh")
+    assert by_gmsh.build_info.backend == "gmsh"
+    assert_same_table(by_gmsh, AlphaComplex.from_points(points, backend="qhull"))

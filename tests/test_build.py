@@ -17,7 +17,9 @@ def points() -> np.ndarray:
 
 
 def test_build_info_records_the_backend(points):
-    assert AlphaComplex.from_points(points).build_info == BuildInfo(backend="qhull")
+    info = AlphaComplex.from_points(points).build_info
+    assert (info.backend, info.uncertified) == ("qhull", 0)  # certified (issue 14)
+    assert BuildInfo().uncertified == -1  # default: not certified (old tables, weighted)
     assert AlphaComplex.from_points(points, backend="qhull").build_info.backend == "qhull"
 
 
@@ -79,7 +81,10 @@ def test_info_reports_the_build(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
     np.savetxt(tmp_path / "p.xyz", np.random.default_rng(3).random((60, 3)))
     assert main(["info", str(tmp_path / "p.xyz"), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["build"] == {"backend": "qhull", "backend_note": ""}
+    build = json.loads(capsys.readouterr().out)["build"]
+    assert (build["backend"], build["backend_note"]) == ("qhull", "")
+    assert build["uncertified"] == 0 and {"exact_predicates", "flips"} <= build.keys()
     assert main(["info", str(tmp_path / "p.xyz")]) == 0
-    assert "build       backend qhull" in capsys.readouterr().out
-    assert BuildInfo().describe() == "backend qhull"
+    assert "build       backend qhull, exact predicates " in capsys.readouterr().out
+    assert BuildInfo().describe() == ("backend qhull, exact predicates 0, flips 0, "
+                                      "uncertified -1")

@@ -1,4 +1,4 @@
-"""The scene: the only package that imports VTK, pyvista or pyvistaqt (tests/test_layering.py).
+"""The scene: the only package that imports VTK, pyvista or pyvistaqt (tests/test_app_layering.py).
 
 It owns the plotter (a Qt widget in the window, off-screen for --screenshot) and everything
 drawn in it: the layers' meshes and actors (layers), the annotations (overlay), the clipping

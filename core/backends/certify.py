@@ -4,8 +4,10 @@ A set of cells is the Delaunay triangulation of the points when it is a triangul
 their convex hull (every point a vertex, every cell properly oriented, the two cells of every
 inner facet on opposite sides, the outer facets exactly the hull's) and every inner facet is
 locally Delaunay (the Delaunay lemma). Each sign is accepted only when it exceeds a margin
-relative to the magnitude of its terms (tolerances.BACKEND_CERTAIN_RTOL), so the triangulation
-is also unique: Qhull, whatever its rounding, returns the same cells.
+relative to the magnitude of its terms (tolerances.BACKEND_CERTAIN_RTOL, 1e-12: some 300x
+Shewchuk's float64 error bounds for these determinants), so the triangulation is also unique
+by a wide margin, and Qhull returns the same cells (tested on random, clustered, surface and
+real-scan sets, tests/test_backends.py).
 """
 
 from __future__ import annotations

@@ -1,0 +1,81 @@
+"""Certified build (issue 14): the build with exact certification and sign decisions against
+the floating-point build of the same points, in one run, each in its own fresh interpreter.
+
+    flock /work/wt/bench.lock .venv/bin/python benchmarks/bench_exact.py --n 1000000 \
+        [--seed 0] [--json out.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import os
+import sys
+import tempfile
+import time
+from itertools import pairwise
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+from benchmarks.datasets import noisy_torus
+from benchmarks.isolate import Probe, run_isolated
+
+GOAL = 1.10  # the certified build at most 10 % slower
+
+
+def build(path: str, certify: bool) -> dict:
+    """core.build.build_complex(points, certify=...) with the time of each build stage."""
+    from core.build import build_complex
+
+    build_complex(noisy_torus(50, 1), certify=certify)  # first-call set-up, not timed
+    points = np.load(path)
+    marks: list[tuple[float, float, str]] = []
+    probe = Probe()
+    built = build_complex(points, certify=certify, progress=lambda _f, stage: marks.append(
+        (time.perf_counter(), time.process_time(), stage)))
+    result = probe.result(info=dataclasses.asdict(built.info),
+                          cells=len(built.table.levels[-1].simplices))
+    marks.append((time.perf_counter(), time.process_time(), ""))
+    result["stages"] = [{"stage": stage, "seconds": t1 - t0, "cpu_seconds": c1 - c0}
+                        for (t0, c0, stage), (t1, c1, _) in pairwise(marks)]
+    return result
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n", type=int, default=200_000)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--json", help="write the figures to this file")
+    args = parser.parse_args(argv)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "torus.npy")
+        np.save(path, noisy_torus(args.n, args.seed))
+        results = {"floating point": run_isolated(build, path, False),
+                   "certified": run_isolated(build, path, True)}
+    print(f"{args.n:,} noisy torus points, seed {args.seed}")
+    for name, figures in results.items():
+        if "error" in figures:
+            print(f"  {name:<15} ERROR {figures['error']}")
+            continue
+        print(f"  {name:<15} {figures['seconds']:7.2f} s wall {figures['cpu_seconds']:7.2f} s "
+              f"cpu  peak +{figures['extra_mib']:.0f} MiB  {figures['cells']:,} cells")
+        for stage in figures["stages"]:
+            print(f"      {stage['stage']:<30} {stage['seconds']:6.2f} s")
+    fast, exact = results["floating point"], results["certified"]
+    if "error" not in fast and "error" not in exact:
+        print(f"  certification: {exact['info']}")
+        ratio = exact["seconds"] / fast["seconds"]
+        cpu = exact["cpu_seconds"] / fast["cpu_seconds"]
+        print(f"  certified / floating point: {ratio:.3f}x wall, {cpu:.3f}x cpu "
+              f"(goal <= {GOAL}x): {'PASS' if ratio <= GOAL else 'FAIL'}")
+    if args.json:
+        with open(args.json, "w") as handle:
+            json.dump({"n": args.n, "seed": args.seed, "results": results}, handle, indent=2)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
