@@ -1,4 +1,5 @@
-"""Loading and building a dataset (no Qt): read points, build the complex, pick a start alpha."""
+"""Loading a dataset (no Qt): read points, obtain the complex (core.obtain: cache or build),
+pick a start alpha; `with_topology` completes its topology afterwards."""
 
 from __future__ import annotations
 

@@ -4,9 +4,9 @@ Entries live in platformdirs' user cache dir ("alphascoop/tables", or $ALPHASCOO
 as the .npz files `AlphaComplex.save` writes. core.obtain is the one path that reads and fills
 it; this module names, reads, writes and prunes entries. A corrupt or unreadable entry is
 deleted (and rebuilt by core.obtain), never an error; a cache that cannot be written is
-simply skipped. Temporary files of
-stores that were killed (a cancelled build process) are removed on every lookup and prune;
-only finished entries (named by their key) ever count as results.
+simply skipped. Temporary files of stores that were killed (a cancelled build process) are
+removed on every lookup and prune; only finished entries (named by their key) ever count as
+results.
 """
 
 from __future__ import annotations
