@@ -122,7 +122,7 @@ def child_main(source: str, target: str, job: dict, sender: Connection) -> None:
     try:
         points = np.load(source, allow_pickle=False)
         weights = _optional(Path(source).with_name("weights.npy"))
-        mode = _mode(job["mode"])
+        mode = _saved_mode(job["mode"])
         normals = (_optional(Path(source).with_name("normals.npy"))
                    if mode.normals == "given" else None)
         request = BuildRequest(points, weights, mode, normals, bool(job["signatures"]),
@@ -149,7 +149,7 @@ def _optional(path: Path) -> np.ndarray | None:
     return np.load(path, allow_pickle=False) if path.is_file() else None
 
 
-def _mode(saved: dict | None) -> Mode:
+def _saved_mode(saved: dict | None) -> Mode:
     """The Mode of Mode.to_dict() (classic when None)."""
     if saved is None:
         return Mode()
