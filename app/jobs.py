@@ -81,7 +81,7 @@ class Runner(QObject):
         self._pool = QThreadPool(self)
         self._pool.setMaxThreadCount(1)
         self._current = 0
-        self._job: Job | None = None
+        self._title = ""  # the newest request's job title; the job itself is not kept
         self._cancel = threading.Event()
         self._unfinished: set[int] = set()  # requests whose outcome has not been delivered
         self._report.connect(self._deliver)
@@ -92,9 +92,10 @@ class Runner(QObject):
         return self._current
 
     @property
-    def job(self) -> Job | None:
-        """The newest request's job (its title names it in messages)."""
-        return self._job
+    def title(self) -> str:
+        """The newest request's job title (names it in messages). The runner keeps no
+        reference to a job, so whatever its work holds (a dataset) is freed with it."""
+        return self._title
 
     def is_busy(self) -> bool:
         """True from start() until every started job's outcome has reached the GUI thread."""
@@ -108,7 +109,7 @@ class Runner(QObject):
         self.cancel()
         self._current += 1
         request, cancel = self._current, threading.Event()
-        self._job, self._cancel = job, cancel
+        self._title, self._cancel = job.title, cancel
         self._unfinished.add(request)
         self._pool.start(lambda: self._run(request, job, cancel))
         return request

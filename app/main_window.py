@@ -162,12 +162,12 @@ class MainWindow(QMainWindow):
     def _on_job_failed(self, _request: int, message: str) -> None:
         """An export failed: one dialog naming what failed."""
         self.job_progress.stop()
-        QMessageBox.warning(self, self.jobs.job.title, message)
+        QMessageBox.warning(self, self.jobs.title, message)
 
     def _on_job_cancelled(self, _request: int) -> None:
         """An export was cancelled: nothing was written (an old file stays as it was)."""
         self.job_progress.stop()
-        self.report(f"{self.jobs.job.title} cancelled; nothing was written")
+        self.report(f"{self.jobs.title} cancelled; nothing was written")
 
     def _on_progress(self, _request: int, fraction: float, stage: str) -> None:
         """Show the open's progress (the runner drops older requests' reports)."""

@@ -3,7 +3,9 @@ stale requests dropped in one place, cancel, exclusivity and shut-down."""
 
 from __future__ import annotations
 
+import gc
 import threading
+import weakref
 
 import pytest
 
@@ -102,7 +104,7 @@ def test_an_exclusive_runner_refuses_a_second_job_while_one_runs(qtbot) -> None:
     first = runner.start(blocked_job(started, release))
     assert started.wait(10)
     assert runner.start(Job("second", lambda progress, cancel: None)) is None
-    assert runner.is_busy() and runner.job.title == "blocked"
+    assert runner.is_busy() and runner.title == "blocked"
     with qtbot.waitSignal(runner.finished, timeout=TIMEOUT_MS) as blocker:
         release.set()
     assert blocker.args == [first, "old"]
@@ -129,3 +131,24 @@ def test_after_shut_down_nothing_reaches_the_listeners(qtbot) -> None:
     qtbot.waitUntil(lambda: not runner.is_busy(), timeout=TIMEOUT_MS)
     assert [event for event in seen if event[0] in ("finished", "failed", "cancelled")] == []
     assert ("dropped", request, "cancelled") in seen
+
+
+def test_the_runner_keeps_nothing_a_finished_job_held(qtbot) -> None:
+    """Once its outcome is delivered, a job and what its work captured (a dataset) are freed:
+    the runner keeps only the title."""
+    class Payload:
+        pass
+
+    held = Payload()
+    ref = weakref.ref(held)
+    runner = Runner()
+
+    def work(progress, cancel, held=held):
+        return None
+
+    with qtbot.waitSignal(runner.finished, timeout=TIMEOUT_MS):
+        runner.start(Job("holds a payload", work))
+    qtbot.waitUntil(lambda: not runner.is_busy(), timeout=TIMEOUT_MS)
+    del held, work
+    gc.collect()
+    assert ref() is None and runner.title == "holds a payload"
