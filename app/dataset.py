@@ -19,9 +19,9 @@ from core.modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
 from core.obtain import Obtained, Runner, Source, add_topology, obtain, run_here
 from core.opening import opening_alpha_of
+from core.progress import Progress
 from core.signatures import Signatures
 
-Progress = Callable[[float, str], None]
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 SOURCE_WORDS = {"built": "built", "cache": "loaded from cache",
                 "rebuilt": "rebuilt (its cached table was damaged)"}
