@@ -8,6 +8,7 @@ import pytest
 from conftest import image_contrast, open_and_wait
 
 from app.palette import LAYER_TITLES, default_styles
+from app.scene.overlay import merge_same_swatch
 from app.scene.painting import SCALARS
 from core.components import solid_labels
 from core.spheres import find_simplex
@@ -157,8 +158,9 @@ def test_legend_follows_the_colour_mode(opened) -> None:
     styles = win.scene.styles
     classed = [(text, True) for text, _ in overlay.entries]
     assert legend_lines(win) == classed and not overlay.entries[0][0].startswith("Coloured")
-    assert overlay.entries == [(LAYER_TITLES[name], style.colour)
-                               for name, style in styles.items() if style.visible]
+    assert overlay.entries == merge_same_swatch([(LAYER_TITLES[name], style.colour)
+                                                 for name, style in styles.items()
+                                                 if style.visible])
     for key, title in (("enter", "enter alpha"),
                        ("component", "solid component"),
                        ("attribute:intensity", "intensity")):
@@ -166,9 +168,9 @@ def test_legend_follows_the_colour_mode(opened) -> None:
         painted = {name for name, layer in win.scene.layers.items()
                    if layer.actor.mapper.GetScalarVisibility()}
         assert "interior" in painted
-        expected = [(f"Coloured by {title}", None)] + [
+        expected = merge_same_swatch([(f"Coloured by {title}", None)] + [
             (LAYER_TITLES[name], None if name in painted else style.colour)
-            for name, style in styles.items() if style.visible]
+            for name, style in styles.items() if style.visible])
         assert overlay.entries == expected
         assert legend_lines(win) == [(text, colour is not None) for text, colour in expected]
         assert any(colour is None for _, colour in expected[1:])
@@ -176,5 +178,6 @@ def test_legend_follows_the_colour_mode(opened) -> None:
     assert overlay.entries[0] == ("Coloured by intensity", None)
     win.colourer.set_mode("class")
     assert legend_lines(win) == classed
-    assert overlay.entries == [(LAYER_TITLES[name], style.colour)
-                               for name, style in styles.items() if style.visible]
+    assert overlay.entries == merge_same_swatch([(LAYER_TITLES[name], style.colour)
+                                                 for name, style in styles.items()
+                                                 if style.visible])

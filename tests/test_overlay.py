@@ -9,8 +9,8 @@ from PIL import Image
 
 from app.__main__ import main
 from app.numbers import coordinate, plural, quantity
-from app.palette import BACKGROUND
-from app.scene.overlay import alpha_caption, length_label, round_length
+from app.palette import BACKGROUND, CLASS_COLOURS, default_styles
+from app.scene.overlay import alpha_caption, legend_entries, length_label, round_length
 
 CORNER = (0.16, 0.12)  # the top-left share of the picture where the legend sits
 
@@ -28,6 +28,23 @@ def corner_differs(png) -> float:
                                                 (19999.0, 10000.0)])
 def test_scale_bar_takes_a_round_length(target, length) -> None:
     assert round_length(target) == pytest.approx(length)
+
+
+def test_legend_gives_one_line_per_colour() -> None:
+    """3D draws dangling edges and lone points in the surface's colour: one legend line says
+    so; 2D's parts have colours of their own and keep their lines; painted layers (no
+    swatch) stay apart while colouring by a value."""
+    blue = CLASS_COLOURS["regular"]
+    assert legend_entries(default_styles(3)) == [
+        ("Surface + singular edges + singular points", blue)]
+    lines_2d = legend_entries(default_styles(2))
+    assert [label for label, _ in lines_2d] == [
+        "Boundary (regular)", "Interior cells", "Singular edges", "Singular points"]
+    assert len({swatch for _, swatch in lines_2d}) == 4
+    painted = legend_entries(default_styles(3), "intensity",
+                             frozenset({"surface", "singular_edges"}))
+    assert painted == [("Coloured by intensity", None), ("Surface", None),
+                       ("Singular edges", None), ("Singular points", blue)]
 
 
 def test_labels_read_as_people_write_them() -> None:
@@ -62,7 +79,7 @@ def test_window_screenshot_carries_the_legend_and_alpha(window, qtbot, tmp_path)
     window.model.set_index(window.model.index + 1)
     assert overlay.alpha.GetInput() == alpha_caption(window.model.alpha, None)
     labels = [overlay.legend.GetEntryString(i) for i in range(overlay.legend.GetNumberOfEntries())]
-    assert "Surface" in labels and "Interior cells" not in labels
+    assert labels[0].startswith("Surface") and not any("Interior cells" in t for t in labels)
     window.scene.plotter.interactor.update()
     qtbot.wait(50)
     write_screenshot(window.scene, tmp_path / "shot.png")

@@ -49,7 +49,23 @@ def legend_entries(styles: dict[str, LayerStyle], colour_by: str | None = None,
         if style.visible:
             swatch = None if colour_by and name in mapped else style.colour
             entries.append((LAYER_TITLES.get(name, name), swatch))
-    return entries
+    return merge_same_swatch(entries)
+
+
+def merge_same_swatch(entries: list[tuple[str, str | None]]) -> list[tuple[str, str | None]]:
+    """One line per swatch colour: layers drawn in one colour read as one part of the picture
+    (3D: 'Surface + singular edges + singular points'); lines without a swatch stay apart."""
+    merged: list[tuple[str, str | None]] = []
+    line_of: dict[str, int] = {}
+    for label, swatch in entries:
+        if swatch is not None and swatch in line_of:
+            i = line_of[swatch]
+            merged[i] = (f"{merged[i][0]} + {label[:1].lower()}{label[1:]}", swatch)
+            continue
+        if swatch is not None:
+            line_of[swatch] = len(merged)
+        merged.append((label, swatch))
+    return merged
 
 
 def alpha_caption(alpha: float, unit: str | None) -> str:
@@ -142,9 +158,15 @@ class Overlay:
                       for text, colour in entries]
             self.legend = self.plotter.add_legend(
                 labels=labels, bcolor=BACKGROUND, border=True,
-                size=(0.3 if self.colour_by else 0.22, height), loc="upper left",
+                size=(self._legend_width(entries), height), loc="upper left",
                 background_opacity=0.6)
             self.legend.SetVisibility(self.visible)
+
+    def _legend_width(self, entries: list[tuple[str, str | None]]) -> float:
+        """Share of the picture's width for the legend: wide enough that a long merged line
+        keeps a readable font (VTK scales the text to fit the box)."""
+        longest = max(len(text) for text, _ in entries)
+        return min(0.6, max(0.3 if self.colour_by else 0.22, 0.015 * longest))
 
     def set_visible(self, visible: bool) -> None:
         """Show or hide every annotation (--no-legend)."""
