@@ -13,15 +13,13 @@ import json
 import os
 import sys
 import tempfile
-import time
-from itertools import pairwise
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from benchmarks.datasets import bunny_scan, noisy_torus
-from benchmarks.isolate import Probe, run_isolated
+from benchmarks.isolate import Probe, StageClock, run_isolated
 
 #: (mine, theirs, goal): ratio of wall times mine / theirs must be <= goal.
 GOALS = (("build gmsh", "gudhi fast", 0.5), ("build qhull", "gudhi fast", 0.8),
@@ -84,17 +82,12 @@ def ours(path: str, backend: str) -> dict:
 
     AlphaComplex.from_points(_prepared_tiny(), backend="qhull")
     points = np.load(path)
-    marks: list[tuple[float, float, str]] = []
+    clock = StageClock()
     probe = Probe()
-    ac = AlphaComplex.from_points(
-        points, backend=backend,
-        progress=lambda _f, stage: marks.append((time.perf_counter(), time.process_time(),
-                                                 stage)))
+    ac = AlphaComplex.from_points(points, backend=backend, progress=clock)
     result = probe.result(counts=[len(ac.simplices(k)) for k in range(ac.dim + 1)],
                           backend=ac.build_info.backend)
-    marks.append((time.perf_counter(), time.process_time(), ""))
-    result["stages"] = [{"stage": stage, "seconds": t1 - t0, "cpu_seconds": c1 - c0}
-                        for (t0, c0, stage), (t1, c1, _) in pairwise(marks)]
+    result["stages"] = clock.stages()
     return result
 
 

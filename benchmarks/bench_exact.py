@@ -13,15 +13,13 @@ import json
 import os
 import sys
 import tempfile
-import time
-from itertools import pairwise
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from benchmarks.datasets import noisy_torus
-from benchmarks.isolate import Probe, run_isolated
+from benchmarks.isolate import Probe, StageClock, run_isolated
 
 GOAL = 1.10  # the certified build at most 10 % slower
 
@@ -32,15 +30,12 @@ def build(path: str, certify: bool) -> dict:
 
     build_complex(noisy_torus(50, 1), certify=certify)  # first-call set-up, not timed
     points = np.load(path)
-    marks: list[tuple[float, float, str]] = []
+    clock = StageClock()
     probe = Probe()
-    built = build_complex(points, certify=certify, progress=lambda _f, stage: marks.append(
-        (time.perf_counter(), time.process_time(), stage)))
+    built = build_complex(points, certify=certify, progress=clock)
     result = probe.result(info=dataclasses.asdict(built.info),
                           cells=len(built.table.levels[-1].simplices))
-    marks.append((time.perf_counter(), time.process_time(), ""))
-    result["stages"] = [{"stage": stage, "seconds": t1 - t0, "cpu_seconds": c1 - c0}
-                        for (t0, c0, stage), (t1, c1, _) in pairwise(marks)]
+    result["stages"] = clock.stages()
     return result
 
 

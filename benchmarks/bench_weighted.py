@@ -11,14 +11,12 @@ import json
 import os
 import sys
 import tempfile
-import time
-from itertools import pairwise
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from benchmarks.isolate import Probe, run_isolated
+from benchmarks.isolate import Probe, StageClock, run_isolated
 
 GOALS = (("gudhi weighted fast", 0.8), ("our classic build", 2.0))
 
@@ -63,17 +61,13 @@ def ours(path: str, weighted: bool) -> dict:
     AlphaComplex.from_points(pts, weights=w if weighted else None)
     with np.load(path) as data:
         points, weights = data["points"], data["weights"]
-    marks: list[tuple[float, float, str]] = []
+    clock = StageClock()
     probe = Probe()
-    ac = AlphaComplex.from_points(
-        points, weights=weights if weighted else None,
-        progress=lambda _f, stage: marks.append((time.perf_counter(), time.process_time(),
-                                                 stage)))
+    ac = AlphaComplex.from_points(points, weights=weights if weighted else None,
+                                  progress=clock)
     result = probe.result(counts=[len(ac.simplices(k)) for k in range(ac.dim + 1)],
                           hidden=int((ac.input_index < 0).sum()))
-    marks.append((time.perf_counter(), time.process_time(), ""))
-    result["stages"] = [{"stage": stage, "seconds": t1 - t0, "cpu_seconds": c1 - c0}
-                        for (t0, c0, stage), (t1, c1, _) in pairwise(marks)]
+    result["stages"] = clock.stages()
     return result
 
 

@@ -8,6 +8,7 @@ import resource
 import time
 import traceback
 from collections.abc import Callable
+from itertools import pairwise
 from typing import Any
 
 MIB = 1024.0 * 1024.0
@@ -47,6 +48,23 @@ class Probe:
             "extra_mib": peak - self.base_rss,
             **extra,
         }
+
+
+class StageClock:
+    """A build's progress(fraction, stage) callback that times each stage, wall and CPU,
+    from its call to the next one's (the last stage ends at `stages()`)."""
+
+    def __init__(self) -> None:
+        self.marks: list[tuple[float, float, str]] = []
+
+    def __call__(self, _fraction: float, stage: str) -> None:
+        self.marks.append((time.perf_counter(), time.process_time(), stage))
+
+    def stages(self) -> list[dict]:
+        """[{stage, seconds, cpu_seconds}] of the stages reported so far, ending now."""
+        self.marks.append((time.perf_counter(), time.process_time(), ""))
+        return [{"stage": stage, "seconds": t1 - t0, "cpu_seconds": c1 - c0}
+                for (t0, c0, stage), (t1, c1, _) in pairwise(self.marks)]
 
 
 def best_of(fn: Callable[[], Any], reps: int) -> tuple[float, float, Any]:

@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable
-from itertools import pairwise
 from typing import Any
 
 import numpy as np
 from datasets import read_points
-from isolate import Probe, best_of
+from isolate import Probe, StageClock, best_of
 
 QUANTILES = (0.0, 0.1, 0.5, 0.9, 1.0)
 
@@ -55,16 +53,12 @@ def core_build(points_path: str, table_path: str) -> dict:
 
     AlphaComplex.from_points(_tiny())
     points = read_points(points_path)
-    marks: list[tuple[float, float, str]] = []
+    clock = StageClock()
     probe = Probe()
-    ac = AlphaComplex.from_points(
-        points, progress=lambda _f, stage: marks.append(
-            (time.perf_counter(), time.process_time(), stage)))
+    ac = AlphaComplex.from_points(points, progress=clock)
     result = probe.result(dim=int(ac.dim), counts=[int(ac.simplices(k).shape[0]) for k in
                                                    range(ac.dim + 1)])
-    marks.append((time.perf_counter(), time.process_time(), ""))
-    result["stages"] = [{"stage": stage, "seconds": wall_end - wall, "cpu_seconds": cpu_end - cpu}
-                        for (wall, cpu, stage), (wall_end, cpu_end, _) in pairwise(marks)]
+    result["stages"] = clock.stages()
     result["save_seconds"], result["save_cpu_seconds"], _ = best_of(
         lambda: ac.save(table_path), 1)
     return result
