@@ -27,9 +27,10 @@ from .certify import why_not_delaunay
 from .facets import neighbours
 from .restore import boundary_facets, joined, outside
 
-#: From this many points the Qhull backend triangulates in two halves (it pays from about
-#: 20k points in 3D; below, the band and the check cost what the second core saves).
-SPLIT_FROM_POINTS = 40_000
+#: From this many points the Qhull backend triangulates in two halves (measured on a busy
+#: 2-core machine: it pays from 40k-80k points; below, the band and the check cost about
+#: what the second core saves).
+SPLIT_FROM_POINTS = 50_000
 
 
 @dataclass(frozen=True)
