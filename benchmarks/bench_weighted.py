@@ -93,8 +93,8 @@ def main(argv: list[str] | None = None) -> int:
             continue
         print(f"  {name:<22} {figures['seconds']:7.2f} s wall {figures['cpu_seconds']:7.2f} s cpu"
               f"  peak +{figures['extra_mib']:.0f} MiB")
-        if "backend" in figures:
-            print(f"      backend {figures['backend']} {figures['note'] or '(split in halves)'}")
+        if figures.get("note"):
+            print(f"      note: {figures['note']}")
         for stage in figures.get("stages", []):
             print(f"      {stage['stage']:<28} {stage['seconds']:6.2f} s")
     if "hidden" in mine:
