@@ -6,6 +6,8 @@ small for scans far from the origin; degenerate simplices fall back to least squ
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from .parallel import in_chunks
@@ -91,21 +93,22 @@ def least_squares(vec: np.ndarray, rel_weights: np.ndarray | None = None
     return c0, np.maximum(np.einsum("nd,nd->n", c0, c0), dist2.max(axis=1))
 
 
-def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
-                  rhs: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
-    """Centre offsets (n, d), determinants (n,), flags (degenerate, ill-conditioned), and for
-    d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0.
+class Terms(NamedTuple):
+    """The raw float64 terms of the circumcentre systems of (n, k+1) simplices, before any
+    division or fallback: centre = num / (2 det) (core.cell_pass bounds their errors)."""
 
-    The centre c solves 2 vec_i . c = rhs_i in the simplex's span; rhs defaults to |vec_i|²
-    (circumcentres); |vec_i|² - (w_i - w_0) gives the centres of orthogonal spheres."""
+    vec: np.ndarray  # (n, k, d) edge vectors from the first vertex
+    sq: np.ndarray  # (n, k) their squared lengths
+    num: np.ndarray  # (n, d) numerators of the centre offsets
+    det: np.ndarray  # (n,) determinants (|a x b|² for triangles in 3D)
+    scale: np.ndarray  # (n,) what |det| is compared with for the shape
+    duals: np.ndarray | None  # (k, n, d) for d-simplices: dual_i . vec_j = det if i == j
+
+
+def centre_terms(vec: np.ndarray, rhs: np.ndarray | None = None) -> Terms:
+    """The centre system's terms for (n, k, d) edge vectors, k >= 2 (solve_centres)."""
     k, d = vec.shape[1], vec.shape[2]
     sq = np.einsum("nid,nid->ni", vec, vec)
-    if k == 1:
-        zero = sq[:, 0] == 0.0
-        if rhs is None:
-            return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero, None
-        ratio = rhs[:, 0] / (2.0 * np.where(zero, 1.0, sq[:, 0]))
-        return ratio[:, None] * vec[:, 0], np.ones(len(vec)), zero, zero, None
     rhs = sq if rhs is None else rhs
     a, b = vec[:, 0], vec[:, 1]
     if k == 2 and d == 2:
@@ -126,17 +129,54 @@ def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
         det = _dot(a, duals[0])
         num = rhs[:, :1] * duals[0] + rhs[:, 1:2] * duals[1] + rhs[:, 2:3] * duals[2]
         scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
-    shape = np.abs(det) / np.where(scale > 0, scale, 1.0)  # 0 flat .. 1 well-shaped
+    return Terms(vec, sq, num, det, scale, duals)
+
+
+def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
+                  rhs: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
+    """Centre offsets (n, d), determinants (n,), flags (degenerate, ill-conditioned), and for
+    d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0.
+
+    The centre c solves 2 vec_i . c = rhs_i in the simplex's span; rhs defaults to |vec_i|²
+    (circumcentres); |vec_i|² - (w_i - w_0) gives the centres of orthogonal spheres."""
+    if vec.shape[1] == 1:
+        sq = np.einsum("nid,nid->ni", vec, vec)
+        zero = sq[:, 0] == 0.0
+        if rhs is None:
+            return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero, None
+        ratio = rhs[:, 0] / (2.0 * np.where(zero, 1.0, sq[:, 0]))
+        return ratio[:, None] * vec[:, 0], np.ones(len(vec)), zero, zero, None
+    return _solved(centre_terms(vec, rhs), degenerate_rtol)
+
+
+def _solved(terms: Terms, degenerate_rtol: float = DEGENERATE_RTOL) -> tuple[np.ndarray, ...]:
+    """solve_centres' outputs from the terms (the arrays are fresh, not the terms')."""
+    det = terms.det.copy()
+    shape = np.abs(det) / np.where(terms.scale > 0, terms.scale, 1.0)  # 0 flat .. 1 well-shaped
     degenerate = shape <= degenerate_rtol
     safe = np.where(degenerate, 1.0, det)
-    return num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL, duals
+    return (terms.num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL,
+            terms.duals)
 
 
 def _spheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, ...]:
     """One chunk: centre offsets, radii², determinants, degenerate flags and attach bits
     (for d-simplices; else None), with extended precision and least squares where needed."""
     vec = edge_vectors(points, simplices)
-    c0, det, bad, poor, duals = solve_centres(vec)
+    if vec.shape[1] == 1:
+        return _finished(points, simplices, vec, solve_centres(vec))
+    return spheres_of(points, simplices, centre_terms(vec))
+
+
+def spheres_of(points: np.ndarray, simplices: np.ndarray, terms: Terms
+               ) -> tuple[np.ndarray, ...]:
+    """_spheres of (n, k+1) simplices (k >= 2) from their centre_terms (left unchanged)."""
+    return _finished(points, simplices, terms.vec, _solved(terms))
+
+
+def _finished(points: np.ndarray, simplices: np.ndarray, vec: np.ndarray,
+              solved: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
+    c0, det, bad, poor, duals = solved
     if poor.any():
         c0[poor], det[poor], bad[poor] = extended(points, simplices[poor])
     r2 = np.einsum("nd,nd->n", c0, c0)

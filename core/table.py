@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .cell_pass import CellSpheres
 from .geometry import (
     CHUNK,
     any_point_inside,
@@ -172,12 +173,15 @@ def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: n
 
 
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
-           weights: np.ndarray | None = None, exact: list[int] | None = None):
+           weights: np.ndarray | None = None, exact: list[int] | None = None,
+           spheres: CellSpheres | None = None):
     """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
     cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas.
-    Counts of exactly decided predicates are appended to `exact`."""
+    Counts of exactly decided predicates are appended to `exact`. `spheres`: the cells'
+    core.geometry.cell_spheres when already computed (core.cell_pass), used in place."""
     if weights is None:
-        r2, det, flat, bits = cell_spheres(points, cells)
+        r2, det, flat, bits = (cell_spheres(points, cells) if spheres is None else
+                               (spheres.r2, spheres.det, spheres.flat, spheres.bits))
         enter = np.sqrt(r2)
         if exact is not None:
             exact.append(settle_cells(points, cells, enter, det, flat))
@@ -443,13 +447,14 @@ def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
 
 def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
                 progress: Progress | None = None, weights: np.ndarray | None = None,
-                exact: bool = True) -> Table:
+                exact: bool = True, spheres: CellSpheres | None = None) -> Table:
     """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled).
 
     With (m,) `weights` (squared radii >= 0, same scale), the cells are the regular
     triangulation's and the values signed radii of powers (module docstring). `exact`: the
     classic table's doubtful sign decisions and ill-conditioned radii are made exact
-    (core/table_signs.py); False keeps the floating-point ones."""
+    (core/table_signs.py); False keeps the floating-point ones. `spheres`: the classic
+    cells' spheres from the certification's shared pass (core.cell_pass), consumed."""
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
@@ -457,7 +462,8 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
     exact_counts: list[int] | None = [] if exact else None
-    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights, exact_counts)
+    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights, exact_counts,
+                                                spheres)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
                                                            weights, exact_counts)
