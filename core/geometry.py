@@ -11,6 +11,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .parallel import in_chunks
+from .predicates import error_coefficient, uncertain
 from .tolerances import (
     DEGENERATE_RTOL,
     EXTENDED_DEGENERATE_RTOL,
@@ -247,7 +248,8 @@ def cell_spheres(
     return r2, dets, flat, bits
 
 
-def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+def facet_radii2(points: np.ndarray, facets: np.ndarray, exact: bool = False
+                 ) -> tuple[np.ndarray, np.ndarray | None]:
     """(n,) squared radii of the smallest circumspheres of edges or triangles, from side
     lengths; for triangles also (n,) uint8 obtuse bits (bit j: vertex j lies strictly inside
     the diametral sphere of the opposite edge, so it attaches that edge).
@@ -256,22 +258,29 @@ def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np
     angle's own sides: deriving a side from the other two (|b - a|² = |a|² + |b|² - 2 a.b)
     cancels catastrophically on a needle (two long sides, a short one) and can go negative.
     The area comes from the two shortest sides, the best conditioned cross product.
+    `exact`: the bits are the float signs of the angles' dot products without tolerance, and
+    the (n, 3) bool corners whose sign the forward error bound leaves open are returned
+    third (core.table_signs.settle_obtuse decides those exactly).
     """
     if facets.shape[1] == 2:
         diff = np.take(points, facets[:, 1], 0) - np.take(points, facets[:, 0], 0)
         return 0.25 * np.einsum("nd,nd->n", diff, diff), None
     out = np.empty(len(facets))
     bits = np.empty(len(facets), dtype=np.uint8)
+    doubt = np.empty((len(facets), 3), dtype=bool) if exact else None
 
     def part(lo: int, hi: int) -> None:
-        out[lo:hi], bits[lo:hi] = _triangle_radii2(points, facets[lo:hi])
+        out[lo:hi], bits[lo:hi] = _triangle_radii2(
+            points, facets[lo:hi], None if doubt is None else doubt[lo:hi])
 
     in_chunks(part, len(facets), CHUNK)
-    return out, bits
+    return (out, bits) if doubt is None else (out, bits, doubt)
 
 
-def _triangle_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """One chunk of facet_radii2 for triangles: (n,) radii² and (n,) uint8 obtuse bits."""
+def _triangle_radii2(points: np.ndarray, facets: np.ndarray, doubt: np.ndarray | None = None
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """One chunk of facet_radii2 for triangles: (n,) radii² and (n,) uint8 obtuse bits (with
+    (n, 3) `doubt` to fill: filtered signs, facet_radii2's `exact`)."""
     p0, p1, p2 = (np.take(points, facets[:, i], 0) for i in range(3))
     a, b, c = p1 - p0, p2 - p0, p2 - p1
     del p0, p1, p2
@@ -286,11 +295,33 @@ def _triangle_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray
     out = saa * sbb * scc / (4.0 * np.where(bad, 1.0, nn))
     if bad.any():
         out[bad] = least_squares(np.stack((a[bad], b[bad]), axis=1))[1]
+    if doubt is not None:
+        return out, _angle_signs(a, b, c, (saa, sbb, scc), doubt)
     tol = ON_SPHERE_RTOL
     bits = (_dot(a, b) < -tol * (saa + sbb)).astype(np.uint8)  # angle at p0
     bits |= (_dot(a, c) > tol * (saa + scc)).astype(np.uint8) << 1  # p1: (-a).c < 0
     bits |= (_dot(b, c) < -tol * (sbb + scc)).astype(np.uint8) << 2  # p2: (-b).(-c)
     return out, bits
+
+
+def _angle_signs(a: np.ndarray, b: np.ndarray, c: np.ndarray, lengths2: tuple,
+                 doubt: np.ndarray) -> np.ndarray:
+    """(n,) uint8 bits of the obtuse angles at p0, p1, p2 of triangles with sides a = p1 - p0,
+    b = p2 - p0, c = p2 - p1 and their float squared lengths (float signs of the dot products
+    of each corner's own sides), and in (n, 3) `doubt` the corners whose sign the forward
+    bound cannot settle. A dot product (leaves rounded once, products, two sums: 5
+    roundings) is off by at most gamma_5 times sum |u_k w_k| <= |u| |w| (Cauchy-Schwarz);
+    sqrt of the float squared lengths' product is that within a few u, far inside the
+    margin error_coefficient(5) = 12 u leaves over gamma_5."""
+    coef = error_coefficient(5)
+    saa, sbb, scc = lengths2
+    bits = np.zeros(len(a), dtype=np.uint8)
+    corners = ((_dot(a, b), saa * sbb), (-_dot(a, c), saa * scc),  # p1: (-a).c
+               (_dot(b, c), sbb * scc))  # p2: (-b).(-c)
+    for j, (value, product) in enumerate(corners):
+        bits |= (value < 0).astype(np.uint8) << j
+        doubt[:, j] = uncertain(value, np.sqrt(product), coef)
+    return bits
 
 
 def facet_sizes(points: np.ndarray, facets: np.ndarray) -> np.ndarray:

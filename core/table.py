@@ -39,7 +39,7 @@ from .power import (
     triangle_powers,
 )
 from .progress import Progress
-from .table_signs import obtuse_bits, settle_cells, settle_facets
+from .table_signs import settle_cells, settle_facets, settle_obtuse
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
 
 
@@ -220,10 +220,12 @@ def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarra
     """Facet values (radii, or signed radii of powers), (3D) attach bits of their edges, and
     the global attachment test for the listed facets."""
     if weights is None:
-        r2, obtuse = facet_radii2(points, simplices)
-        if exact is not None and obtuse is not None:
-            obtuse, n_exact = obtuse_bits(points, simplices)
+        if exact is not None and simplices.shape[1] == 3:
+            r2, obtuse, doubt = facet_radii2(points, simplices, exact=True)
+            obtuse, n_exact = settle_obtuse(points, simplices, obtuse, doubt)
             exact.append(n_exact)
+        else:
+            r2, obtuse = facet_radii2(points, simplices)
 
         def global_test(ids: np.ndarray) -> np.ndarray:
             offsets, _, _, _ = circumspheres(points, simplices[ids])
@@ -257,23 +259,25 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     j1 = _slot_of(neighbors, t1[has1], t0[has1])
 
     radius, obtuse, global_test = _facet_spheres(points, simplices, weights, exact)
+    t1h = t1[has1]
     inside0 = ((bits[t0] >> i0) & 1).astype(bool)
-    inside1 = ((bits[t1[has1]] >> j1) & 1).astype(bool)
-    attached = inside0.copy()
-    attached[has1] |= inside1
+    inside1 = ((bits[t1h] >> j1) & 1).astype(bool)
+    e0 = cells.enter[t0]
+    e1 = np.full(len(t0), np.inf)
+    e1[has1] = cells.enter[t1h]
     if weights is None and exact is not None:  # doubtful float decisions made exact
-        sides = [(np.arange(len(t0)), t0, i0, inside0), (has1, t1[has1], j1, inside1)]
+        sides = [(slice(None), t0, i0, inside0, e0), (has1, t1h, j1, inside1, e1[has1])]
         attached, n_exact = settle_facets(points, cells.simplices, cells.enter, det, simplices,
                                           radius, sides)
         exact.append(n_exact)
+    else:
+        attached = inside0.copy()
+        attached[has1] |= inside1
     near_flat = det[t0] == 0
-    near_flat[has1] |= det[t1[has1]] == 0
+    near_flat[has1] |= det[t1h] == 0
     if near_flat.any():
         ids = np.flatnonzero(near_flat)
         attached[ids] |= global_test(ids)
-    e0 = cells.enter[t0]
-    e1 = np.full(len(t0), np.inf)
-    e1[has1] = cells.enter[t1[has1]]
     regular = np.minimum(e0, e1)
     interior = np.maximum(e0, e1)
     enter = np.where(attached, regular, np.minimum(radius, regular))
