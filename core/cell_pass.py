@@ -5,10 +5,12 @@ its cell spheres, and the certification its filtered orientation and in-sphere s
 The vertex q across a facet of cell (p_0, ..., p_d) is strictly inside the cell's
 circumsphere exactly when V = det |q - p_0|² - (q - p_0) . num has the sign opposite to det
 (centre = p_0 + num / (2 det), so V / det = |q - p_0|² - 2 (q - p_0) . (centre - p_0)). V is
-the lifted in-sphere determinant expanded along q's row: the same polynomial of the rounded
-coordinate differences for every facet, so core.predicates' forward error bound (gamma_K times
-the same expression in absolute values) proves its sign, and exact arithmetic decides only
-the rows the bound leaves open (core.predicates.orientations and in_sphere on those rows).
+the lifted in-sphere determinant of the rows [v, |v|²] (v = p_i - p_0, then q - p_0) expanded
+along its last column, every minor into all its monomials: the same expression in absolute
+values is the permanent of that matrix in absolute values, at most the product of its rows'
+absolute sums (core.predicates.row_sum_bound). So core.predicates' forward error bound
+(gamma_K times that) proves the sign, and exact arithmetic decides only the rows the bound
+leaves open (core.predicates.orientations and in_sphere on those rows); the same for det.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import CHUNK, centre_terms, spheres_of
+from .geometry import centre_terms, spheres_of
 from .parallel import in_chunks
 from .predicates import error_coefficient, uncertain
 
@@ -28,7 +30,8 @@ from .predicates import error_coefficient, uncertain
 #: q . num (16), V = 17. Sums of three terms add at most 2 in any order; a fused multiply-add
 #: only removes roundings.
 ROUNDINGS = {2: (4, 11), 3: (8, 17)}
-_CROSS = ((1, 2), (2, 0), (0, 1))  # component i of a x b is a[j] b[k] - a[k] b[j]
+#: Cells per chunk: the pass's dozens of temporaries stay in the caches.
+PASS_CHUNK = 1 << 14
 
 
 @dataclass(frozen=True)
@@ -52,24 +55,26 @@ class FirstPass:
     side_doubt: np.ndarray  # (f,) bool: that sign needs exact arithmetic
 
 
-def _dual_perms(absvec: np.ndarray) -> np.ndarray:
-    """(d, n, d) the duals' expressions in absolute values, from (n, d, d) |edge vectors|."""
-    if absvec.shape[2] == 2:
-        a, b = absvec[:, 0], absvec[:, 1]
-        return np.stack([b[:, ::-1], a[:, ::-1]])
-    planes = np.ascontiguousarray(absvec.transpose(1, 2, 0))  # (vector, coordinate, n)
-    out = np.empty((3, absvec.shape[0], 3))
-    for slot, (u, w) in enumerate(_CROSS):
-        first, second = planes[u], planes[w]
-        for i, (j, k) in enumerate(_CROSS):
-            np.add(first[j] * second[k], first[k] * second[j], out=out[slot, :, i])
-    return out
+def _row_sum(rows: np.ndarray) -> np.ndarray:
+    """(n,) sums of the d columns of (n, d) rows (column adds: faster than a short-axis sum)."""
+    total = rows[:, 0] + rows[:, 1]
+    if rows.shape[1] == 3:
+        total += rows[:, 2]
+    return total
+
+
+def _product(factors: list[np.ndarray]) -> np.ndarray:
+    total = factors[0] * factors[1]
+    for factor in factors[2:]:
+        total *= factor
+    return total
 
 
 def first_pass(points: np.ndarray, cells: np.ndarray, t: np.ndarray,
                q: np.ndarray) -> FirstPass:
     """The pass over the (n, d+1) `cells` of (m, d) `points` and the facets (t, q): cell t
-    (ascending) and the vertex q across one of its facets."""
+    (ascending) and the vertex q across one of its facets. In cache-sized chunks, alternate
+    ones in a helper thread; the rows come out the same whatever the chunking."""
     n, d = len(cells), points.shape[1]
     r2, det, flat, bits = np.empty(n), np.empty(n), np.empty(n, bool), np.empty(n, np.uint8)
     orient, orient_doubt = np.empty(n, np.int8), np.empty(n, bool)
@@ -81,25 +86,23 @@ def first_pass(points: np.ndarray, cells: np.ndarray, t: np.ndarray,
         corners = np.take(points, rows.ravel(), axis=0).reshape(len(rows), d + 1, d)
         terms = centre_terms(corners[:, 1:] - corners[:, :1])
         _, r2[lo:hi], det[lo:hi], flat[lo:hi], bits[lo:hi] = spheres_of(points, rows, terms)
-        duals = _dual_perms(np.abs(terms.vec))
-        perm_det = np.einsum("nd,nd->n", np.abs(terms.vec[:, 0]), duals[0])
+        absvec = np.abs(terms.vec)
+        sums = [_row_sum(absvec[:, k]) for k in range(d)]  # the rows' absolute sums
         orient[lo:hi] = np.sign(terms.det)
-        orient_doubt[lo:hi] = uncertain(terms.det, perm_det, coef_det)
-        perm_num = np.einsum("kn,knd->nd", terms.sq.T, duals)
+        orient_doubt[lo:hi] = uncertain(terms.det, _product(sums), coef_det)
+        lifted = _product([row + terms.sq[:, k] for k, row in enumerate(sums)])
         f0, f1 = np.searchsorted(t, (lo, hi))
         local = t[f0:f1] - lo
         rel = np.take(points, q[f0:f1], axis=0) - corners[local, 0]
         qq = np.einsum("nd,nd->n", rel, rel)
         num = terms.num[local]
         dot = rel[:, 0] * num[:, 0] + rel[:, 1] * num[:, 1]
-        perm = np.abs(rel[:, 0]) * perm_num[local, 0] + np.abs(rel[:, 1]) * perm_num[local, 1]
         if d == 3:
             dot += rel[:, 2] * num[:, 2]
-            perm += np.abs(rel[:, 2]) * perm_num[local, 2]
         value = terms.det[local] * qq - dot
-        perm += perm_det[local] * qq
         side[f0:f1] = np.sign(value)
+        perm = lifted[local] * (_row_sum(np.abs(rel)) + qq)
         side_doubt[f0:f1] = uncertain(value, perm, coef_v)
 
-    in_chunks(part, n, CHUNK)
+    in_chunks(part, n, PASS_CHUNK)
     return FirstPass(CellSpheres(r2, det, flat, bits), orient, orient_doubt, side, side_doubt)

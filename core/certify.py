@@ -37,11 +37,13 @@ class Certified:
 def _interior_facets(cells: np.ndarray, nbs: np.ndarray) -> tuple[np.ndarray, ...]:
     """Every interior facet once, (t, i, u, j): cell t's facet opposite its vertex i is cell
     u's opposite its vertex j (t < u; t ascending)."""
-    t, i = np.nonzero(nbs > np.arange(len(cells))[:, None])
-    u = nbs[t, i]
-    around = nbs[u]
+    width = nbs.shape[1]
+    slots = np.flatnonzero(nbs > np.arange(len(cells))[:, None])
+    t, i = np.divmod(slots, width)
+    u = np.take(nbs, slots)
+    around = np.take(nbs, u, axis=0)
     j = np.zeros(len(t), dtype=np.int64)
-    for c in range(nbs.shape[1] - 1, 0, -1):  # one compare per column, not a (n, w) argmax
+    for c in range(width - 1, 0, -1):  # one compare per column, not a (n, w) argmax
         j[around[:, c] == t] = c
     return t, i, u, j
 
@@ -50,7 +52,7 @@ def _folded(n: int, signs: np.ndarray, t, i, u, j) -> np.ndarray:
     """(n,) bool: cells on the same side of a shared facet (t, i, u, j) as their neighbour
     (rows ascending, so the facet's orientation follows from the cell's sign and the
     position left out)."""
-    same = signs[t] * (-1) ** (i % 2) == signs[u] * (-1) ** (j % 2)
+    same = np.where(i & 1, -signs[t], signs[t]) == np.where(j & 1, -signs[u], signs[u])
     out = np.zeros(n, dtype=bool)
     out[t[same]] = out[u[same]] = True
     return out
