@@ -2,7 +2,9 @@
 
 `first_open` opens a file in a new MainWindow with an empty table cache, as a user's first
 open is: file -> slider live (the model has the dataset: the slider moves shapes) -> topology
-done (signatures and optimal alpha; the same moment when the window waits for them). With
+done (signatures and optimal alpha; the same moment when the window waits for them), with the
+longest GUI-thread stall in between (a 10 ms QTimer probe) and the build and topology
+processes' own peaks (sampled VmHWM). With
 `soak`, the same window then opens and cancels the file 10 times and opens the two files
 alternately 10 times; the process RSS is read after each outcome.
 """
@@ -19,6 +21,8 @@ from isolate import MIB, peak_rss_mib, rss_mib
 TIMEOUT_MS = 3_600_000
 CANCELS, REOPENS = 10, 10
 CANCEL_AFTER_S = 2.0  # cancel once the build has run this long (the child is started)
+PROBE_MS = 10  # the stall probe's tick
+SAMPLE_S = 0.1  # how often the children's peak memory is read
 
 
 def _wait(signal, timeout_ms: int = TIMEOUT_MS) -> tuple:
@@ -72,6 +76,77 @@ def _topology_signal(win):
     return getattr(win.model, "topologyChanged", None)
 
 
+class StallProbe:
+    """A QTimer that ticks every PROBE_MS on the GUI thread: the longest gap between two
+    ticks beyond PROBE_MS is the longest time the GUI thread could not answer (a slider
+    drag froze that long), measured from `start` to `stop`."""
+
+    def __init__(self) -> None:
+        from PySide6.QtCore import QTimer
+
+        self.timer = QTimer()
+        self.timer.setInterval(PROBE_MS)
+        self.timer.timeout.connect(self._tick)
+        self.last = 0.0
+        self.longest = 0.0
+
+    def start(self) -> None:
+        """Start measuring now."""
+        self.last, self.longest = time.perf_counter(), 0.0
+        self.timer.start()
+
+    def _tick(self) -> None:
+        now = time.perf_counter()
+        self.longest = max(self.longest, now - self.last - PROBE_MS / 1000)
+        self.last = now
+
+    def stop(self) -> float:
+        """Stop; the longest stall in seconds."""
+        self._tick()
+        self.timer.stop()
+        return self.longest
+
+
+class ChildPeaks:
+    """Samples the window's child processes (build, topology) every SAMPLE_S: each one's own
+    peak resident set (VmHWM, which starts afresh at exec, unlike ru_maxrss), by name."""
+
+    def __init__(self) -> None:
+        import threading
+
+        self.peaks: dict[str, float] = {}
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        import multiprocessing
+
+        while not self._stop.wait(SAMPLE_S):
+            for child in multiprocessing.active_children():
+                peak = _vm_hwm_mib(child.pid)
+                if peak:
+                    self.peaks[child.name] = max(self.peaks.get(child.name, 0.0), peak)
+
+    def stop(self) -> dict[str, float]:
+        """Stop sampling; {child process name: peak MiB}."""
+        self._stop.set()
+        self._thread.join()
+        return dict(self.peaks)
+
+
+def _vm_hwm_mib(pid: int | None) -> float:
+    """A process's peak resident set in MiB (0 when it is gone)."""
+    try:
+        with open(f"/proc/{pid}/status", encoding="ascii") as handle:
+            for line in handle:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except (OSError, ValueError):
+        pass
+    return 0.0
+
+
 def _cpu_seconds() -> float:
     """CPU seconds so far of this process (all threads) and of its waited-for children (the
     build processes)."""
@@ -88,39 +163,53 @@ def _open_timed(win, path: str) -> dict:
     def stamp(name: str) -> None:
         stamps.setdefault(name, (time.perf_counter(), _cpu_seconds()))
 
+    probe = StallProbe()
     if topology is not None:
         topology.connect(lambda *_: stamp("topology"))
     stamp("start")
     win.open_path(path)
     _wait(win.model.datasetChanged)
     stamp("live")
+    probe.start()
     _spin(0)  # the first frame is requested; let the event loop run once
     if topology is not None and "topology" not in stamps and not win.model.dataset.has_topology:
         _wait(topology)
+    stall = probe.stop()
     ds = win.model.dataset
     info = getattr(ds.ac, "build_info", None)
     (start, start_cpu), (live, live_cpu) = stamps["start"], stamps["live"]
     done, done_cpu = stamps.get("topology", stamps["live"])
     return {"live_seconds": live - start, "live_cpu_seconds": live_cpu - start_cpu,
             "topology_seconds": done - start, "topology_cpu_seconds": done_cpu - start_cpu,
+            "longest_stall_seconds": stall,
             "backend": getattr(info, "backend", "qhull"),
             "cells": len(ds.ac.simplices(ds.ac.dim)), "points": len(ds.ac.points)}
 
 
-def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool) -> dict:
-    """First open of points_path in a new window (empty cache): times, peaks, and with
-    `soak` the RSS after cancelled opens of cancel_path and re-opens of points_path /
-    other_path."""
-    from app import memory
+def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool,
+               topology_in_thread: bool = False) -> dict:
+    """First open of points_path in a new window (empty cache): times, peaks, the longest
+    GUI-thread stall while the topology completes, and with `soak` the RSS after cancelled
+    opens of cancel_path and re-opens of points_path / other_path. `topology_in_thread`
+    runs the topology pass in a thread of the window (as before issue 15's topology process),
+    for comparison."""
+    from app import memory, topology_process
 
+    if topology_in_thread:
+        topology_process.IN_THREAD_BELOW = 2**62
     with tempfile.TemporaryDirectory(prefix="alphascoop-first-open-") as folder:
         os.environ["ALPHASCOOP_CACHE_DIR"] = os.path.join(folder, "cache")
         win = _window(folder)
         base = rss_mib()
+        children = ChildPeaks()
         result = _open_timed(win, points_path)
+        win.topology.wait()  # the topology process has ended too
         _spin(200)  # the deferred give-back runs
+        peaks = children.stop()
         result.update(base_rss_mib=base, rss_after_mib=rss_mib(), peak_mib=peak_rss_mib(),
-                      child_peak_mib=memory.peak_rss_bytes(children=True) / MIB)
+                      child_peak_mib=max(peaks.values(), default=0.0),
+                      child_peaks_mib=peaks,
+                      child_maxrss_mib=memory.peak_rss_bytes(children=True) / MIB)
         if soak:
             result["soak"] = _soak(win, points_path, other_path, cancel_path)
         win.close()
