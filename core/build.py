@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .backends import BACKENDS, Choice, check_backend, delaunay
+from .backends import BACKENDS, Choice, check_backend, delaunay, regular
 from .certify import Certified, certified_triangulation
-from .delaunay import Triangulation, regular_triangulate
+from .delaunay import Triangulation
 from .errors import InputError
 from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
 from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
@@ -34,7 +34,8 @@ class BuildInfo:
 
     `backend`: the triangulation backend that made the cells ("qhull" for scipy/Qhull,
     "gmsh"); `backend_note`: why the automatic choice did not use gmsh ("" when it did, or
-    was not asked to: too few points, gmsh not installed, weights).
+    was not asked to: too few points, gmsh not installed, weights), and why a large Qhull
+    build was not split in two halves (core.backends.split; "" when it was, or was small).
     `exact_predicates`: sign decisions (certification and table) that the floating-point
     filter could not settle and exact arithmetic decided; `flips`: cells the certification
     changed (flips and hull repairs, core/certify.py); `uncertified`: facets it could not
@@ -170,8 +171,7 @@ def _triangulated(prep: _Prepared, backend: str | None) -> tuple[Triangulation, 
     if backend == "gmsh":
         raise InputError("the gmsh backend makes Delaunay triangulations only: weighted "
                          "points need backend='qhull' or None")
-    return (regular_triangulate((coords - offset) / lift_scale, w / lift_scale**2),
-            Choice("qhull"))
+    return regular((coords - offset) / lift_scale, w / lift_scale**2)
 
 
 def _certified(prep: _Prepared, tri: Triangulation) -> Certified:

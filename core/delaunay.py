@@ -35,24 +35,56 @@ def sort_rows(cells: np.ndarray, neighbors: np.ndarray) -> None:
             np.copyto(arr[:, j], first, where=swap)
 
 
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    return text.splitlines()[0] if text else type(exc).__name__
+
+
+def delaunay_cells(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Qhull's Delaunay cells of (m, d) points, rows ascending, and their neighbour table
+    ((t, d+1) int32 each, -1 = hull); points Qhull leaves out are in no cell."""
+    try:
+        tri = Delaunay(points)
+    except (QhullError, ValueError) as exc:
+        raise InputError(f"the Delaunay triangulation failed (degenerate input?): "
+                         f"{_first_line(exc)}") from None
+    cells = np.ascontiguousarray(tri.simplices, dtype=np.int32)
+    neighbors = np.ascontiguousarray(tri.neighbors, dtype=np.int32)
+    if len(cells) == 0:
+        raise InputError("the points span no cell: they are (nearly) collinear or coplanar")
+    sort_rows(cells, neighbors)
+    return cells, neighbors
+
+
+def regular_cells(points: np.ndarray, weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Qhull's regular cells of (m, d) points with (m,) weights (the lower hull of the
+    lifted points (p, |p|² - w)), rows ascending, and their neighbour table; hidden points
+    are in no cell."""
+    lifted = np.column_stack((points, np.einsum("nd,nd->n", points, points) - weights))
+    try:
+        hull = ConvexHull(lifted, qhull_options="Qt Qbb Qc Q12")
+    except (QhullError, ValueError) as exc:
+        raise InputError(f"the regular triangulation failed (degenerate input?): "
+                         f"{_first_line(exc)}") from None
+    lower = hull.equations[:, -2] < -LOWER_FACET_COS
+    if not lower.any():
+        raise InputError("the points span no cell: they are (nearly) collinear or coplanar")
+    new_id = np.full(len(lower), -1, dtype=np.int64)
+    new_id[lower] = np.arange(int(lower.sum()))
+    cells = np.ascontiguousarray(hull.simplices[lower], dtype=np.int32)
+    around = hull.neighbors[lower]
+    neighbors = np.ascontiguousarray(np.where(around >= 0, new_id[around], -1), dtype=np.int32)
+    sort_rows(cells, neighbors)
+    return cells, neighbors
+
+
 def triangulate(points: np.ndarray) -> Triangulation:
     """Delaunay cells of (m, d) distinct points; points Qhull leaves out are merged.
 
     Qhull drops points it cannot separate from a vertex (coplanar in the lifted space); each
     such point is mapped to its nearest vertex so no input point is lost.
     """
-    try:
-        tri = Delaunay(points)
-    except (QhullError, ValueError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise InputError(
-            f"the Delaunay triangulation failed (degenerate input?): {first}"
-        ) from None
-    cells = np.ascontiguousarray(tri.simplices, dtype=np.int32)
-    neighbors = np.ascontiguousarray(tri.neighbors, dtype=np.int32)
-    if len(cells) == 0:
-        raise InputError("the points span no cell: they are (nearly) collinear or coplanar")
-    sort_rows(cells, neighbors)
+    cells, neighbors = delaunay_cells(points)
     m = len(points)
     used = np.zeros(m, dtype=bool)
     used[cells.ravel()] = True
@@ -66,6 +98,18 @@ def triangulate(points: np.ndarray) -> Triangulation:
     return Triangulation(cells, neighbors, vertex_of_point, kept)
 
 
+def compacted(cells: np.ndarray, neighbors: np.ndarray, m: int) -> Triangulation:
+    """The Triangulation of (t, d+1) cells on m points whose unused points are hidden
+    (vertex_of_point -1), cells renumbered to vertex rows."""
+    used = np.zeros(m, dtype=bool)
+    used[cells.ravel()] = True
+    kept = np.flatnonzero(used)
+    vertex_of_point = np.where(used, np.cumsum(used, dtype=np.int64) - 1, -1)
+    if not used.all():
+        cells = vertex_of_point[cells].astype(np.int32)
+    return Triangulation(cells, neighbors, vertex_of_point, kept)
+
+
 def regular_triangulate(points: np.ndarray, weights: np.ndarray) -> Triangulation:
     """Regular (weighted Delaunay) cells of (m, d) distinct points with (m,) weights.
 
@@ -74,27 +118,4 @@ def regular_triangulate(points: np.ndarray, weights: np.ndarray) -> Triangulatio
     others' power cells; `vertex_of_point` maps them to -1. Input that is well scaled
     (centred, extent about 1) keeps the lifting accurate.
     """
-    lifted = np.column_stack((points, np.einsum("nd,nd->n", points, points) - weights))
-    try:
-        hull = ConvexHull(lifted, qhull_options="Qt Qbb Qc Q12")
-    except (QhullError, ValueError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise InputError(
-            f"the regular triangulation failed (degenerate input?): {first}"
-        ) from None
-    lower = hull.equations[:, -2] < -LOWER_FACET_COS
-    if not lower.any():
-        raise InputError("the points span no cell: they are (nearly) collinear or coplanar")
-    new_id = np.full(len(lower), -1, dtype=np.int64)
-    new_id[lower] = np.arange(int(lower.sum()))
-    cells = np.ascontiguousarray(hull.simplices[lower], dtype=np.int32)
-    around = hull.neighbors[lower]
-    neighbors = np.ascontiguousarray(np.where(around >= 0, new_id[around], -1), dtype=np.int32)
-    sort_rows(cells, neighbors)
-    used = np.zeros(len(points), dtype=bool)
-    used[cells.ravel()] = True
-    kept = np.flatnonzero(used)
-    vertex_of_point = np.where(used, np.cumsum(used, dtype=np.int64) - 1, -1)
-    if not used.all():
-        cells = vertex_of_point[cells].astype(np.int32)
-    return Triangulation(cells, neighbors, vertex_of_point, kept)
+    return compacted(*regular_cells(points, weights), len(points))

@@ -61,3 +61,8 @@ MAX_COORDINATE = {2: 1e150, 3: 1e100}
 #: its magnitude (the sum of the absolute terms): near-cospherical or flat groups, where
 #: Qhull's own rounding picks one of several triangulations, make the build use Qhull.
 BACKEND_CERTAIN_RTOL = 1e-12
+
+#: A cell of one half (core.backends.split) is kept as a cell of the whole triangulation only
+#: where the other half's nearest point has a power (squared distance) to its circumsphere
+#: (orthosphere) larger than the sphere's by more than this share of the terms.
+SPLIT_EMPTY_RTOL = 1e-9

@@ -2,7 +2,9 @@
 
 `delaunay(points, backend)` returns Qhull's Delaunay triangulation, made by gmsh where gmsh
 is installed and its result is certainly the same cells (core.backends.certify), else by
-Qhull; which one did it is returned beside it.
+Qhull; which one did it is returned beside it. `regular(points, weights)` returns Qhull's
+regular triangulation. Qhull works on two halves at once on larger inputs
+(core.backends.split), or in one call where the halves cannot promise the same cells.
 """
 
 from __future__ import annotations
@@ -11,9 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..delaunay import Triangulation, triangulate
+from ..delaunay import Triangulation, regular_triangulate, triangulate
 from ..errors import InputError
 from . import gmsh as gmsh_backend
+from . import split as split_backend
 from .certify import why_not_delaunay
 from .restore import restored
 
@@ -28,7 +31,7 @@ class Choice:
     """Which backend made a triangulation, and why gmsh was not used where it was asked."""
 
     backend: str  # "qhull" | "gmsh"
-    note: str = ""  # "" or why the automatic choice fell back to Qhull
+    note: str = ""  # "" or why gmsh was not used, and why Qhull was not split in halves
 
 
 def check_backend(backend: object) -> str | None:
@@ -76,5 +79,25 @@ def delaunay(points: np.ndarray, backend: str | None = None) -> tuple[Triangulat
         if backend == "gmsh":
             raise InputError(f"the gmsh backend cannot promise Qhull's exact triangulation "
                              f"of these points ({tri}); use backend='qhull' or None")
-        return triangulate(points), Choice("qhull", f"gmsh not used: {tri}")
-    return triangulate(points), Choice("qhull")
+        return _by_qhull(points, None, f"gmsh not used: {tri}")
+    return _by_qhull(points, None)
+
+
+def regular(points: np.ndarray, weights: np.ndarray) -> tuple[Triangulation, Choice]:
+    """The regular triangulation of (m, d) distinct, well-scaled points with (m,) weights
+    (Qhull's; hidden points map to -1)."""
+    return _by_qhull(points, weights)
+
+
+def _by_qhull(points: np.ndarray, weights: np.ndarray | None,
+              note: str = "") -> tuple[Triangulation, Choice]:
+    """Qhull's triangulation (regular, with weights): in two halves on two threads from
+    split.SPLIT_FROM_POINTS points on, else (or where the halves cannot promise the same
+    cells: the reason joins the note) in one call."""
+    if len(points) >= split_backend.SPLIT_FROM_POINTS:
+        tri = split_backend.split_triangulation(points, weights)
+        if isinstance(tri, Triangulation):
+            return tri, Choice("qhull", note)
+        note = "; ".join(filter(None, (note, f"not split in two halves: {tri}")))
+    whole = triangulate(points) if weights is None else regular_triangulate(points, weights)
+    return whole, Choice("qhull", note)

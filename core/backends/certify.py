@@ -36,19 +36,26 @@ def _orient(cols: list[np.ndarray], cells: np.ndarray) -> tuple[np.ndarray, np.n
     return det, perm
 
 
-def _lifted(cols: list[np.ndarray], cells: np.ndarray, query: np.ndarray
-            ) -> tuple[np.ndarray, np.ndarray]:
+def _lifted(cols: list[np.ndarray], cells: np.ndarray, query: np.ndarray,
+            weights: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The in-sphere determinant of each query point against its (n, d+1) cell (Shewchuk's
-    incircle/insphere layout, relative to the query point) and its sum of absolute terms."""
+    incircle/insphere layout, relative to the query point) and its sum of absolute terms;
+    with `weights`, the power (orthosphere) test: each lift |p - q|² less w_p - w_q."""
     q = [np.take(col, query) for col in cols]
     rel = [[np.take(col, cells[:, k]) - qc for col, qc in zip(cols, q, strict=True)]
            for k in range(cells.shape[1])]
     lift = [sum(c * c for c in r) for r in rel]
+    mag = lift
+    if weights is not None:
+        dw = [np.take(weights, cells[:, k]) - np.take(weights, query)
+              for k in range(cells.shape[1])]
+        mag = [a + np.abs(b) for a, b in zip(lift, dw, strict=True)]
+        lift = [a - b for a, b in zip(lift, dw, strict=True)]
     if len(cols) == 2:
         (ax, ay), (bx, by), (cx, cy) = rel
         minors = ((bx * cy, cx * by), (cx * ay, ax * cy), (ax * by, bx * ay))
         det = sum(w * (u - v) for w, (u, v) in zip(lift, minors, strict=True))
-        perm = sum(w * (np.abs(u) + np.abs(v)) for w, (u, v) in zip(lift, minors, strict=True))
+        perm = sum(w * (np.abs(u) + np.abs(v)) for w, (u, v) in zip(mag, minors, strict=True))
         return det, perm
     (ax, ay, az), (bx, by, bz), (cx, cy, cz), (dx, dy, dz) = rel
     minor = {}
@@ -69,8 +76,9 @@ def _lifted(cols: list[np.ndarray], cells: np.ndarray, query: np.ndarray
     cda_p = cz * perm["da"] + dz * perm["ac"] + az * perm["cd"]
     dab_p = dz * perm["ab"] + az * perm["bd"] + bz * perm["da"]
     a, b, c, d = lift
+    ma, mb, mc, md = mag
     return ((d * abc - c * dab) + (b * cda - a * bcd),
-            d * abc_p + c * dab_p + b * cda_p + a * bcd_p)
+            md * abc_p + mc * dab_p + mb * cda_p + ma * bcd_p)
 
 
 def _columns(points: np.ndarray) -> list[np.ndarray]:
@@ -92,17 +100,18 @@ def orientations(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
 
 
 def in_sphere(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
-              orientation: np.ndarray) -> np.ndarray:
-    """(n,) int8: +1 where point query[i] is certainly outside the circumsphere of cells[i],
-    -1 certainly inside, 0 undecided (within the margin); `orientation` (n,) is the sign of
-    each cell (orientations)."""
+              orientation: np.ndarray, weights: np.ndarray | None = None) -> np.ndarray:
+    """(n,) int8: +1 where point query[i] is certainly outside the circumsphere of cells[i]
+    (with (m,) `weights`: has certainly positive power to its orthosphere), -1 certainly
+    inside, 0 undecided (within the margin); `orientation` (n,) is the sign of each cell
+    (orientations)."""
     cols = _columns(points)
     out = np.empty(len(cells), dtype=np.int8)
 
     def part(start: int, stop: int) -> None:
         for lo in range(start, stop, CHUNK):
             hi = min(lo + CHUNK, stop)
-            det, perm = _lifted(cols, cells[lo:hi], query[lo:hi])
+            det, perm = _lifted(cols, cells[lo:hi], query[lo:hi], weights)
             # Shewchuk's incircle is > 0 inside a triangle with det > 0; his insphere is > 0
             # inside a tetrahedron with det[v1 - v0, v2 - v0, v3 - v0] < 0
             side = np.sign(det) * orientation[lo:hi] * (1 if len(cols) == 3 else -1)
@@ -111,11 +120,16 @@ def in_sphere(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
     return out
 
 
-def _inner_pairs(neighbors: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Each inner facet once: cell t, its vertex i opposite the facet, the cell u across
-    and u's vertex j opposite it (neighbour tables are symmetric by construction)."""
+def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None
+                 ) -> tuple[np.ndarray, ...]:
+    """Each inner facet once (of a cell in the (t,) bool mask `near`, when given): cell t,
+    its vertex i opposite the facet, the cell u across and u's vertex j opposite it
+    (neighbour tables are symmetric by construction)."""
     t, i = np.nonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
     u = neighbors[t, i]
+    if near is not None:
+        pick = near[t] | near[u]
+        t, i, u = t[pick], i[pick], u[pick]
     j = np.argmax(neighbors[u] == t[:, None].astype(np.int32), axis=1)
     return t, i, u, j
 
@@ -141,23 +155,38 @@ def _outer_facets_are_hull(points: np.ndarray, cells: np.ndarray,
     return bool(np.array_equal(np.unique(facets, axis=0), np.unique(outer, axis=0)))
 
 
-def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray) -> str:
+def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, *,
+                     weights: np.ndarray | None = None, hidden: np.ndarray | None = None,
+                     near: np.ndarray | None = None) -> str:
     """"" when (t, d+1) ascending `cells` with their neighbour table are certainly the unique
-    Delaunay triangulation of all (m, d) `points`; else the first reason found."""
+    Delaunay triangulation of all (m, d) `points` (regular triangulation, with (m,)
+    `weights`); else the first reason found.
+
+    `hidden` (m,) bool: points known to be hidden (in no cell). `near` (t,) bool: check
+    orientation and local Delaunay-ness only on the facets of these cells (the others are
+    known to be right: the parts of core.backends.split that Qhull made).
+    """
     used = np.zeros(len(points), dtype=bool)
     used[cells.ravel()] = True
+    if hidden is not None:
+        if (used & hidden).any():
+            return f"{int(np.count_nonzero(used & hidden))} hidden points are vertices"
+        used |= hidden
     if not used.all():
         return f"{int(np.count_nonzero(~used))} points are in no cell"
-    sign = orientations(points, cells)
-    if not sign.all():
-        return f"{int(np.count_nonzero(sign == 0))} cells are (nearly) flat"
-    t, i, u, j = _inner_pairs(neighbors)
+    t, i, u, j = _inner_pairs(neighbors, near)
+    sign = np.zeros(len(cells), dtype=np.int8)
+    some = slice(None) if near is None else np.unique(np.concatenate((t, u, np.flatnonzero(
+        near))))
+    sign[some] = orientations(points, cells[some])
+    if not sign[some].all():
+        return f"{int(np.count_nonzero(sign[some] == 0))} cells are (nearly) flat"
     same_side = ((i + j) % 2 == 1) == (sign[t] != sign[u])
     if same_side.any():
         return f"{int(np.count_nonzero(same_side))} pairs of cells overlap"
     if not _outer_facets_are_hull(points, cells, neighbors):
         return "the outer facets are not the convex hull"
-    side = in_sphere(points, cells[t], cells[u, j], sign[t])
+    side = in_sphere(points, cells[t], cells[u, j], sign[t], weights)
     if (side <= 0).any():
         return (f"{int(np.count_nonzero(side <= 0))} facets are not certainly Delaunay "
                 "(near-cospherical points)")

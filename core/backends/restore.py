@@ -6,6 +6,8 @@ boundary of gmsh's union of cells, so it is a cell of the Delaunay triangulation
 boundary vertices, on the outer side of gmsh's boundary. The result is checked afterwards
 (core.backends.certify: every inner facet locally Delaunay, the outer facets the hull), so a
 case this reasoning misses makes the build use Qhull instead; it cannot pass.
+core.backends.split restores the band its two halves leave out the same way (`outside`,
+`joined`).
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ def _side(points: np.ndarray, facets: np.ndarray, apex: np.ndarray) -> np.ndarra
     return np.linalg.det(np.stack([*rows, points[apex] - base], axis=1))
 
 
-def _boundary_facets(cells: np.ndarray, nbrs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def boundary_facets(cells: np.ndarray, nbrs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(b, d) ascending rows: the facets with no cell across, and (b,) the vertex of the
     cell behind each (on the inner side)."""
     t, i = np.nonzero(nbrs < 0)
@@ -45,18 +47,27 @@ def _boundary_facets(cells: np.ndarray, nbrs: np.ndarray) -> tuple[np.ndarray, n
 def _missing(points: np.ndarray, cells: np.ndarray, outer: np.ndarray,
              behind: np.ndarray) -> np.ndarray:
     """(k, d+1) ascending cells of the Delaunay triangulation of the vertices of the
-    `outer` facets that lie outside gmsh's union of `cells`: those on the far side of an
-    outer facet from its vertex `behind`, and those reached from them without crossing
-    another outer facet (a flood over that small triangulation)."""
-    width = cells.shape[1]
+    `outer` facets that lie outside gmsh's union of `cells` (`outside`)."""
     corners = np.unique(outer)
     try:
         local = Delaunay(points[corners])
     except (QhullError, ValueError):
-        return np.empty((0, width), dtype=np.int32)
+        return np.empty((0, cells.shape[1]), dtype=np.int32)
     simplices = np.ascontiguousarray(corners[local.simplices], dtype=np.int32)
     around = np.ascontiguousarray(local.neighbors, dtype=np.int32)
     sort_rows(simplices, around)
+    return outside(points, cells, outer, behind, simplices, around)
+
+
+def outside(points: np.ndarray, cells: np.ndarray, outer: np.ndarray, behind: np.ndarray,
+            simplices: np.ndarray, around: np.ndarray) -> np.ndarray:
+    """(k, d+1) the cells of a small triangulation (`simplices` ascending, in point ids,
+    their neighbour table `around`) that lie outside the union of `cells`, whose boundary
+    is the (b, d) `outer` facets with the vertex `behind` each: those on the far side of an
+    outer facet from its vertex `behind`, and those reached from them without crossing
+    another outer facet (a flood over that small triangulation)."""
+    width = cells.shape[1]
+    corners = np.unique(simplices)
     on_corners = np.zeros(len(points), dtype=bool)
     on_corners[corners] = True
     inside = _row_of(simplices, cells[on_corners[cells].all(axis=1)]) >= 0
@@ -80,8 +91,8 @@ def _missing(points: np.ndarray, cells: np.ndarray, outer: np.ndarray,
     return simplices[reached]
 
 
-def _joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray,
-            extra: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+def joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray,
+           extra: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
     """`cells` + `extra` and their neighbours: only the cells that can share a facet with
     an extra cell (d vertices among the extra cells' vertices) are matched again."""
     d = cells.shape[1] - 1
@@ -91,9 +102,9 @@ def _joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray,
     local, manifold = neighbours(np.concatenate((cells[near], extra)), len(points))
     ids = np.concatenate((near, len(cells) + np.arange(len(extra)))).astype(np.int32)
     local = np.where(local >= 0, ids[np.maximum(local, 0)], -1)
-    joined = np.concatenate((nbrs, local[len(near):]))
-    joined[near] = np.where(local[:len(near)] >= 0, local[:len(near)], nbrs[near])
-    return np.concatenate((cells, extra)), joined.astype(np.int32), manifold
+    table = np.concatenate((nbrs, local[len(near):]))
+    table[near] = np.where(local[:len(near)] >= 0, local[:len(near)], nbrs[near])
+    return np.concatenate((cells, extra)), table.astype(np.int32), manifold
 
 
 def restored(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
@@ -103,7 +114,7 @@ def restored(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndar
     nbrs, manifold = neighbours(cells, len(points))
     if not manifold:
         return cells, nbrs, False
-    extra = _missing(points, cells, *_boundary_facets(cells, nbrs))
+    extra = _missing(points, cells, *boundary_facets(cells, nbrs))
     if not len(extra):
         return cells, nbrs, True
-    return _joined(points, cells, nbrs, extra)
+    return joined(points, cells, nbrs, extra)

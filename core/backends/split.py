@@ -1,0 +1,188 @@
+"""Qhull's triangulation in two halves at once (Qhull releases the GIL), joined exactly.
+
+The points are split at the median of their longest axis and both halves are triangulated
+at the same time on two threads (Delaunay; regular for weighted points). A half's cell whose
+circumsphere (orthosphere) is certainly empty of the other half's points is a cell of the
+whole triangulation, and is kept. The band the kept cells leave around the split is
+restored as core.backends.restore restores gmsh's dropped cells: the triangulation of the
+kept union's boundary vertices and of the points in no kept cell, flooded from that
+boundary. Around everything joined the result is checked (core.backends.certify); on any
+doubt the caller makes one Qhull call on all points instead.
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from ..delaunay import Triangulation, compacted, delaunay_cells, regular_cells
+from ..errors import InputError
+from ..geometry import circumspheres
+from ..power import orthospheres
+from ..tolerances import SPLIT_EMPTY_RTOL
+from .certify import why_not_delaunay
+from .facets import neighbours
+from .restore import boundary_facets, joined, outside
+
+#: From this many points the Qhull backend triangulates in two halves (measured on a busy
+#: 2-core machine: it pays from 40k-80k points; below, the band and the check cost about
+#: what the second core saves).
+SPLIT_FROM_POINTS = 50_000
+
+
+@dataclass(frozen=True)
+class _Half:
+    """One half's cells in point ids (rows ascending), their neighbour rows (-1 = none),
+    and which are certainly cells of the whole triangulation."""
+
+    cells: np.ndarray
+    nbrs: np.ndarray
+    keep: np.ndarray
+
+
+def _cells(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """Qhull's cells of points[ids] (weighted: regular) in point ids, and their neighbours."""
+    if weights is None:
+        cells, nbrs = delaunay_cells(points[ids])
+    else:
+        cells, nbrs = regular_cells(points[ids], weights[ids])
+    return ids[cells].astype(np.int32), nbrs  # ids ascending: rows stay ascending
+
+
+def _spheres(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Centres (t, d), radii² (weighted: powers, |c - p|² - w_p of a vertex) and (t,) bool
+    flags of the cells whose sphere is well defined."""
+    if weights is None:
+        c0, size, _, bad = circumspheres(points, cells)
+    else:
+        c0, size, _, bad = orthospheres(points, weights, cells)
+    return points[cells[:, 0]] + c0, size, ~bad
+
+
+def _half(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray,
+          other: np.ndarray, axis: int, ahead: bool) -> _Half:
+    """Triangulate points[ids]; keep the cells certainly empty of points[other], which lie
+    beyond ids along `axis` (ahead: at larger coordinates)."""
+    cells, nbrs = _cells(points, weights, ids)
+    centres, size, ok = _spheres(points, weights, cells)
+    coords = points[other, axis]
+    gap = coords.min() - centres[:, axis] if ahead else centres[:, axis] - coords.max()
+    wmax = 0.0 if weights is None else float(weights[other].max())
+    # a point q beyond the gap has power |c - q|² - w_q >= gap² - wmax to the sphere
+    reach = size + wmax
+    ask = ok & (reach >= 0) & ((gap <= 0) | (gap * gap <= reach * (1 + SPLIT_EMPTY_RTOL)))
+    keep = ok.copy()
+    if ask.any():
+        lifted = points[other]
+        if weights is not None:  # |(c, 0) - (q, √(wmax - w_q))|² - wmax = power of q
+            lifted = np.column_stack((lifted, np.sqrt(wmax - weights[other])))
+        asked = centres[ask]
+        if weights is not None:
+            asked = np.column_stack((asked, np.zeros(len(asked))))
+        dist, _ = cKDTree(lifted).query(asked, k=1)
+        power = dist * dist - wmax
+        keep[ask] = power - size[ask] > SPLIT_EMPTY_RTOL * (dist * dist + np.abs(size[ask]))
+    return _Half(cells, nbrs, keep)
+
+
+def _kept(halves: tuple[_Half, _Half]) -> tuple[np.ndarray, np.ndarray]:
+    """The kept cells of both halves and their neighbour table: the halves' own tables
+    renumbered, -1 across every facet to a cell that was not kept."""
+    cells, nbrs, start = [], [], 0
+    for half in halves:
+        new_id = np.full(len(half.keep) + 1, -1, dtype=np.int32)  # [-1] -> -1
+        new_id[:-1][half.keep] = start + np.arange(int(half.keep.sum()), dtype=np.int32)
+        cells.append(half.cells[half.keep])
+        nbrs.append(new_id[half.nbrs[half.keep]])
+        start += int(half.keep.sum())
+    return np.concatenate(cells), np.concatenate(nbrs)
+
+
+def _matched_across(cells: np.ndarray, nbrs: np.ndarray, m: int
+                    ) -> tuple[np.ndarray, np.ndarray, bool]:
+    """`nbrs` with the open facets that kept cells of the two halves share matched (only
+    cells with an open facet are matched), the (t,) bool cells that gained a neighbour,
+    and whether no facet is in three cells."""
+    edge = np.flatnonzero((nbrs < 0).any(axis=1))
+    local, manifold = neighbours(cells[edge], m)
+    fill = (nbrs[edge] < 0) & (local >= 0)
+    nbrs = nbrs.copy()
+    nbrs[edge] = np.where(fill, edge[np.maximum(local, 0)], nbrs[edge])
+    gained = np.zeros(len(cells), dtype=bool)
+    gained[edge[fill.any(axis=1)]] = True
+    return nbrs, gained, manifold
+
+
+def _band(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray,
+          nbrs: np.ndarray, hidden: np.ndarray) -> np.ndarray:
+    """The cells missing from the kept union (`outside`): of the triangulation of its
+    boundary vertices and the points in no kept cell; points that triangulation hides are
+    added to `hidden` (hidden among some points = hidden among all)."""
+    outer, behind = boundary_facets(cells, nbrs)
+    covered = np.zeros(len(points), dtype=bool)
+    covered[cells.ravel()] = True
+    band = np.union1d(np.unique(outer), np.flatnonzero(~covered & ~hidden))
+    simplices, around = _cells(points, weights, band)
+    seen = np.zeros(len(points), dtype=bool)
+    seen[simplices.ravel()] = True
+    hidden[band[~seen[band]]] = True
+    return outside(points, cells, outer, behind, simplices, around)
+
+
+def _halves(points: np.ndarray, weights: np.ndarray | None) -> tuple[_Half, _Half]:
+    """Both halves, split at the median of the longest axis, triangulated on two threads."""
+    m = len(points)
+    axis = int(np.argmax(np.ptp(points, axis=0)))
+    order = np.argpartition(points[:, axis], m // 2)
+    low, high = np.sort(order[:m // 2]), np.sort(order[m // 2:])
+    with ThreadPoolExecutor(1, thread_name_prefix="alphascoop-split") as pool:
+        later = pool.submit(_half, points, weights, high, low, axis, False)
+        try:
+            first = _half(points, weights, low, high, axis, True)
+        finally:
+            second = later.result()
+    return first, second
+
+
+def split_triangulation(points: np.ndarray, weights: np.ndarray | None = None
+                        ) -> Triangulation | str:
+    """Qhull's Delaunay triangulation of (m, d) distinct, well-scaled points (regular, with
+    (m,) weights) made in two halves on two threads, or the reason it cannot promise the
+    same cells as one Qhull call on all points (the caller then makes that call)."""
+    m, d = points.shape
+    if m // 2 < d + 2:
+        return "too few points to split"
+    try:
+        halves = _halves(points, weights)
+        in_half = np.zeros(m, dtype=bool)
+        for half in halves:
+            in_half[half.cells.ravel()] = True
+        if weights is None and not in_half.all():
+            return f"Qhull left {int(np.count_nonzero(~in_half))} points of a half out"
+        hidden = ~in_half  # hidden in a half: hidden among all points
+        cells, nbrs = _kept(halves)
+        if not len(cells):
+            return "no cell of a half is certainly a cell of the whole"
+        nbrs, near, manifold = _matched_across(cells, nbrs, m)
+        if not manifold:
+            return "a facet is in three kept cells"
+        extra = _band(points, weights, cells, nbrs, hidden)
+    except InputError as exc:
+        return str(exc)
+    cells, nbrs, manifold = joined(points, cells, nbrs, extra)
+    if not manifold:
+        return "a facet is in three cells after the band was restored"
+    near = np.concatenate((near, np.ones(len(extra), dtype=bool)))
+    reason = why_not_delaunay(points, cells, nbrs, weights=weights,
+                              hidden=None if weights is None else hidden, near=near)
+    if reason:
+        return reason
+    if weights is None:
+        every = np.arange(m, dtype=np.int64)
+        return Triangulation(cells, nbrs, every, every.copy())
+    return compacted(cells, nbrs, m)

@@ -1,0 +1,181 @@
+"""Qhull in two halves (core.backends.split): the joined cells are the single Qhull call's
+simplex for simplex (classic and weighted, hidden points too), or the build makes that call."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from reference import data_dir, read_scan
+from test_backends import CASES, DEGENERATE, cell_set, clustered, lattice, prepared
+from weighted_reference import gudhi_weighted_table
+
+import core.backends as backends
+import core.backends.split as split
+from core import AlphaComplex
+from core.delaunay import Triangulation, regular_triangulate, triangulate
+
+
+def assert_same_cells(tri: Triangulation, ref: Triangulation) -> None:
+    """Same cells (by vertex rows), same vertices and hidden points, same neighbour across
+    every facet."""
+    assert np.array_equal(tri.kept, ref.kept)
+    assert np.array_equal(tri.vertex_of_point, ref.vertex_of_point)
+    assert np.array_equal(cell_set(tri.cells), cell_set(ref.cells))
+    ours, theirs = np.lexsort(tri.cells.T[::-1]), np.lexsort(ref.cells.T[::-1])
+    row = np.empty(len(ours), dtype=np.int64)
+    row[ours] = theirs
+    across = np.where(tri.neighbors >= 0, row[np.maximum(tri.neighbors, 0)], -1)
+    assert np.array_equal(ref.neighbors[row], across)
+
+
+def split_equals_qhull(points: np.ndarray, weights: np.ndarray | None = None) -> None:
+    tri = split.split_triangulation(points, weights)
+    assert isinstance(tri, Triangulation), tri
+    assert_same_cells(tri, triangulate(points) if weights is None
+                      else regular_triangulate(points, weights))
+
+
+def spacing_weights(rng: np.random.Generator, points: np.ndarray, top: float) -> np.ndarray:
+    """Weights from 0 to `top` times each point's squared nearest-neighbour distance (large
+    `top` hides many points)."""
+    from scipy.spatial import cKDTree
+
+    dist, _ = cKDTree(points).query(points, k=2)
+    return rng.uniform(0.0, top, len(points)) * dist[:, 1] ** 2
+
+
+def on_surface(rng: np.random.Generator, n: int) -> np.ndarray:
+    """A noisy sphere surface: every cell is long and thin across the split."""
+    p = rng.normal(size=(n, 3))
+    return p / np.linalg.norm(p, axis=1)[:, None] * rng.normal(1.0, 0.002, (n, 1))
+
+
+SPLITTABLE = {
+    **CASES,
+    "sphere surface 3D": lambda rng: on_surface(rng, 5000),
+    "two far clusters 3D": lambda rng: np.concatenate(
+        (rng.uniform(size=(2000, 3)), rng.uniform(size=(2000, 3)) + np.array([50.0, 0.0, 0.0]))),
+    "equal coordinates at the split 2D": lambda rng: np.concatenate(
+        (rng.uniform(size=(3000, 2)), np.column_stack((np.full(400, 0.5),
+                                                       rng.uniform(size=400))))),
+    "equal coordinates at the split 3D": lambda rng: np.concatenate(
+        (rng.uniform(size=(3000, 3)), np.column_stack(
+            (np.full(500, 0.5), rng.uniform(size=(500, 2)))))),
+}
+
+
+@pytest.mark.parametrize("name", list(SPLITTABLE))
+def test_split_equals_one_qhull_call(name: str) -> None:
+    split_equals_qhull(prepared(SPLITTABLE[name](np.random.default_rng(17))))
+
+
+@pytest.mark.parametrize("d", [2, 3])
+@pytest.mark.parametrize(("kind", "top"), [("uniform", 1.0), ("uniform", 4.0),
+                                           ("clustered", 2.0)])
+def test_weighted_split_equals_one_qhull_call(d: int, kind: str, top: float) -> None:
+    rng = np.random.default_rng(d * 10 + int(top))
+    points = prepared(rng.uniform(size=(4000, d)) if kind == "uniform"
+                      else clustered(rng, 4000, d))
+    weights = spacing_weights(rng, points, top)
+    split_equals_qhull(points, weights)
+    if top >= 4.0:
+        assert (regular_triangulate(points, weights).vertex_of_point < 0).sum() > 100
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["bunny.ply", "bunny_dupverts.stl", "autzen_trim.las"])
+def test_split_equals_one_qhull_call_on_real_scans(name: str) -> None:
+    folder = data_dir()
+    if folder is None or not (folder / name).exists():
+        pytest.skip("shared real scans are absent")
+    split_equals_qhull(prepared(read_scan(folder / name)))
+
+
+@pytest.mark.parametrize("name", list(DEGENERATE))
+def test_degenerate_input_is_equal_or_a_clean_fallback(name: str, monkeypatch) -> None:
+    """Lattices, cospherical points, near duplicates: the same cells, or the one call (the
+    reason in the note)."""
+    points = prepared(DEGENERATE[name](np.random.default_rng(3)))
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 1 << 40)
+    monkeypatch.setattr(split, "SPLIT_FROM_POINTS", 0)
+    tri, choice = backends.delaunay(points, "qhull")
+    ref = triangulate(points)
+    assert choice.backend == "qhull"
+    if choice.note:
+        assert choice.note.startswith("not split in two halves: ")
+        assert np.array_equal(tri.cells, ref.cells)
+        assert np.array_equal(tri.neighbors, ref.neighbors)
+    else:
+        assert_same_cells(tri, ref)
+
+
+def test_lattices_fall_back(monkeypatch) -> None:
+    """Cospherical groups across the split: no cell there is certainly one of the whole."""
+    monkeypatch.setattr(split, "SPLIT_FROM_POINTS", 0)
+    for points in (lattice(25, 2), lattice(9, 3)):
+        reason = split.split_triangulation(prepared(points))
+        assert isinstance(reason, str) and reason
+        _, choice = backends.delaunay(prepared(points), "qhull")
+        assert choice.note == f"not split in two halves: {reason}"
+
+
+def test_a_wrong_band_is_caught(monkeypatch) -> None:
+    """The check catches a band restored wrongly (one band cell dropped): no silent
+    difference, the reason is given."""
+    original = split.outside
+
+    def one_short(*args):
+        cells = original(*args)
+        return cells[1:]
+
+    monkeypatch.setattr(split, "outside", one_short)
+    points = prepared(np.random.default_rng(4).uniform(size=(3000, 3)))
+    reason = split.split_triangulation(points)
+    assert isinstance(reason, str) and reason
+
+
+def test_too_few_points_are_not_split() -> None:
+    assert split.split_triangulation(prepared(np.random.default_rng(0).uniform(
+        size=(9, 3)))) == "too few points to split"
+
+
+@pytest.mark.parametrize("weighted", [False, True])
+def test_build_is_the_same_split_or_not(weighted: bool, monkeypatch) -> None:
+    """The whole table (classic: after certification) is the same with the split."""
+    rng = np.random.default_rng(8)
+    points = rng.uniform(size=(3000, 3)) * 20.0 + 3.0
+    weights = spacing_weights(rng, points, 3.0) if weighted else None
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 1 << 40)
+    whole = AlphaComplex.from_points(points, weights=weights)
+    monkeypatch.setattr(split, "SPLIT_FROM_POINTS", 1000)
+    halves = AlphaComplex.from_points(points, weights=weights)
+    assert halves.build_info.backend_note == ""
+    assert np.array_equal(whole.input_index, halves.input_index)
+    assert whole.counts() == halves.counts()
+    for k in range(4):
+        (a, ia), (b, ib) = (by_rows(ac.simplices(k), ac.intervals_sq(k))
+                            for ac in (whole, halves))
+        assert np.array_equal(a, b) and np.array_equal(ia, ib)
+
+
+def by_rows(simplices: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Simplices with ascending rows in lexicographic order, their values alongside."""
+    rows = np.sort(simplices, axis=1)
+    order = np.lexsort(rows.T[::-1])
+    return rows[order], values[order]
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_weighted_split_build_equals_gudhi(d: int, monkeypatch) -> None:
+    """Hidden points and every simplex as gudhi's weighted alpha complex."""
+    pytest.importorskip("gudhi")
+    from test_weighted_gudhi import assert_matches_gudhi
+
+    rng = np.random.default_rng(30 + d)
+    points = rng.uniform(size=(3000, d))
+    weights = spacing_weights(rng, points, 3.0)
+    monkeypatch.setattr(split, "SPLIT_FROM_POINTS", 1000)
+    ac = AlphaComplex.from_points(points, weights=weights)
+    assert ac.build_info.backend_note == ""
+    assert (np.asarray(ac.input_index) < 0).sum() > 50
+    assert_matches_gudhi(ac, gudhi_weighted_table(points, weights), len(points))
