@@ -77,9 +77,8 @@ def _topology_signal(win):
 
 
 class StallProbe:
-    """A QTimer that ticks every PROBE_MS on the GUI thread: the longest gap between two
-    ticks beyond PROBE_MS is the longest time the GUI thread could not answer (a slider
-    drag froze that long), measured from `start` to `stop`."""
+    """A QTimer that ticks every PROBE_MS on the GUI thread: a gap between two ticks beyond
+    PROBE_MS is a time the GUI thread could not answer (a slider drag froze that long)."""
 
     def __init__(self) -> None:
         from PySide6.QtCore import QTimer
@@ -88,23 +87,26 @@ class StallProbe:
         self.timer.setInterval(PROBE_MS)
         self.timer.timeout.connect(self._tick)
         self.last = 0.0
-        self.longest = 0.0
+        self.gaps: list[tuple[float, float]] = []  # (when the gap ended, its stall seconds)
 
     def start(self) -> None:
         """Start measuring now."""
-        self.last, self.longest = time.perf_counter(), 0.0
+        self.last, self.gaps = time.perf_counter(), []
         self.timer.start()
 
     def _tick(self) -> None:
         now = time.perf_counter()
-        self.longest = max(self.longest, now - self.last - PROBE_MS / 1000)
+        self.gaps.append((now, max(now - self.last - PROBE_MS / 1000, 0.0)))
         self.last = now
 
-    def stop(self) -> float:
-        """Stop; the longest stall in seconds."""
+    def stop(self) -> None:
+        """Stop measuring."""
         self._tick()
         self.timer.stop()
-        return self.longest
+
+    def longest(self, until: float = float("inf")) -> float:
+        """The longest stall (seconds) among the gaps that ended by `until` (perf_counter)."""
+        return max((gap for end, gap in self.gaps if end <= until), default=0.0)
 
 
 class ChildPeaks:
@@ -170,18 +172,20 @@ def _open_timed(win, path: str) -> dict:
     win.open_path(path)
     _wait(win.model.datasetChanged)
     stamp("live")
-    probe.start()
     _spin(0)  # the first frame is requested; let the event loop run once
+    probe.start()
     if topology is not None and "topology" not in stamps and not win.model.dataset.has_topology:
         _wait(topology)
-    stall = probe.stop()
+    probe.stop()
     ds = win.model.dataset
     info = getattr(ds.ac, "build_info", None)
     (start, start_cpu), (live, live_cpu) = stamps["start"], stamps["live"]
     done, done_cpu = stamps.get("topology", stamps["live"])
     return {"live_seconds": live - start, "live_cpu_seconds": live_cpu - start_cpu,
             "topology_seconds": done - start, "topology_cpu_seconds": done_cpu - start_cpu,
-            "longest_stall_seconds": stall,
+            # while the topology computes (the docks filling in when it arrives apart)
+            "longest_stall_seconds": probe.longest(stamps.get("topology", (0.0,))[0]),
+            "longest_stall_with_arrival_seconds": probe.longest(),
             "backend": getattr(info, "backend", "qhull"),
             "cells": len(ds.ac.simplices(ds.ac.dim)), "points": len(ds.ac.points)}
 
