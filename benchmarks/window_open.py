@@ -22,6 +22,7 @@ TIMEOUT_MS = 3_600_000
 CANCELS, REOPENS = 10, 10
 CANCEL_AFTER_S = 2.0  # cancel once the build has run this long (the child is started)
 PROBE_MS = 10  # the stall probe's tick
+DRAG_STEPS = 200  # critical values a probe's drag walks over
 SAMPLE_S = 0.1  # how often the children's peak memory is read
 
 
@@ -88,16 +89,26 @@ class StallProbe:
         self.timer.timeout.connect(self._tick)
         self.last = 0.0
         self.gaps: list[tuple[float, float]] = []  # (when the gap ended, its stall seconds)
+        self.steps: list[tuple[float, float]] = []  # (when a drag step ended, its seconds)
+        self.drag = None
 
-    def start(self) -> None:
-        """Start measuring now."""
-        self.last, self.gaps = time.perf_counter(), []
+    def start(self, drag=None) -> None:
+        """Start measuring now; with `drag` (a function called on every tick: a slider step's
+        query) its durations are recorded too."""
+        self.last, self.gaps, self.steps, self.drag = time.perf_counter(), [], [], drag
         self.timer.start()
 
     def _tick(self) -> None:
         now = time.perf_counter()
         self.gaps.append((now, max(now - self.last - PROBE_MS / 1000, 0.0)))
-        self.last = now
+        if self.drag is not None:
+            self.drag()
+            self.steps.append((time.perf_counter(), time.perf_counter() - now))
+        self.last = time.perf_counter()
+
+    def longest_step(self, until: float = float("inf")) -> float:
+        """The longest drag step (seconds) among those that ended by `until`."""
+        return max((step for end, step in self.steps if end <= until), default=0.0)
 
     def stop(self) -> None:
         """Stop measuring."""
@@ -156,7 +167,23 @@ def _cpu_seconds() -> float:
     return time.process_time() + children.ru_utime + children.ru_stime
 
 
-def _open_timed(win, path: str) -> dict:
+def _dragging(model):
+    """A slider drag's queries without their renders: each call moves a cursor of its own
+    one critical value, back and forth over DRAG_STEPS values below the opening alpha."""
+    ds = model.dataset
+    cursor, spectrum, start = ds.ac.cursor(), ds.spectrum, model.index
+    state = {"at": start, "way": -1}
+
+    def step() -> None:
+        if not start - DRAG_STEPS < state["at"] + state["way"] <= start:
+            state["way"] = -state["way"]
+        state["at"] += state["way"]
+        cursor.move(alpha=float(spectrum[max(state["at"], 0)]))
+
+    return step
+
+
+def _open_timed(win, path: str, drag: bool = False) -> dict:
     """Open path; seconds (wall, and CPU of this process and its build process) until the
     slider is live and until the topology is done."""
     topology = _topology_signal(win)
@@ -173,7 +200,7 @@ def _open_timed(win, path: str) -> dict:
     _wait(win.model.datasetChanged)
     stamp("live")
     _spin(0)  # the first frame is requested; let the event loop run once
-    probe.start()
+    probe.start(_dragging(win.model) if drag else None)
     if topology is not None and "topology" not in stamps and not win.model.dataset.has_topology:
         _wait(topology)
     probe.stop()
@@ -186,17 +213,19 @@ def _open_timed(win, path: str) -> dict:
             # while the topology computes (the docks filling in when it arrives apart)
             "longest_stall_seconds": probe.longest(stamps.get("topology", (0.0,))[0]),
             "longest_stall_with_arrival_seconds": probe.longest(),
+            "longest_step_seconds": probe.longest_step(stamps.get("topology", (0.0,))[0]),
             "backend": getattr(info, "backend", "qhull"),
             "cells": len(ds.ac.simplices(ds.ac.dim)), "points": len(ds.ac.points)}
 
 
 def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool,
-               topology_in_thread: bool = False) -> dict:
+               topology_in_thread: bool = False, drag: bool = False) -> dict:
     """First open of points_path in a new window (empty cache): times, peaks, the longest
     GUI-thread stall while the topology completes, and with `soak` the RSS after cancelled
     opens of cancel_path and re-opens of points_path / other_path. `topology_in_thread`
     runs the topology pass in a thread of the window (as before issue 15's topology process),
-    for comparison."""
+    for comparison; `drag` has the stall probe step a cursor on every tick (a slider drag's
+    queries) while the topology computes."""
     from app import memory, topology_process
 
     if topology_in_thread:
@@ -206,7 +235,7 @@ def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool,
         win = _window(folder)
         base = rss_mib()
         children = ChildPeaks()
-        result = _open_timed(win, points_path)
+        result = _open_timed(win, points_path, drag)
         win.topology.wait()  # the topology process has ended too
         _spin(200)  # the deferred give-back runs
         peaks = children.stop()
