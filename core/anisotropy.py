@@ -7,66 +7,83 @@ longest, so point orientation does not matter). The alpha ball compressed along 
 simplex's test radius is the smallest-circumsphere radius of its stretched vertices, and it is
 attached when a Delaunay cofacet's opposite vertex, stretched the same way, lies strictly
 inside that sphere (close parallel sheets then leave each other's triangles unattached).
+
+The functions work on chunks of simplices held as coordinate columns: `Vec` is a list of d
+(n,) float64 arrays, one per coordinate, so every step is a flat, contiguous numpy pass.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
-from .geometry import CHUNK, circumspheres, edge_vectors, solve_centres
-from .parallel import halves
-from .tolerances import ON_SPHERE_RTOL
+from .geometry import circumspheres
+from .tolerances import ILL_CONDITIONED_RTOL
+
+Vec = list[np.ndarray]  #: d coordinate columns (n,) float64 of n vectors
 
 #: Sign patterns whose squared sums differ by at most this (of the order of width² = 16) are
 #: near-ties, settled by the explicit loop as rounding settled them before the fast path.
 _NEAR_TIE = 1e-9
 
 
-@dataclass(frozen=True)
-class Spheres:
-    """Smallest spheres of stretched simplices: centres as offsets from each simplex's first
-    vertex in stretched coordinates (n, d), radii² (n,), and the unit normals used (n, d)."""
-
-    centres: np.ndarray
-    radii2: np.ndarray
-    normals: np.ndarray
+def dot(u: Vec, w: Vec) -> np.ndarray:
+    """(n,) row dot products of two column vectors."""
+    out = u[0] * w[0]
+    for a, b in zip(u[1:], w[1:], strict=True):
+        out += a * b
+    return out
 
 
-def combined_normals(corner_normals: np.ndarray) -> np.ndarray:
-    """(n, d) unit normal of each simplex from its (n, k+1, d) vertex normals (0 where they
-    cancel): their sum with the signs (the first fixed) that make it longest. The squared
-    length of a signed sum is constant + 2 sum s_i s_j n_i.n_j, so the pairwise dots pick the
-    signs; near-ties (e.g. perpendicular normals) take the loop over the sign patterns, whose
-    rounding decides which of the equally long sums wins."""
-    n, width, _ = corner_normals.shape
-    best = corner_normals[:, 0].copy()
+def minus(u: Vec, w: Vec) -> Vec:
+    """u - w, column by column."""
+    return [a - b for a, b in zip(u, w, strict=True)]
+
+
+def cross(u: Vec, w: Vec) -> Vec:
+    """u x w of 3D column vectors."""
+    return [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
+
+
+def combined_normals(corners: list[Vec], dots: dict[tuple[int, int], np.ndarray]) -> Vec:
+    """Unit normal columns of simplices from their vertex normals `corners` (one Vec per
+    vertex; 0 where they cancel) and their pairwise dots {(i, j): (n,)}: the sum with the
+    signs (the first fixed) that make it longest. The squared length of a signed sum is
+    constant + 2 sum s_i s_j n_i.n_j, so the dots pick the signs; near-ties (e.g.
+    perpendicular normals) take the loop over the sign patterns, whose rounding decides which
+    of the equally long sums wins."""
+    width = len(corners)
+    total = [c.copy() for c in corners[0]]
     if width > 1:
-        signs = np.array([[1.0] + [-1.0 if combo >> (j - 1) & 1 else 1.0
-                                   for j in range(1, width)]
-                          for combo in range(2 ** (width - 1))])  # (patterns, width)
-        pairs = [(i, j) for i in range(width) for j in range(i + 1, width)]
-        dots = np.empty((n, len(pairs)))
-        for p, (i, j) in enumerate(pairs):
-            dots[:, p] = np.einsum("nd,nd->n", corner_normals[:, i], corner_normals[:, j])
-        products = np.array([[s[i] * s[j] for i, j in pairs] for s in signs]).T
-        values = np.einsum("np,pc->nc", dots, products)
-        chosen = signs[np.argmax(values, axis=1)]
+        best, second, pattern = None, None, None
+        for combo in range(2 ** (width - 1)):  # sign patterns, not simplices
+            signs = [1.0] + [-1.0 if combo >> (j - 1) & 1 else 1.0 for j in range(1, width)]
+            value = sum(signs[i] * signs[j] * dots[i, j] for i, j in sorted(dots))
+            if best is None:
+                best, second = value, np.full(len(value), -np.inf)
+                pattern = np.zeros(len(value), dtype=np.int8)
+                continue
+            better = value > best
+            second = np.where(better, best, np.maximum(second, value))
+            best = np.maximum(best, value)
+            pattern[better] = combo
         for j in range(1, width):
-            best += chosen[:, j, None] * corner_normals[:, j]
-        if len(signs) > 1:
-            top2 = np.partition(values, -2, axis=1)[:, -2:]
-            near = np.flatnonzero(top2[:, 1] - top2[:, 0] <= _NEAR_TIE)
-            if len(near):
-                best[near] = _longest_sum(corner_normals[near])
-    length = np.sqrt(np.einsum("nd,nd->n", best, best))
-    return best / np.where(length > 0, length, 1.0)[:, None]
+            sign = np.where(pattern >> (j - 1) & 1, -1.0, 1.0)
+            for t, c in zip(total, corners[j], strict=True):
+                t += sign * c
+        near = np.flatnonzero(best - second <= _NEAR_TIE)
+        if len(near):
+            fixed = _longest_sum(np.stack([np.stack([c[near] for c in v], axis=1)
+                                           for v in corners], axis=1))
+            for i, t in enumerate(total):
+                t[near] = fixed[:, i]
+    length = np.sqrt(dot(total, total))
+    length[length == 0] = 1.0
+    return [t / length for t in total]
 
 
 def _longest_sum(corner_normals: np.ndarray) -> np.ndarray:
-    """combined_normals before normalising, by trying every sign pattern (the first longest
-    wins): for the few near-ties."""
+    """(n, d) signed sums of (n, k+1, d) vertex normals by trying every sign pattern (the
+    first longest wins): for the few near-ties."""
     n, width, _ = corner_normals.shape
     best, best_value = corner_normals[:, 0].copy(), np.full(n, -np.inf)
     for combo in range(2 ** (width - 1)):  # sign patterns, not simplices
@@ -82,81 +99,57 @@ def _longest_sum(corner_normals: np.ndarray) -> np.ndarray:
     return best
 
 
-def _stretch(vectors: np.ndarray, normal: np.ndarray, extra: float) -> np.ndarray:
-    """(n, j, d) vectors (in place) with their component along each (n, d) normal scaled by
-    1 + extra."""
-    along = np.einsum("njd,nd->nj", vectors, normal)
-    vectors += extra * along[:, :, None] * normal[:, None, :]
-    return vectors
+def stretch(vector: Vec, normal: Vec, extra: float) -> Vec:
+    """`vector` (in place) with its component along the unit `normal` scaled by 1 + extra."""
+    along = dot(vector, normal)
+    along *= extra
+    for v, n in zip(vector, normal, strict=True):
+        v += along * n
+    return vector
 
 
-def stretched_spheres(points: np.ndarray, simplices: np.ndarray, normals: np.ndarray,
-                      tau: float) -> Spheres:
-    """Smallest spheres of (n, k+1) simplices of `points` stretched by 1 / (1 - tau) along
-    their combined normals (from (m, d) point `normals`). The closed-form centres of the
-    stretched edge vectors serve all but the ill-conditioned few, which go through
-    circumspheres (extended precision, least squares) as whole simplices."""
-    n, d = len(simplices), points.shape[1]
-    extra = 1.0 / (1.0 - tau) - 1.0
-    centres, radii2, unit = np.empty((n, d)), np.empty(n), np.empty((n, d))
-
-    def part(start: int, stop: int) -> None:
-        for lo in range(start, stop, CHUNK):
-            _sphere_chunk(points, simplices, normals, extra, slice(lo, min(lo + CHUNK, stop)),
-                          (centres, radii2, unit))
-
-    halves(part, n)
-    return Spheres(centres, radii2, unit)
-
-
-def _sphere_chunk(points: np.ndarray, simplices: np.ndarray, normals: np.ndarray,
-                  extra: float, sl: slice, out: tuple[np.ndarray, ...]) -> None:
-    """stretched_spheres on the rows `sl`, written into out = (centres, radii2, unit)."""
-    centres, radii2, unit = out
-    width, d = simplices.shape[1], points.shape[1]
-    chunk = simplices[sl]
-    unit[sl] = combined_normals(normals[chunk])
-    vec = _stretch(edge_vectors(points, chunk), unit[sl], extra)
-    if width == 2:
-        centres[sl] = 0.5 * vec[:, 0]
-        radii2[sl] = np.einsum("nd,nd->n", centres[sl], centres[sl])
-        return
-    c0, _, _, poor, _ = solve_centres(vec)
-    radii2[sl] = np.einsum("nd,nd->n", c0, c0)
+def sphere_centres(edges: list[Vec]) -> tuple[Vec, np.ndarray]:
+    """Centre offsets (from the first vertex) and radii² of the smallest spheres of simplices
+    given by their edge vectors from the first vertex (k = 1..d of them, d = 2 or 3): the
+    closed forms, and circumspheres (extended precision, least squares) for the
+    ill-conditioned few."""
+    sq = [dot(e, e) for e in edges]
+    if len(edges) == 1:
+        centre = [0.5 * c for c in edges[0]]
+        return centre, dot(centre, centre)
+    a, b = edges[0], edges[1]
+    if len(edges) == 2 and len(a) == 2:
+        det = a[0] * b[1] - a[1] * b[0]
+        num = [b[1] * sq[0] - a[1] * sq[1], a[0] * sq[1] - b[0] * sq[0]]
+        scale = np.sqrt(sq[0] * sq[1])
+    elif len(edges) == 2:
+        n = cross(a, b)
+        det = dot(n, n)
+        first, second = cross(b, n), cross(n, a)
+        num = [sq[0] * f + sq[1] * s for f, s in zip(first, second, strict=True)]
+        scale = np.sqrt(det * sq[0] * sq[1])  # det is |a x b|²: compare |a x b|
+    else:
+        c = edges[2]
+        duals = cross(b, c), cross(c, a), cross(a, b)
+        det = dot(a, duals[0])
+        num = [sq[0] * u + sq[1] * v + sq[2] * w for u, v, w in zip(*duals, strict=True)]
+        scale = np.sqrt(sq[0] * sq[1] * sq[2])
+    poor = np.abs(det) <= ILL_CONDITIONED_RTOL * scale
+    half = 0.5 / np.where(poor, 1.0, det)
+    centre = [x * half for x in num]
+    radii2 = dot(centre, centre)
     if poor.any():  # as whole simplices (first vertex at 0) for the exact fallbacks
-        redo = np.concatenate((np.zeros((int(poor.sum()), 1, d)), vec[poor]), axis=1)
-        ids = np.arange(redo.shape[0] * width, dtype=np.int64).reshape(-1, width)
-        c0[poor], radii2[sl][poor] = circumspheres(redo.reshape(-1, d), ids)[:2]
-    centres[sl] = c0
+        _redo(edges, np.flatnonzero(poor), centre, radii2)
+    return centre, radii2
 
 
-def attached(points: np.ndarray, faces: np.ndarray, spheres: Spheres, cofaces: np.ndarray,
-             face_ids: np.ndarray, tau: float) -> np.ndarray:
-    """(n_faces,) bool: some cofacet's opposite vertex, stretched with the face, lies strictly
-    inside the face's stretched sphere. `cofaces` (c, k+2) and `face_ids` (c, k+2): the
-    cofacet level's simplices and the row in `faces` opposite each of their vertices.
-
-    The stretch S is linear, so |S(p - v0) - c| = |S(p - o)| with o = v0 + S^-1 c, the sphere's
-    centre in the original coordinates: |p - o|² + ((1 + extra)² - 1) (n.(p - o))²."""
-    extra = 1.0 / (1.0 - tau) - 1.0
-    normals = spheres.normals
-    along = np.einsum("nd,nd->n", spheres.centres, normals) * (extra / (1.0 + extra))
-    origins = points[faces[:, 0]] + spheres.centres - along[:, None] * normals
-    gain = (1.0 + extra) ** 2 - 1.0
-    limit = spheres.radii2 * (1 - 2 * ON_SPHERE_RTOL)
-    out = np.zeros(len(faces), dtype=bool)
-
-    def part(start: int, stop: int) -> None:  # the halves only ever set True: no race
-        for lo in range(start, stop, CHUNK):
-            hi = min(lo + CHUNK, stop)
-            face = face_ids[lo:hi].ravel()
-            vec = points[cofaces[lo:hi].ravel()]
-            vec -= origins[face]
-            dist2 = np.einsum("nd,nd->n", vec, normals[face])
-            dist2 *= dist2
-            dist2 *= gain
-            dist2 += np.einsum("nd,nd->n", vec, vec)
-            out[face[dist2 < limit[face]]] = True
-
-    halves(part, len(cofaces))
-    return out
+def _redo(edges: list[Vec], rows: np.ndarray, centre: Vec, radii2: np.ndarray) -> None:
+    """Centres and radii² of the simplices `rows` by core.geometry.circumspheres, in place."""
+    d, width = len(centre), len(edges) + 1
+    corners = np.zeros((len(rows), width, d))
+    for i, e in enumerate(edges, start=1):
+        corners[:, i] = np.stack([c[rows] for c in e], axis=1)
+    ids = np.arange(len(rows) * width, dtype=np.int64).reshape(-1, width)
+    offsets, radii2[rows] = circumspheres(corners.reshape(-1, d), ids)[:2]
+    for i, c in enumerate(centre):
+        c[rows] = offsets[:, i]

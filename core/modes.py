@@ -25,16 +25,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .anisotropy import attached, stretched_spheres
 from .errors import InputError
 from .neighbourhood import neighbours, orient, pca_normals, spacing
+from .parallel import take
 from .progress import Progress
+from .stretched import stretched_values
 from .table import Level, Table, argsort_radii
 
 COMBINES = ("mean", "max")
 NORMAL_SOURCES = ("estimate", "given")
 NORMAL_NEIGHBOURS = 16  #: neighbours of the PCA that estimates normals (8 tilts them
 #: where two sheets are closer than their spacing)
+ORIENT_NEIGHBOURS = 8  #: nearest of those that link the orientation's spanning tree (a
+#: simplex's combined normal does not depend on the signs, only near-ties do: half the
+#: graph halves the tree's sort)
 
 
 @dataclass(frozen=True)
@@ -111,40 +115,24 @@ def make_mode(density: object = None, combine: object = "mean", anisotropy: obje
 
 def point_normals(points: np.ndarray, ids: np.ndarray) -> np.ndarray:
     """(m, d) PCA normals over each point and its neighbours `ids`, oriented consistently."""
-    return orient(points, pca_normals(points, ids), ids)
-
-
-def _radii(table: Table, k: int, points: np.ndarray, mode: Mode,
-           normals: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
-    """Rows of level k that are cells or unattached faces, and their test radii."""
-    level = table.levels[k]
-    d = len(table.levels) - 1
-    if mode.anisotropy <= 0.0:
-        ids = np.arange(len(level.enter)) if k == d else np.flatnonzero(
-            level.enter < level.regular)
-        return ids, level.enter[ids]
-    spheres = stretched_spheres(points, level.simplices, normals, mode.anisotropy)
-    if k == d:
-        return np.arange(len(level.enter)), np.sqrt(spheres.radii2)
-    up = table.levels[k + 1]
-    ids = np.flatnonzero(~attached(points, level.simplices, spheres, up.simplices, up.face_ids,
-                                   mode.anisotropy))
-    return ids, np.sqrt(spheres.radii2[ids])
+    return orient(points, pca_normals(points, ids), ids[:, :ORIENT_NEIGHBOURS])
 
 
 def _own_values(table: Table, points: np.ndarray, mode: Mode, spacing_: np.ndarray | None,
                 normals: np.ndarray | None) -> list[np.ndarray]:
     """Per level: (n_k,) rho of cells and unattached faces, inf for attached faces (0 for
     vertices)."""
+    d = len(table.levels) - 1
+    if mode.anisotropy > 0.0:
+        radii = stretched_values(table, points, normals, mode.anisotropy)
+    else:  # the classic radii: a face is attached exactly when enter == regular
+        radii = [np.where((level.enter < level.regular) | (k == d), level.enter, np.inf)
+                 for k, level in enumerate(table.levels[1:], start=1)]
     out = [np.zeros(len(table.levels[0].enter))]
-    for k in range(1, len(table.levels)):
-        own = np.full(len(table.levels[k].enter), np.inf)
-        ids, radii = _radii(table, k, points, mode, normals)
+    for level, own in zip(table.levels[1:], radii, strict=True):
         if spacing_ is not None:
-            gathered = spacing_[table.levels[k].simplices[ids]]
-            radii = radii / (gathered.max(axis=1) if mode.combine == "max"
-                             else gathered.mean(axis=1))
-        own[ids] = radii
+            gathered = spacing_[level.simplices]
+            own /= gathered.max(axis=1) if mode.combine == "max" else gathered.mean(axis=1)
         out.append(own)
     return out
 
@@ -173,8 +161,9 @@ def _repair(table: Table, own: list[np.ndarray]) -> list[tuple[np.ndarray, ...]]
 
 
 def _renumber(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
-    """Apply a new numbering to ids (-1 = none kept)."""
-    return np.where(ids >= 0, inverse[np.maximum(ids, 0)], -1).astype(np.int32)
+    """Apply a new numbering (int32 `inverse`) to int32 ids, -1 = none kept: one gather (in
+    halves) from the inverse with -1 appended, which index -1 reads."""
+    return take(np.append(inverse, np.int32(-1)), ids.ravel()).reshape(ids.shape)
 
 
 def _resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
@@ -187,14 +176,17 @@ def _resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
         inverse = np.empty(len(order), dtype=np.int32)
         inverse[order] = np.arange(len(order), dtype=np.int32)
         inverses.append(inverse)
-    levels = []
-    for k, (order, row) in enumerate(zip(orders, values, strict=True)):
-        old = table.levels[k]
-        face_ids = None if k == 0 else _renumber(old.face_ids[order], inverses[k - 1])
-        levels.append(Level(old.simplices[order], *(a[order] for a in row), face_ids))
+    levels = [Level(table.levels[0].simplices.copy(), *(a.copy() for a in values[0]))]
+    for k in range(1, d + 1):
+        old, order, row = table.levels[k], orders[k], values[k]
+        enter = take(row[0], order)
+        regular, interior = ((enter.copy(), enter.copy()) if k == d
+                             else (take(row[1], order), take(row[2], order)))
+        levels.append(Level(take(old.simplices, order), enter, regular, interior,
+                            _renumber(take(old.face_ids, order), inverses[k - 1])))
     facets = orders[d - 1]
-    return Table(levels, _renumber(table.facet_cells[facets], inverses[d]),
-                 table.facet_flip[facets], table.cell_measure[orders[d]],
+    return Table(levels, _renumber(take(table.facet_cells, facets), inverses[d]),
+                 take(table.facet_flip, facets), take(table.cell_measure, orders[d]),
                  argsort_radii(levels[d - 1].interior).astype(np.int32))
 
 

@@ -22,7 +22,7 @@ def neighbours(points: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
     """Distances and ids (m, k') of each point's k' = min(k, m-1) nearest other points, nearest
     first; the points are unique, so a point's own row is column 0 of the query and dropped."""
     k = min(k, len(points) - 1)
-    dist, ids = cKDTree(points).query(points, k=k + 1)
+    dist, ids = cKDTree(points).query(points, k=k + 1, workers=2)
     return dist[:, 1:], ids[:, 1:]
 
 

@@ -126,6 +126,68 @@ def _brute_stretched_radius(points: np.ndarray, simplex: np.ndarray, normals: np
     return float(np.linalg.norm(lam @ edges))
 
 
+def _brute_stretched_sphere(points: np.ndarray, simplex: np.ndarray, normals: np.ndarray,
+                            tau: float):
+    """One simplex: its stretched smallest sphere (centre relative to the first vertex, in
+    stretched coordinates, and radius) and the stretch of vectors from its first vertex."""
+    best = max((normals[simplex[0]] + sum(s * normals[v] for s, v in zip(signs, simplex[1:],
+                                                                          strict=True))
+                for signs in itertools.product((1, -1), repeat=len(simplex) - 1)),
+               key=lambda v: float(v @ v))
+    unit = best / np.linalg.norm(best)
+
+    def stretch(rel: np.ndarray) -> np.ndarray:
+        return rel + (1 / (1 - tau) - 1) * (rel @ unit)[..., None] * unit
+
+    edges = stretch(points[simplex[1:]] - points[simplex[0]])
+    lam = np.linalg.lstsq(2 * edges @ edges.T, (edges**2).sum(axis=1), rcond=None)[0]
+    centre = lam @ edges
+    return centre, float(np.linalg.norm(centre)), stretch
+
+
+def _brute_anisotropic(points: np.ndarray, normals: np.ndarray, tau: float) -> dict:
+    """The anisotropic table of the module rules from scratch: every simplex's stretched
+    sphere, a face attached when a Delaunay cofacet's opposite vertex, stretched with the
+    face, is strictly inside it; enter = min(own value if unattached, cofacets' enters)."""
+    dim = points.shape[1]
+    simplices = delaunay_simplices(points)
+    spheres = {k: [_brute_stretched_sphere(points, s, normals, tau) for s in simplices[k]]
+               for k in range(1, dim + 1)}
+    enter = {dim: np.array([r for _, r, _ in spheres[dim]])}
+    for k in range(dim - 1, 0, -1):
+        own = np.array([r for _, r, _ in spheres[k]])
+        f, c = cofacet_pairs(simplices[k], simplices[k + 1], len(points))
+        for face, coface in zip(f, c, strict=True):
+            far = np.setdiff1d(simplices[k + 1][coface], simplices[k][face])[0]
+            centre, radius, stretch = spheres[k][face]
+            rel = stretch(points[far] - points[simplices[k][face][0]])
+            if np.linalg.norm(rel - centre) < radius * (1 - 1e-9):
+                own[face] = np.inf
+        np.minimum.at(own, f, enter[k + 1][c])
+        enter[k] = own
+    enter[0] = np.zeros(len(points))
+    regular, interior = derived_intervals(simplices, enter, dim, len(points))
+    return {"simplices": simplices, "enter": enter, "regular": regular, "interior": interior}
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_anisotropic_table_matches_brute_force(dim):
+    """Every value and every attachment (the face passes of core/stretched.py, including the
+    3D edges tested from their triangles) against the definition."""
+    pts = _cloud(11, 70, dim)
+    normals = np.random.default_rng(12).normal(size=pts.shape)
+    normals /= np.linalg.norm(normals, axis=1)[:, None]
+    ac = AlphaComplex.from_points(pts, anisotropy=0.6, normals=normals)
+    ref = _brute_anisotropic(pts, normals, 0.6)
+    for k in range(dim + 1):
+        rows, iv = ours_by_input_ids(ac, k)
+        assert np.array_equal(rows, ref["simplices"][k])
+        want = np.stack([ref["enter"][k], ref["regular"][k], ref["interior"][k]], axis=1)
+        np.testing.assert_allclose(iv, want, rtol=1e-9)
+    faces = ac.intervals(dim - 1)  # some faces are attached and some are not: both tested
+    assert (faces[:, 0] == faces[:, 1]).any() and (faces[:, 0] < faces[:, 1]).any()
+
+
 @pytest.mark.parametrize("dim", [2, 3])
 def test_anisotropic_cells_enter_at_their_stretched_radius(dim):
     pts = _cloud(3, 80, dim)
@@ -246,3 +308,15 @@ def test_mode_describes_itself():
     assert mode.to_dict() == {"name": "density+anisotropic", "density": 8, "combine": "max",
                               "anisotropy": 0.25, "normals": "given"}
     assert make_mode(None, "max", 0.0, True) == Mode()  # unused parameters are reset
+
+
+def test_estimated_normals_face_out_of_a_sphere():
+    """PCA normals oriented over the 8-neighbour spanning tree: on a sphere every normal is
+    radial and all face the same way (outward: the root faces away from the centroid)."""
+    from core.modes import NORMAL_NEIGHBOURS, point_normals
+    from core.neighbourhood import neighbours
+
+    pts = np.random.default_rng(13).normal(size=(3000, 3))
+    pts /= np.linalg.norm(pts, axis=1)[:, None]
+    normals = point_normals(pts, neighbours(pts, NORMAL_NEIGHBOURS)[1])
+    assert (np.einsum("nd,nd->n", normals, pts) > 0.99).all()
