@@ -168,8 +168,9 @@ def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarra
     `weights`); else the first reason found.
 
     `hidden` (m,) bool: points known to be hidden (in no cell). `near` (t,) bool: check
-    orientation and local Delaunay-ness only on the facets of these cells (the others are
-    known to be right: the parts of core.backends.split that Qhull made).
+    orientation and local Delaunay-ness only on the facets of these cells, and trust the
+    others as Qhull made them (the halves of core.backends.split): the answer is then "the
+    same cells as one Qhull call, given Qhull's own facets", not a proof for those facets.
     """
     used = np.zeros(len(points), dtype=bool)
     used[cells.ravel()] = True

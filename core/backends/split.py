@@ -2,12 +2,16 @@
 
 The points are split at the median of their longest axis and both halves are triangulated
 at the same time on two threads (Delaunay; regular for weighted points). A half's cell whose
-circumsphere (orthosphere) is certainly empty of the other half's points is a cell of the
-whole triangulation, and is kept. The band the kept cells leave around the split is
-restored as core.backends.restore restores gmsh's dropped cells: the triangulation of the
-kept union's boundary vertices and of the points in no kept cell, flooded from that
-boundary. Around everything joined the result is checked (core.backends.certify); on any
-doubt the caller makes one Qhull call on all points instead.
+circumsphere (orthosphere) a float test with a margin (SPLIT_EMPTY_RTOL) finds empty of the
+other half's points is kept as a cell of the whole triangulation. The band the kept cells
+leave around the split is restored as core.backends.restore restores gmsh's dropped cells:
+the triangulation of the kept union's boundary vertices and of the points in no kept cell,
+flooded from that boundary. The joined result is then checked (core.backends.certify): a
+triangulation of the hull, and every facet of a cell near the join locally Delaunay
+(regular) by a margin. A cell kept by mistake cannot pass: by the Delaunay lemma a
+triangulation that is not Delaunay has a locally non-Delaunay facet, and the facets inside
+one half are Qhull's own, so that facet lies at the join, where it is checked. The result is
+thus trusted exactly as far as one Qhull call is; on any doubt the caller makes that call.
 """
 
 from __future__ import annotations
@@ -28,9 +32,9 @@ from .certify import why_not_delaunay
 from .facets import neighbours
 from .restore import boundary_facets, joined, outside
 
-#: From this many points the Qhull backend triangulates in two halves (measured on a busy
-#: 2-core machine: it pays from 40k-80k points; below, the band and the check cost about
-#: what the second core saves).
+#: From this many points the Qhull backend triangulates in two halves. With a free second
+#: core the halves take about 0.5-0.6x one call (200k weighted, 400k 2D); on a machine whose
+#: cores are all busy the split costs 10-20 % more (benchmarks/README.md).
 SPLIT_FROM_POINTS = 50_000
 
 
@@ -47,7 +51,7 @@ def worth_splitting(n_points: int) -> bool:
 @dataclass(frozen=True)
 class _Half:
     """One half's cells in point ids (rows ascending), their neighbour rows (-1 = none),
-    and which are certainly cells of the whole triangulation."""
+    and which are kept as cells of the whole triangulation (empty of the other half)."""
 
     cells: np.ndarray
     nbrs: np.ndarray
@@ -124,7 +128,7 @@ def _spheres(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray
 
 def _half(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray,
           other: np.ndarray, axis: int, ahead: bool) -> _Half:
-    """Triangulate points[ids]; keep the cells certainly empty of points[other], which lie
+    """Triangulate points[ids]; keep the cells found empty of points[other], which lie
     beyond ids along `axis` (ahead: at larger coordinates)."""
     cells, nbrs = _cells(points, weights, ids)
     centres, size, ok = _spheres(points, weights, cells)
@@ -224,8 +228,9 @@ def split_triangulation(points: np.ndarray, weights: np.ndarray | None = None
             return f"Qhull left {int(np.count_nonzero(~in_half))} points of a half out"
         hidden = ~in_half  # hidden in a half: hidden among all points
         cells, nbrs = _kept(halves)
+        del halves  # the halves' full tables: only the kept cells are needed from here
         if not len(cells):
-            return "no cell of a half is certainly a cell of the whole"
+            return "no cell of a half is found empty of the other half"
         nbrs, near, manifold = _matched_across(cells, nbrs, m)
         if not manifold:
             return "a facet is in three kept cells"
