@@ -56,7 +56,7 @@ def _simplex_frames(corners: _Corners, rows: np.ndarray, extra: float):
     """For a chunk of (n, k+1) simplices: their vertices, vertex normals, pairwise normal
     dots, unit normals and stretched edge vectors from the first vertex."""
     width = rows.shape[1]
-    gathered = [corners.of(np.ascontiguousarray(rows[:, i])) for i in range(width)]
+    gathered = [corners.of(rows[:, i].astype(np.intp)) for i in range(width)]
     points = [p for p, _ in gathered]
     normals = [n for _, n in gathered]
     dots = {(i, j): dot(normals[i], normals[j]) for i, j in _pairs(width)}
