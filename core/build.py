@@ -227,7 +227,7 @@ def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper,
         for arr in (level.enter, level.regular, level.interior):
             arr *= scale
     if local is not None:
-        step(0.9, "neighbours and normals")  # what is left of them when the table is done
+        step(0.9, "neighbours")  # the wait for what is left of them when the table is done
         table = scaled_table(table, coords, mode, local(), step.part(0.9, 0.1))
     with np.errstate(over="ignore"):
         measure_scale = np.float64(scale) ** coords.shape[1]
