@@ -184,7 +184,8 @@ def _triangulated(prep: _Prepared, backend: str | None) -> tuple[Triangulation, 
 def _certified(prep: _Prepared, tri: Triangulation) -> Certified:
     """Stage 3b: the backend's Delaunay cells certified with exact predicates on the points
     themselves (scaled by a power of two, exactly), repaired by flips (core/certify.py)."""
-    return certified_triangulation(prep.coords / power_of_two_scale(prep.coords), tri)
+    scale = power_of_two_scale(prep.coords)
+    return dataclasses.replace(certified_triangulation(prep.coords / scale, tri), scale=scale)
 
 
 def _compacted(prep: _Prepared, tri: Triangulation) -> _Prepared:
@@ -207,10 +208,11 @@ def _point_normals(normals: np.ndarray, input_index: np.ndarray, m: int,
 
 
 def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper,
-           exact: bool = True) -> Table:
+           exact: bool = True, certified: Certified | None = None) -> Table:
     """Stages 4-6: the interval table on the points scaled exactly by a power of two (its
     arithmetic is relative to a vertex, so no rounding shift), the mode's scaling, and the
-    values and measures scaled back to the input units."""
+    values and measures scaled back to the input units. The certification's cell spheres
+    are reused when they were computed on the same points (same scale)."""
     coords, w, mode = prep.coords, prep.weights, given.mode
     scale = power_of_two_scale(coords)
     local = None
@@ -218,10 +220,13 @@ def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper,
         normals = (_point_normals(given.normals, prep.input_index, len(coords), prep.frame)
                    if mode.normals == "given" else None)
         local = local_geometry_beside(coords, mode, normals)
+    spheres = None
+    if certified is not None and certified.scale == scale:
+        spheres = certified.spheres
     step(0.6, "interval table")
     share = 0.3 if mode.active else 0.4
     table = build_table(coords / scale, tri.cells, tri.neighbors, step.part(0.6, share),
-                        exact=exact,
+                        exact=exact, spheres=spheres,
                         weights=None if w is None else w / scale**2)
     for level in table.levels:
         for arr in (level.enter, level.regular, level.interior):
@@ -264,7 +269,7 @@ def build_complex(points: object, progress: Progress | None = None, *,
         certified = _certified(prep, tri)
         tri = certified.triangulation
     prep = _compacted(prep, tri)
-    table = _table(prep, tri, given, step, exact)
+    table = _table(prep, tri, given, step, exact, certified)
     info = BuildInfo(choice.backend, choice.note) if certified is None else BuildInfo(
         choice.backend, choice.note, certified.exact_predicates + table.exact_predicates,
         certified.flips, certified.uncertified)

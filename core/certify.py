@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .cell_pass import CellSpheres, first_pass
 from .delaunay import Triangulation, regular_triangulate, sort_rows
 from .errors import InputError
 from .predicates import in_sphere, orientations
@@ -29,14 +30,21 @@ class Certified:
     exact_predicates: int  # predicate evaluations settled by exact arithmetic
     flips: int  # flips performed (2D edge flips, 3D 2-3 and 3-2 flips)
     uncertified: int  # facets left unchecked or unrepaired (flat cells, stuck 3D flips)
+    spheres: CellSpheres | None = None  # the table's cell spheres, when no cell changed
+    scale: float = 1.0  # the points were divided by this (core.build: a power of two)
 
 
 def _interior_facets(cells: np.ndarray, nbs: np.ndarray) -> tuple[np.ndarray, ...]:
     """Every interior facet once, (t, i, u, j): cell t's facet opposite its vertex i is cell
-    u's opposite its vertex j (t < u)."""
-    t, i = np.nonzero(nbs > np.arange(len(cells))[:, None])
-    u = nbs[t, i]
-    j = np.argmax(nbs[u] == t[:, None], axis=1)
+    u's opposite its vertex j (t < u; t ascending)."""
+    width = nbs.shape[1]
+    slots = np.flatnonzero(nbs > np.arange(len(cells))[:, None])
+    t, i = np.divmod(slots, width)
+    u = np.take(nbs, slots)
+    around = np.take(nbs, u, axis=0)
+    j = np.zeros(len(t), dtype=np.int64)
+    for c in range(width - 1, 0, -1):  # one compare per column, not a (n, w) argmax
+        j[around[:, c] == t] = c
     return t, i, u, j
 
 
@@ -44,7 +52,7 @@ def _folded(n: int, signs: np.ndarray, t, i, u, j) -> np.ndarray:
     """(n,) bool: cells on the same side of a shared facet (t, i, u, j) as their neighbour
     (rows ascending, so the facet's orientation follows from the cell's sign and the
     position left out)."""
-    same = signs[t] * (-1) ** (i % 2) == signs[u] * (-1) ** (j % 2)
+    same = np.where(i & 1, -signs[t], signs[t]) == np.where(j & 1, -signs[u], signs[u])
     out = np.zeros(n, dtype=bool)
     out[t[same]] = out[u[same]] = True
     return out
@@ -59,8 +67,14 @@ class _Mesh:
         self.cells = tri.cells.astype(np.int64)
         self.nbs = tri.neighbors.astype(np.int64)
         self.alive = np.ones(len(self.cells), dtype=bool)
-        self.signs, self.exact = orientations(points, self.cells)
         self.first = _interior_facets(self.cells, self.nbs)  # the first round's facets
+        t, _, u, j = self.first
+        shared = first_pass(points, self.cells, t, self.cells[u, j])
+        self.spheres = shared.spheres
+        self.side = shared.side, shared.side_doubt  # the first round's in-sphere signs
+        self.signs = shared.orient
+        doubt = np.flatnonzero(shared.orient_doubt)
+        self.signs[doubt], self.exact = orientations(points, self.cells[doubt])
         self.bad = (self.signs == 0) | _folded(len(self.cells), self.signs, *self.first)
         self.flips = 0
         self.touched = np.zeros(len(self.cells), dtype=bool)  # cells changed or relinked
@@ -81,6 +95,7 @@ class _Mesh:
             self.nbs[cut] = -1
             self.alive[ids] = False
             self.first = _interior_facets(self.cells, self.nbs)
+            self.side = None  # the facets changed
             self.bad = self.alive & ((self.signs == 0)
                                      | _folded(len(self.cells), self.signs, *self.first))
             self.flips += len(ids)
@@ -125,6 +140,21 @@ def _violations(mesh: _Mesh, t, i, u, j) -> np.ndarray:
                                 mesh.signs[t[solid]], mesh.ties)
     mesh.exact += n_exact
     bad[solid] = inside
+    return bad
+
+
+def _first_violations(mesh: _Mesh, t, i, u, j) -> np.ndarray:
+    """_violations of the first round's facets from the shared pass's signs (in-sphere
+    exactly when V has the sign opposite to the cell's): only the rows its bound left open
+    are re-decided, by core.predicates.in_sphere."""
+    side, doubt = mesh.side
+    solid = ~mesh.bad[t] & ~mesh.bad[u]
+    bad = solid & (side == -mesh.signs[t])
+    ids = np.flatnonzero(solid & doubt)
+    inside, n_exact = in_sphere(mesh.points, mesh.cells[t[ids]], mesh.cells[u[ids], j[ids]],
+                                mesh.signs[t[ids]], mesh.ties)
+    mesh.exact += n_exact
+    bad[ids] = inside
     return bad
 
 
@@ -379,8 +409,12 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
     pending = None
     stuck = concave = 0
     for _ in range(MAX_ROUNDS):
-        t, i, u, j = mesh.first if pending is None else _facets_of(mesh, pending)
-        bad = _violations(mesh, t, i, u, j)
+        if pending is None:
+            t, i, u, j = mesh.first
+            bad = (_violations if mesh.side is None else _first_violations)(mesh, t, i, u, j)
+        else:
+            t, i, u, j = _facets_of(mesh, pending)
+            bad = _violations(mesh, t, i, u, j)
         t, i, u, j = (x[bad] for x in (t, i, u, j))
         before, size = mesh.flips, len(mesh.cells)
         if d == 2 and len(t):
@@ -396,7 +430,8 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
         return Certified(tri, mesh.exact, 0, int((tri.neighbors >= 0).sum()) // 2)
     out = _compact(mesh, tri) if mesh.flips else tri
     invalid = int(np.sum(mesh.bad[:, None] & (mesh.nbs >= 0) & mesh.alive[:, None]))
-    return Certified(out, mesh.exact, mesh.flips, stuck + invalid + concave)
+    return Certified(out, mesh.exact, mesh.flips, stuck + invalid + concave,
+                     None if mesh.flips else mesh.spheres)
 
 
 #: Lifted heights of the retry are lowered by up to this times the squared extent: enough to

@@ -6,9 +6,12 @@ small for scans far from the origin; degenerate simplices fall back to least squ
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from .parallel import in_chunks
+from .predicates import error_coefficient, uncertain
 from .tolerances import (
     DEGENERATE_RTOL,
     EXTENDED_DEGENERATE_RTOL,
@@ -91,21 +94,22 @@ def least_squares(vec: np.ndarray, rel_weights: np.ndarray | None = None
     return c0, np.maximum(np.einsum("nd,nd->n", c0, c0), dist2.max(axis=1))
 
 
-def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
-                  rhs: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
-    """Centre offsets (n, d), determinants (n,), flags (degenerate, ill-conditioned), and for
-    d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0.
+class Terms(NamedTuple):
+    """The raw float64 terms of the circumcentre systems of (n, k+1) simplices, before any
+    division or fallback: centre = num / (2 det) (core.cell_pass bounds their errors)."""
 
-    The centre c solves 2 vec_i . c = rhs_i in the simplex's span; rhs defaults to |vec_i|²
-    (circumcentres); |vec_i|² - (w_i - w_0) gives the centres of orthogonal spheres."""
+    vec: np.ndarray  # (n, k, d) edge vectors from the first vertex
+    sq: np.ndarray  # (n, k) their squared lengths
+    num: np.ndarray  # (n, d) numerators of the centre offsets
+    det: np.ndarray  # (n,) determinants (|a x b|² for triangles in 3D)
+    scale: np.ndarray  # (n,) what |det| is compared with for the shape
+    duals: np.ndarray | None  # (k, n, d) for d-simplices: dual_i . vec_j = det if i == j
+
+
+def centre_terms(vec: np.ndarray, rhs: np.ndarray | None = None) -> Terms:
+    """The centre system's terms for (n, k, d) edge vectors, k >= 2 (solve_centres)."""
     k, d = vec.shape[1], vec.shape[2]
     sq = np.einsum("nid,nid->ni", vec, vec)
-    if k == 1:
-        zero = sq[:, 0] == 0.0
-        if rhs is None:
-            return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero, None
-        ratio = rhs[:, 0] / (2.0 * np.where(zero, 1.0, sq[:, 0]))
-        return ratio[:, None] * vec[:, 0], np.ones(len(vec)), zero, zero, None
     rhs = sq if rhs is None else rhs
     a, b = vec[:, 0], vec[:, 1]
     if k == 2 and d == 2:
@@ -126,17 +130,54 @@ def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
         det = _dot(a, duals[0])
         num = rhs[:, :1] * duals[0] + rhs[:, 1:2] * duals[1] + rhs[:, 2:3] * duals[2]
         scale = np.sqrt(sq[:, 0] * sq[:, 1] * sq[:, 2])
-    shape = np.abs(det) / np.where(scale > 0, scale, 1.0)  # 0 flat .. 1 well-shaped
+    return Terms(vec, sq, num, det, scale, duals)
+
+
+def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
+                  rhs: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
+    """Centre offsets (n, d), determinants (n,), flags (degenerate, ill-conditioned), and for
+    d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0.
+
+    The centre c solves 2 vec_i . c = rhs_i in the simplex's span; rhs defaults to |vec_i|²
+    (circumcentres); |vec_i|² - (w_i - w_0) gives the centres of orthogonal spheres."""
+    if vec.shape[1] == 1:
+        sq = np.einsum("nid,nid->ni", vec, vec)
+        zero = sq[:, 0] == 0.0
+        if rhs is None:
+            return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero, None
+        ratio = rhs[:, 0] / (2.0 * np.where(zero, 1.0, sq[:, 0]))
+        return ratio[:, None] * vec[:, 0], np.ones(len(vec)), zero, zero, None
+    return _solved(centre_terms(vec, rhs), degenerate_rtol)
+
+
+def _solved(terms: Terms, degenerate_rtol: float = DEGENERATE_RTOL) -> tuple[np.ndarray, ...]:
+    """solve_centres' outputs from the terms (the arrays are fresh, not the terms')."""
+    det = terms.det.copy()
+    shape = np.abs(det) / np.where(terms.scale > 0, terms.scale, 1.0)  # 0 flat .. 1 well-shaped
     degenerate = shape <= degenerate_rtol
     safe = np.where(degenerate, 1.0, det)
-    return num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL, duals
+    return (terms.num / (2.0 * safe)[:, None], det, degenerate, shape <= ILL_CONDITIONED_RTOL,
+            terms.duals)
 
 
 def _spheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, ...]:
     """One chunk: centre offsets, radii², determinants, degenerate flags and attach bits
     (for d-simplices; else None), with extended precision and least squares where needed."""
     vec = edge_vectors(points, simplices)
-    c0, det, bad, poor, duals = solve_centres(vec)
+    if vec.shape[1] == 1:
+        return _finished(points, simplices, vec, solve_centres(vec))
+    return spheres_of(points, simplices, centre_terms(vec))
+
+
+def spheres_of(points: np.ndarray, simplices: np.ndarray, terms: Terms
+               ) -> tuple[np.ndarray, ...]:
+    """_spheres of (n, k+1) simplices (k >= 2) from their centre_terms (left unchanged)."""
+    return _finished(points, simplices, terms.vec, _solved(terms))
+
+
+def _finished(points: np.ndarray, simplices: np.ndarray, vec: np.ndarray,
+              solved: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
+    c0, det, bad, poor, duals = solved
     if poor.any():
         c0[poor], det[poor], bad[poor] = extended(points, simplices[poor])
     r2 = np.einsum("nd,nd->n", c0, c0)
@@ -207,7 +248,8 @@ def cell_spheres(
     return r2, dets, flat, bits
 
 
-def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+def facet_radii2(points: np.ndarray, facets: np.ndarray, exact: bool = False
+                 ) -> tuple[np.ndarray, np.ndarray | None]:
     """(n,) squared radii of the smallest circumspheres of edges or triangles, from side
     lengths; for triangles also (n,) uint8 obtuse bits (bit j: vertex j lies strictly inside
     the diametral sphere of the opposite edge, so it attaches that edge).
@@ -216,22 +258,29 @@ def facet_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np
     angle's own sides: deriving a side from the other two (|b - a|² = |a|² + |b|² - 2 a.b)
     cancels catastrophically on a needle (two long sides, a short one) and can go negative.
     The area comes from the two shortest sides, the best conditioned cross product.
+    `exact`: the bits are the float signs of the angles' dot products without tolerance, and
+    the (n, 3) bool corners whose sign the forward error bound leaves open are returned
+    third (core.table_signs.settle_obtuse decides those exactly).
     """
     if facets.shape[1] == 2:
         diff = np.take(points, facets[:, 1], 0) - np.take(points, facets[:, 0], 0)
         return 0.25 * np.einsum("nd,nd->n", diff, diff), None
     out = np.empty(len(facets))
     bits = np.empty(len(facets), dtype=np.uint8)
+    doubt = np.empty((len(facets), 3), dtype=bool) if exact else None
 
     def part(lo: int, hi: int) -> None:
-        out[lo:hi], bits[lo:hi] = _triangle_radii2(points, facets[lo:hi])
+        out[lo:hi], bits[lo:hi] = _triangle_radii2(
+            points, facets[lo:hi], None if doubt is None else doubt[lo:hi])
 
     in_chunks(part, len(facets), CHUNK)
-    return out, bits
+    return (out, bits) if doubt is None else (out, bits, doubt)
 
 
-def _triangle_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """One chunk of facet_radii2 for triangles: (n,) radii² and (n,) uint8 obtuse bits."""
+def _triangle_radii2(points: np.ndarray, facets: np.ndarray, doubt: np.ndarray | None = None
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """One chunk of facet_radii2 for triangles: (n,) radii² and (n,) uint8 obtuse bits (with
+    (n, 3) `doubt` to fill: filtered signs, facet_radii2's `exact`)."""
     p0, p1, p2 = (np.take(points, facets[:, i], 0) for i in range(3))
     a, b, c = p1 - p0, p2 - p0, p2 - p1
     del p0, p1, p2
@@ -246,11 +295,33 @@ def _triangle_radii2(points: np.ndarray, facets: np.ndarray) -> tuple[np.ndarray
     out = saa * sbb * scc / (4.0 * np.where(bad, 1.0, nn))
     if bad.any():
         out[bad] = least_squares(np.stack((a[bad], b[bad]), axis=1))[1]
+    if doubt is not None:
+        return out, _angle_signs(a, b, c, (saa, sbb, scc), doubt)
     tol = ON_SPHERE_RTOL
     bits = (_dot(a, b) < -tol * (saa + sbb)).astype(np.uint8)  # angle at p0
     bits |= (_dot(a, c) > tol * (saa + scc)).astype(np.uint8) << 1  # p1: (-a).c < 0
     bits |= (_dot(b, c) < -tol * (sbb + scc)).astype(np.uint8) << 2  # p2: (-b).(-c)
     return out, bits
+
+
+def _angle_signs(a: np.ndarray, b: np.ndarray, c: np.ndarray, lengths2: tuple,
+                 doubt: np.ndarray) -> np.ndarray:
+    """(n,) uint8 bits of the obtuse angles at p0, p1, p2 of triangles with sides a = p1 - p0,
+    b = p2 - p0, c = p2 - p1 and their float squared lengths (float signs of the dot products
+    of each corner's own sides), and in (n, 3) `doubt` the corners whose sign the forward
+    bound cannot settle. A dot product (leaves rounded once, products, two sums: 5
+    roundings) is off by at most gamma_5 times sum |u_k w_k| <= |u| |w| (Cauchy-Schwarz);
+    sqrt of the float squared lengths' product is that within a few u, far inside the
+    margin error_coefficient(5) = 12 u leaves over gamma_5."""
+    coef = error_coefficient(5)
+    saa, sbb, scc = lengths2
+    bits = np.zeros(len(a), dtype=np.uint8)
+    corners = ((_dot(a, b), saa * sbb), (-_dot(a, c), saa * scc),  # p1: (-a).c
+               (_dot(b, c), sbb * scc))  # p2: (-b).(-c)
+    for j, (value, product) in enumerate(corners):
+        bits |= (value < 0).astype(np.uint8) << j
+        doubt[:, j] = uncertain(value, np.sqrt(product), coef)
+    return bits
 
 
 def facet_sizes(points: np.ndarray, facets: np.ndarray) -> np.ndarray:

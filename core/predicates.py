@@ -73,6 +73,20 @@ def _roundings(formula: Formula, k: int, d: int) -> int:
     return formula(vectors).count
 
 
+def error_coefficient(roundings: int) -> float:
+    """c such that |value| > c * perm (the permanent as computed in float64) proves the sign
+    of a value whose monomials went through at most `roundings` roundings: gamma_k with
+    room for the permanent's own rounding errors."""
+    return (2 * roundings + 2) * _U
+
+
+def uncertain(value: np.ndarray, perm: np.ndarray, coef: float) -> np.ndarray:
+    """(n,) bool: signs the bound cannot settle (|value| <= coef * perm), and those whose
+    permanent is so small that underflow may hide digits, or not finite."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        return ~(np.abs(value) > coef * perm) | ~(perm >= _TINY) | ~np.isfinite(perm)
+
+
 def row_sum_bound(vectors: list, lifted: bool = False) -> np.ndarray:
     """An upper bound of the permanent of |M| for the determinant of the rows v_i (or
     [v_i, |v_i|²] when lifted): the product of the rows' absolute sums."""
@@ -99,7 +113,7 @@ def filtered_signs(formula: Formula, points: np.ndarray, base: np.ndarray,
     n, d = len(base), points.shape[1]
     signs = np.empty(n, dtype=np.int8)
     exact = np.zeros(n, dtype=bool)
-    coef = (2 * _roundings(formula, others.shape[1], d) + 2) * _U
+    coef = error_coefficient(_roundings(formula, others.shape[1], d))
 
     def part(start: int, stop: int) -> None:
         for lo in range(start, stop, _CHUNK):
@@ -112,9 +126,7 @@ def filtered_signs(formula: Formula, points: np.ndarray, base: np.ndarray,
             else:
                 value, perm = formula(vectors), bound(vectors)
             signs[sl] = np.sign(value)
-            with np.errstate(invalid="ignore"):
-                exact[sl] = (~(np.abs(value) > coef * perm) | ~(perm >= _TINY)
-                             | ~np.isfinite(perm))
+            exact[sl] = uncertain(value, perm, coef)
 
     halves(part, n)
     ids = np.flatnonzero(exact)

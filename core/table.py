@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .cell_pass import CellSpheres
 from .geometry import (
     CHUNK,
     any_point_inside,
@@ -38,7 +39,7 @@ from .power import (
     triangle_powers,
 )
 from .progress import Progress
-from .table_signs import obtuse_bits, settle_cells, settle_facets
+from .table_signs import settle_cells, settle_facets, settle_obtuse
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
 
 
@@ -172,12 +173,15 @@ def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: n
 
 
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
-           weights: np.ndarray | None = None, exact: list[int] | None = None):
+           weights: np.ndarray | None = None, exact: list[int] | None = None,
+           spheres: CellSpheres | None = None):
     """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
     cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas.
-    Counts of exactly decided predicates are appended to `exact`."""
+    Counts of exactly decided predicates are appended to `exact`. `spheres`: the cells'
+    core.geometry.cell_spheres when already computed (core.cell_pass), used in place."""
     if weights is None:
-        r2, det, flat, bits = cell_spheres(points, cells)
+        r2, det, flat, bits = (cell_spheres(points, cells) if spheres is None else
+                               (spheres.r2, spheres.det, spheres.flat, spheres.bits))
         enter = np.sqrt(r2)
         if exact is not None:
             exact.append(settle_cells(points, cells, enter, det, flat))
@@ -216,10 +220,12 @@ def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarra
     """Facet values (radii, or signed radii of powers), (3D) attach bits of their edges, and
     the global attachment test for the listed facets."""
     if weights is None:
-        r2, obtuse = facet_radii2(points, simplices)
-        if exact is not None and obtuse is not None:
-            obtuse, n_exact = obtuse_bits(points, simplices)
+        if exact is not None and simplices.shape[1] == 3:
+            r2, obtuse, doubt = facet_radii2(points, simplices, exact=True)
+            obtuse, n_exact = settle_obtuse(points, simplices, obtuse, doubt)
             exact.append(n_exact)
+        else:
+            r2, obtuse = facet_radii2(points, simplices)
 
         def global_test(ids: np.ndarray) -> np.ndarray:
             offsets, _, _, _ = circumspheres(points, simplices[ids])
@@ -253,23 +259,25 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     j1 = _slot_of(neighbors, t1[has1], t0[has1])
 
     radius, obtuse, global_test = _facet_spheres(points, simplices, weights, exact)
+    t1h = t1[has1]
     inside0 = ((bits[t0] >> i0) & 1).astype(bool)
-    inside1 = ((bits[t1[has1]] >> j1) & 1).astype(bool)
-    attached = inside0.copy()
-    attached[has1] |= inside1
+    inside1 = ((bits[t1h] >> j1) & 1).astype(bool)
+    e0 = cells.enter[t0]
+    e1 = np.full(len(t0), np.inf)
+    e1[has1] = cells.enter[t1h]
     if weights is None and exact is not None:  # doubtful float decisions made exact
-        sides = [(np.arange(len(t0)), t0, i0, inside0), (has1, t1[has1], j1, inside1)]
+        sides = [(slice(None), t0, i0, inside0, e0), (has1, t1h, j1, inside1, e1[has1])]
         attached, n_exact = settle_facets(points, cells.simplices, cells.enter, det, simplices,
                                           radius, sides)
         exact.append(n_exact)
+    else:
+        attached = inside0.copy()
+        attached[has1] |= inside1
     near_flat = det[t0] == 0
-    near_flat[has1] |= det[t1[has1]] == 0
+    near_flat[has1] |= det[t1h] == 0
     if near_flat.any():
         ids = np.flatnonzero(near_flat)
         attached[ids] |= global_test(ids)
-    e0 = cells.enter[t0]
-    e1 = np.full(len(t0), np.inf)
-    e1[has1] = cells.enter[t1[has1]]
     regular = np.minimum(e0, e1)
     interior = np.maximum(e0, e1)
     enter = np.where(attached, regular, np.minimum(radius, regular))
@@ -443,13 +451,14 @@ def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
 
 def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
                 progress: Progress | None = None, weights: np.ndarray | None = None,
-                exact: bool = True) -> Table:
+                exact: bool = True, spheres: CellSpheres | None = None) -> Table:
     """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled).
 
     With (m,) `weights` (squared radii >= 0, same scale), the cells are the regular
     triangulation's and the values signed radii of powers (module docstring). `exact`: the
     classic table's doubtful sign decisions and ill-conditioned radii are made exact
-    (core/table_signs.py); False keeps the floating-point ones."""
+    (core/table_signs.py); False keeps the floating-point ones. `spheres`: the classic
+    cells' spheres from the certification's shared pass (core.cell_pass), consumed."""
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
@@ -457,7 +466,8 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
     exact_counts: list[int] | None = [] if exact else None
-    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights, exact_counts)
+    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights, exact_counts,
+                                                spheres)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
                                                            weights, exact_counts)

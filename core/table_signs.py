@@ -16,15 +16,9 @@ from __future__ import annotations
 import numpy as np
 
 from .exact import exact_radii
-from .geometry import CHUNK, edge_vectors
+from .geometry import edge_vectors
 from .predicates import diametral_formula, diametral_signs, filtered_signs, orientations
 from .tolerances import EXACT_RADIUS_SHAPE, NEAR_SPHERE_RTOL, SLIVER_RTOL
-
-#: The float dot product of two side differences (d <= 3 products, d - 1 sums, leaves
-#: rounded once) is within 5 u of the exact value times the sum of |products| (u = 2**-53,
-#: with room for the bound's own rounding); below TINY underflow could hide digits.
-ANGLE_BOUND = 12 * 2.0**-53
-TINY = 1e-250
 
 
 def slivers(det: np.ndarray, radius: np.ndarray, d: int) -> np.ndarray:
@@ -63,47 +57,11 @@ def settle_cells(points: np.ndarray, cells: np.ndarray, enter: np.ndarray, det: 
     return n_exact + len(poor)
 
 
-def settle_attachment(points: np.ndarray, facets: np.ndarray, apex: np.ndarray,
-                      inside: np.ndarray, facet_radius: np.ndarray, cell_radius: np.ndarray,
-                      cell_det: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
-    """Re-decide `inside` (apex strictly inside the facet's smallest sphere) where the facet's
-    sphere is nearly the cell's (the cell's centre near the facet's plane) or the cell is
-    ill-conditioned; returns it, the (n,) bool rows found exactly ON the sphere (the facet's
-    radius is then exactly the cell's), and how many needed exact arithmetic."""
-    d = points.shape[1]
-    near = facet_radius >= (1.0 - 0.5 * NEAR_SPHERE_RTOL) * cell_radius  # r_f² >~ r_c²
-    near |= slivers(cell_det, cell_radius, d) & (cell_det != 0)
-    ids = np.flatnonzero(near)
-    on = np.zeros(len(inside), dtype=bool)
-    if not len(ids):
-        return inside, on, 0
-    exact, n_exact = diametral_signs(points, facets[ids], apex[ids])
-    inside = inside.copy()
-    inside[ids] = exact < 0
-    on[ids] = exact == 0
-    return inside, on, n_exact
-
-
-def obtuse_bits(points: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, int]:
-    """(n,) uint8 bits for (n, 3) triangles, bit j: vertex j strictly inside the diametral
-    sphere of the opposite edge (the angle at j is obtuse), exactly; and how many predicates
-    needed exact arithmetic. The dot products of the sides at each corner are filtered by
-    their bound (4 roundings: side differences, products, two sums) in one pass."""
-    bits = np.zeros(len(triangles), dtype=np.uint8)
-    doubt = np.zeros((len(triangles), 3), dtype=bool)
-    columns = [np.ascontiguousarray(points[:, c]) for c in range(points.shape[1])]
-    for lo in range(0, len(triangles), CHUNK):
-        tri = triangles[lo:lo + CHUNK]
-        corners = [[np.take(col, tri[:, j]) for col in columns] for j in range(3)]
-        for j in range(3):
-            here, (one, two) = corners[j], [corners[i] for i in range(3) if i != j]
-            value = perm = 0.0
-            for c in range(len(columns)):
-                a, b = one[c] - here[c], two[c] - here[c]
-                value = value + a * b
-                perm = perm + np.abs(a * b)
-            bits[lo:lo + CHUNK] |= (value < 0).astype(np.uint8) << j
-            doubt[lo:lo + CHUNK, j] = ~(np.abs(value) > ANGLE_BOUND * perm) | (perm < TINY)
+def settle_obtuse(points: np.ndarray, triangles: np.ndarray, bits: np.ndarray,
+                  doubt: np.ndarray) -> tuple[np.ndarray, int]:
+    """The (n,) uint8 obtuse bits of (n, 3) triangles (bit j: vertex j strictly inside the
+    diametral sphere of the opposite edge) with the (n, 3) `doubt` corners decided exactly
+    (core.geometry.facet_radii2 with exact=True gives bits and doubt); and how many."""
     rows, corner = np.nonzero(doubt)
     for j in range(3):
         ids = rows[corner == j]
@@ -122,25 +80,35 @@ def settle_facets(points: np.ndarray, cells: np.ndarray, cell_enter: np.ndarray,
     exactly (rationals) for facets of ill-conditioned cells, and equal to the cell's radius
     where the cell's vertex lies exactly on the facet's sphere.
 
-    `sides`: (rows, cell, k, inside) per side: the facet rows seen from `cell`, whose vertex
-    k is opposite, and the float decision `inside` (vertex strictly inside the sphere)."""
+    `sides`: (rows, cell, k, inside, enter) per side: the facet rows seen from `cell` (ids, or
+    slice(None) for all), whose vertex k is opposite, the float decision `inside` (vertex strictly
+    inside the sphere) and cell_enter[cell]. A decision is in doubt where the facet's sphere
+    is nearly the cell's (the cell's centre near the facet's plane) or the cell is
+    ill-conditioned (a sliver); there the exact diametral sign decides, and "exactly on the
+    sphere" makes the facet's radius exactly the cell's."""
     d = points.shape[1]
+    sliver = slivers(det, cell_enter, d) & (det != 0)  # once per cell, gathered per side
     attached = np.zeros(len(facets), dtype=bool)
     total = 0
     if d == 3:
         poor = np.zeros(len(facets), dtype=bool)
-        for rows, cell, _, _ in sides:
-            poor[rows] |= slivers(det[cell], cell_enter[cell], d) & (det[cell] != 0)
+        for rows, cell, _, _, _ in sides:
+            poor[rows] |= sliver[cell]
         ids = np.flatnonzero(poor)
         ids = ids[shapes(points, facets[ids]) < EXACT_RADIUS_SHAPE["triangle"]]
         radius[ids] = exact_radii(points, facets[ids])
         total += len(ids)
-    for rows, cell, k, inside in sides:
-        decided, on, n_exact = settle_attachment(
-            points, facets[rows], cells[cell, k], inside, radius[rows], cell_enter[cell],
-            det[cell])
+    for rows, cell, k, inside, enter in sides:
+        near = radius[rows] >= (1.0 - 0.5 * NEAR_SPHERE_RTOL) * enter  # r_f² >~ r_c²
+        near |= sliver[cell]
+        ids = np.flatnonzero(near)
+        decided = inside.copy()
+        if len(ids):
+            at = ids if isinstance(rows, slice) else rows[ids]
+            signs, n_exact = diametral_signs(points, facets[at], cells[cell[ids], k[ids]])
+            decided[ids] = signs < 0
+            on = (signs == 0) & (det[cell[ids]] != 0)
+            radius[at[on]] = enter[ids[on]]
+            total += n_exact
         attached[rows] |= decided
-        on &= det[cell] != 0
-        radius[rows[on]] = cell_enter[cell[on]]
-        total += n_exact
     return attached, total
