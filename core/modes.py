@@ -133,9 +133,10 @@ def _own_values(table: Table, points: np.ndarray, mode: Mode, spacing_: np.ndarr
                  for k, level in enumerate(table.levels[1:], start=1)]
     out = [np.zeros(len(table.levels[0].enter))]
     for level, own in zip(table.levels[1:], radii, strict=True):
-        if spacing_ is not None:
-            gathered = spacing_[level.simplices]
-            own /= gathered.max(axis=1) if mode.combine == "max" else gathered.mean(axis=1)
+        if spacing_ is not None:  # cells and unattached faces (attached ones stay inf)
+            ids = np.flatnonzero(np.isfinite(own))
+            gathered = spacing_[level.simplices[ids]]
+            own[ids] /= gathered.max(axis=1) if mode.combine == "max" else gathered.mean(axis=1)
         out.append(own)
     return out
 
