@@ -120,6 +120,7 @@ class AlphaPanel(QWidget):
         self.model.topologyChanged.connect(self._new_travel)
         self.model.topologyChanged.connect(self.sync)
         self.model.alphaChanged.connect(self.sync)
+        self.model.datasetReleased.connect(self._forget)
 
     def _base(self) -> int:
         """The index a key moves from: a still-queued one, else the model's."""
@@ -139,6 +140,13 @@ class AlphaPanel(QWidget):
         travel = SignedTravel if self.model.weighted else LogTravel  # alpha² < 0: no log
         self.travel = travel(ds.spectrum, reach=ds.optimal_alpha)
         self.slider.set_marks(tuple(self.marks()))
+
+    def _forget(self) -> None:
+        """The dataset was released: no travel (it holds the spectrum), no marks, disabled."""
+        self._timer.stop()
+        self.travel = None
+        self.slider.set_marks(())
+        self.sync()
 
     def marks(self) -> list[Mark]:
         """Tick marks of the current dataset: suggested alphas, the opening and optimal one

@@ -11,22 +11,18 @@ add about one (its start and the table's trip through a file).
 
 from __future__ import annotations
 
-import multiprocessing
-import tempfile
 import threading
-from multiprocessing.connection import Connection
 from pathlib import Path
 
 import numpy as np
 
-from core import errors
+from app.child_process import run_in_child, scratch
 from core.complex import AlphaComplex
 from core.modes import Mode, make_mode
 from core.obtain import BuildRequest, run_here
 from core.progress import Progress
 
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
-POLL_SECONDS = 0.1
 
 
 class ChildRunner:
@@ -48,7 +44,7 @@ class ChildRunner:
         report = progress or (lambda _fraction, _stage: None)
         if len(request.points) < IN_THREAD_BELOW:
             return run_here(request, progress)
-        with tempfile.TemporaryDirectory(prefix="alphascoop-build-") as folder:
+        with scratch("alphascoop-build-") as folder:
             source, target = Path(folder) / "points.npy", Path(folder) / "table.npz"
             np.save(source, request.points)
             if request.weights is not None:
@@ -58,90 +54,32 @@ class ChildRunner:
             job = {"mode": request.mode.to_dict(), "signatures": request.signatures,
                    "save_to": None if request.save_to is None else str(request.save_to),
                    "backend": request.backend}
-            written = _run_child(source, target, job, report, self.cancel)
+            written = run_in_child(build_in_child, (str(source), str(target), job), report,
+                                   self.cancel, "alphascoop-build")
             report(1.0, "loading the table")
             return AlphaComplex.load(written)
 
 
-def _run_child(source: Path, target: Path, job: dict, progress: Progress,
-               cancel: threading.Event) -> Path:
-    """Start the build process and follow it; the path it wrote, or its error raised here."""
-    context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
-    receiver, sender = context.Pipe(duplex=False)
-    child = context.Process(target=child_main, args=(str(source), str(target), job, sender),
-                            name="alphascoop-build", daemon=True)
-    child.start()
-    sender.close()
-    try:
-        return _follow(child, receiver, progress, cancel)
-    finally:
-        if child.is_alive():
-            child.kill()
-        child.join()
-        receiver.close()
-
-
-def _follow(child, receiver: Connection, progress: Progress, cancel: threading.Event) -> Path:
-    """Relay the child's messages until it is done; Cancelled as soon as cancel is set."""
-    while True:
-        if cancel.is_set():
-            raise errors.Cancelled("cancelled by the user")
-        try:
-            message = receiver.recv() if receiver.poll(POLL_SECONDS) else None
-        except EOFError:
-            message = ("died",)
-        if message is None:
-            continue
-        kind, *rest = message
-        if kind == "progress":
-            progress(*rest)
-        elif kind == "done":
-            return Path(rest[0])
-        elif kind == "error":
-            name, text = rest
-            error_class = getattr(errors, name, None)
-            if name == "MemoryError":
-                raise MemoryError(text)
-            if isinstance(error_class, type) and issubclass(error_class, errors.AlphaScoopError):
-                raise error_class(text)
-            raise errors.AlphaScoopError(text)
-        else:
-            child.join(1.0)
-            raise errors.AlphaScoopError(
-                f"the build process stopped without a result (exit code {child.exitcode}; "
-                "out of memory?)")
-
-
-def child_main(source: str, target: str, job: dict, sender: Connection) -> None:
+def build_in_child(source: str, target: str, job: dict, progress: Progress) -> str:
     """Body of the build process: build (and the signatures if asked), save to the cache entry
-    or else to `target`, report where (or why not).
+    or else to `target`; the path written.
 
     `job` holds "mode" (Mode.to_dict()), "signatures" (bool), "save_to" (the cache entry
     or None) and "backend" (str or None); weights.npy and normals.npy beside the points
     hold those when given."""
-    try:
-        points = np.load(source, allow_pickle=False)
-        weights = _optional(Path(source).with_name("weights.npy"))
-        mode = _saved_mode(job["mode"])
-        normals = (_optional(Path(source).with_name("normals.npy"))
-                   if mode.normals == "given" else None)
-        request = BuildRequest(points, weights, mode, normals, bool(job["signatures"]),
-                               None if job["save_to"] is None else Path(job["save_to"]),
-                               job["backend"])
-        ac, written = request.run(lambda f, s: sender.send(("progress", f, s)))
-        if written is None:
-            ac.save(target)
-            written = Path(target)
-        sender.send(("done", str(written)))
-    except errors.AlphaScoopError as error:
-        sender.send(("error", type(error).__name__, str(error)))
-    except MemoryError:
-        sender.send(("error", "MemoryError", "not enough memory to build this point set"))
-    except Exception as error:  # reported to the user as one line, never a traceback
-        sender.send(("error", "AlphaScoopError", f"unexpected error in the build "
-                                                 f"({type(error).__name__}: {error})"))
-    finally:
-        sender.close()
+    points = np.load(source, allow_pickle=False)
+    weights = _optional(Path(source).with_name("weights.npy"))
+    mode = _saved_mode(job["mode"])
+    normals = (_optional(Path(source).with_name("normals.npy"))
+               if mode.normals == "given" else None)
+    request = BuildRequest(points, weights, mode, normals, bool(job["signatures"]),
+                           None if job["save_to"] is None else Path(job["save_to"]),
+                           job["backend"])
+    ac, written = request.run(progress)
+    if written is None:
+        ac.save(target)
+        written = Path(target)
+    return str(written)
 
 
 def _optional(path: Path) -> np.ndarray | None:

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from app.camera import Z_UP, ViewFrame, frame_for
+from app.topology_file import TopologyParts, attach
 from core import AlphaComplex
 from core.complex import at_value
 from core.cursor import ShapeCursor
@@ -19,10 +20,12 @@ from core.modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
 from core.obtain import Obtained, Runner, Source, add_topology, obtain, run_here
 from core.opening import opening_alpha_of
+from core.persistence import Persistence
 from core.progress import Progress
 from core.signatures import Signatures
 
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
+POINTS_READ = "points read"  # the stage reported once the file was read, before the table
 SOURCE_WORDS = {"built": "built", "cache": "loaded from cache",
                 "rebuilt": "rebuilt (its cached table was damaged)"}
 
@@ -32,8 +35,9 @@ class Dataset:
     """A built dataset: its source, complex, spectrum (s,) float64 and timings in seconds.
 
     The topology (signatures, optimal alpha, persistence) may come after the table: until
-    `has_topology`, `signatures` and `optimal_alpha` are None and `default_alpha` is the quick
-    choice (quick_alpha); with_topology(dataset) completes it.
+    `has_topology`, `signatures`, `optimal_alpha` and `persistence` are None and
+    `default_alpha` is the quick choice (quick_alpha); with_topology(dataset) completes it
+    here, with_parts(dataset, parts) with what a topology process found.
     """
 
     path: Path
@@ -56,6 +60,7 @@ class Dataset:
     #: numbers aligned with ac.points (None for other point sets).
     molecule: MoleculeMeasures | None = None
     atomic_numbers: np.ndarray | None = None
+    persistence: Persistence | None = None  # known with the topology (None before)
 
     @property
     def has_topology(self) -> bool:
@@ -115,7 +120,8 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     app.build_process.ChildRunner, which Cancel kills mid-triangulation). Without `topology`
     the dataset is returned as soon as the slider can use it (the table and its cursor); the
     window then completes it with with_topology in the background. A cached table that holds
-    its topology is always returned complete.
+    its topology is always returned complete. The stage POINTS_READ is reported once the
+    file was read and checked for the mode, before the table is built or loaded.
     """
     mode = mode or Mode()
     path = Path(path)
@@ -128,6 +134,7 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
         progress(READ_SHARE + BUILD_SHARE * fraction, stage)
 
     normals = file_normals(mode, pointset.attributes, path.name)
+    progress(READ_SHARE, POINTS_READ)  # the window lets its shown dataset go now
     obtained = obtain(pointset.points, weights=pointset.weights, mode=mode, normals=normals,
                       signatures=topology, runner=runner, progress=build_progress)
     ac = obtained.complex
@@ -182,7 +189,20 @@ def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> 
     ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
     return replace(dataset, signatures=ac.signatures(), optimal_alpha=float(ac.optimal_alpha()),
                    default_alpha=float(default), entry=obtained.entry,
+                   persistence=ac.persistence(),
                    topology_seconds=0.0 if came else time.perf_counter() - started)
+
+
+def with_parts(dataset: Dataset, parts: TopologyParts, seconds: float) -> Dataset:
+    """The dataset completed with the topology a topology process computed for its table
+    (app.topology_process): its complex is the same table with that topology attached."""
+    ac = attach(dataset.ac, parts)
+    default = dataset.default_alpha if dataset.molecule is not None else parts.default_alpha
+    ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
+    return replace(dataset, ac=ac, signatures=ac.signatures(), optimal_alpha=parts.optimal_alpha,
+                   default_alpha=float(default), persistence=parts.persistence,
+                   entry=dataset.entry if parts.entry_saved else None,
+                   topology_seconds=seconds)
 
 
 def aligned_attributes(attributes: dict[str, np.ndarray], input_index: np.ndarray,

@@ -144,6 +144,8 @@ class InfoPanel(QWidget):
         model.alphaChanged.connect(self.show_shape)
         model.topologyChanged.connect(self.show_data)
         model.topologyChanged.connect(self.show_shape)
+        model.datasetReleased.connect(self.data.clear)
+        model.datasetReleased.connect(self.shape.clear)
 
     def sizeHint(self) -> QSize:
         """A fixed width of WIDTH_CHARACTERS characters, whatever the text shows."""

@@ -69,6 +69,7 @@ class InspectPanel(QWidget):
         self.clear_button.clicked.connect(self.clear)
         model.alphaChanged.connect(self.refresh)
         model.datasetChanged.connect(self.clear)
+        model.datasetReleased.connect(self.clear)
         self.clear()
 
     def show_item(self, item: Inspection) -> None:

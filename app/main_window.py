@@ -17,10 +17,10 @@ from PySide6.QtCore import QSettings, Qt, QTimer
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 
-from app import memory
+from app import child_process, memory
 from app.alpha_panel import AlphaPanel
 from app.colour_view import Colourer
-from app.dataset import ImportOptions
+from app.dataset import POINTS_READ, ImportOptions
 from app.help import ExplainPanel
 from app.import_dialog import ask_import_options
 from app.info_panel import InfoPanel
@@ -33,6 +33,7 @@ from app.mode_panel import ModePanel
 from app.model import ExplorerModel
 from app.palette import ATOM_STYLE, CAVITY_STYLE, cpk_rgb
 from app.progress_widget import ProgressWidget
+from app.reopen import ReopenFallback
 from app.resources import ICON_PATH
 from app.scene import scene_data
 from app.scene.interactive import interactive_scene
@@ -58,6 +59,7 @@ class MainWindow(QMainWindow):
         self.mode = Mode()  # the alpha mode of the next open or rebuild
         self.last_options: ImportOptions | None = None  # how the last file was read
         self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
+        self.fallback: ReopenFallback | None = None  # re-opened if the running load stops
         self.model = ExplorerModel()
         self.loader = Runner(self)  # loads and rebuilds: a newer one supersedes the older
         self.topology = Runner(self)  # the topology after a load (a newer one supersedes it)
@@ -95,6 +97,7 @@ class MainWindow(QMainWindow):
             self.open_asking), self.colourer, self.explain_dock)
         self._connect()
         self._restore_layout()
+        child_process.remove_orphans()  # scratch folders of a killed window's builds
 
     def _add_dock(self, title: str, widget: QWidget, area: Qt.DockWidgetArea) -> QDockWidget:
         """Put widget in a named dock (names let QSettings restore the layout)."""
@@ -124,6 +127,7 @@ class MainWindow(QMainWindow):
         self.job_progress.cancelRequested.connect(self.jobs.cancel)
         self.model.datasetChanged.connect(self._show_dataset)
         self.model.alphaChanged.connect(self._show_shape)
+        self.model.datasetReleased.connect(self._show_released)
         self.layers_panel.styleChanged.connect(self._set_style)
         self.mode_panel.modeChosen.connect(self.set_mode)
 
@@ -144,8 +148,9 @@ class MainWindow(QMainWindow):
 
     def set_mode(self, mode: Mode, rebuild: bool = True) -> int | None:
         """Use the alpha `mode` from now on; with `rebuild`, build the open file again in it
-        (in the background: the current shape stays until the new table is ready), read as
-        it was. Returns the rebuild's request id, None when nothing was started."""
+        (in the background, read as it was; the current table is released once the file is
+        read, and comes back from the cache if the rebuild is cancelled or fails). Returns
+        the rebuild's request id, None when nothing was started."""
         self.mode = mode
         self.mode_panel.set_mode(mode)
         dataset = self.model.dataset
@@ -153,6 +158,36 @@ class MainWindow(QMainWindow):
             return None
         self.progress.start(f"rebuilding {dataset.path.name}: {mode.describe()}")
         return self.loader.start(load_job(dataset.path, mode, self.last_options))
+
+    def _release(self) -> None:
+        """Let the shown dataset go once a new load has read its file (before its table is
+        built or loaded), so the window never holds two tables; remember how to re-open it
+        (from the table cache) should the load be cancelled or fail. The view is empty
+        meanwhile and the status line says why. A file that cannot be read leaves it be."""
+        dataset = self.model.dataset
+        if dataset is None:
+            return
+        self.fallback = ReopenFallback(dataset.path, dataset.ac.mode, self.last_options)
+        self.topology.cancel()  # its job holds the dataset: stop it now
+        self.model.release()
+        self.status.setText(f"{self.loader.title}: {dataset.path.name} was closed to make room "
+                            "(Cancel re-opens it)")
+
+    def _reopen_fallback(self, why: str) -> bool:
+        """After a cancelled or failed load: re-open the file released for it (its table comes
+        from the cache); False when none was (a still shown one keeps its mode)."""
+        fallback, self.fallback = self.fallback, None
+        if fallback is None:
+            if self.model.dataset is not None:  # the shown table's mode stays the current one
+                self.set_mode(self.model.dataset.ac.mode, rebuild=False)
+            return False
+        self.mode = fallback.mode
+        self.mode_panel.set_mode(fallback.mode)
+        self.progress.start(f"re-opening {fallback.path.name}")
+        self.last_options = fallback.options
+        self.loader.start(load_job(fallback.path, fallback.mode, fallback.options))
+        self.status.setText(f"{why}; re-opening {fallback.path.name}")
+        return True
 
     def _on_job_done(self, _request: int, message: str) -> None:
         """An export finished: say what it wrote."""
@@ -170,12 +205,16 @@ class MainWindow(QMainWindow):
         self.report(f"{self.jobs.title} cancelled; nothing was written")
 
     def _on_progress(self, _request: int, fraction: float, stage: str) -> None:
-        """Show the open's progress (the runner drops older requests' reports)."""
+        """Show the open's progress (the runner drops older requests' reports); once the
+        file is read, the shown dataset is released."""
+        if stage == POINTS_READ:
+            self._release()
         self.progress.update_progress(fraction, stage)
 
     def _on_loaded(self, _request: int, dataset) -> None:
         """Adopt the dataset of the current request (the runner drops stale ones)."""
         self.progress.stop()
+        self.fallback = None
         self.prefs.add_recent(dataset.path)
         self.mode_panel.show_built(dataset.ac.mode)
         self.model.set_dataset(dataset)
@@ -204,18 +243,16 @@ class MainWindow(QMainWindow):
         self.status.setText(f"{message}; the slider still works")
 
     def _on_failed(self, _request: int, message: str) -> None:
-        """Show why the current request failed; the previous dataset stays."""
+        """Show why the current request failed; the file shown before comes back."""
         self.progress.stop()
-        if self.model.dataset is not None:  # the shown table's mode stays the current one
-            self.set_mode(self.model.dataset.ac.mode, rebuild=False)
+        self._reopen_fallback("Opening failed")
         QMessageBox.warning(self, "Could not open the file", message)
 
     def _on_cancelled(self, _request: int) -> None:
-        """Note a cancelled open in the status bar."""
+        """Note a cancelled open in the status bar; the file shown before comes back."""
         self.progress.stop()
-        if self.model.dataset is not None:
-            self.set_mode(self.model.dataset.ac.mode, rebuild=False)
-        self.status.setText("Opening cancelled.")
+        if not self._reopen_fallback("Opening cancelled"):
+            self.status.setText("Opening cancelled.")
 
     def _give_back_memory(self, *_outcome) -> None:
         """Once this event is handled (the old dataset or a cancelled load's arrays are
@@ -235,6 +272,12 @@ class MainWindow(QMainWindow):
         self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
+
+    def _show_released(self) -> None:
+        """The dataset was released: an empty view until the next one arrives."""
+        self.scene.clear()
+        self.scene.render()
+        self.setWindowTitle("Alpha Scoop")
 
     def _show_shape(self) -> None:
         """New alpha: swap layer connectivity, one render, status line."""

@@ -24,6 +24,7 @@ class ExplorerModel(QObject):
     datasetChanged = Signal()
     alphaChanged = Signal()
     topologyChanged = Signal()  # the dataset's topology (signatures, optimal alpha) arrived
+    datasetReleased = Signal()  # the dataset was let go (a new load starts): no dataset now
 
     def __init__(self) -> None:
         """Start empty: no dataset, index -1."""
@@ -81,11 +82,22 @@ class ExplorerModel(QObject):
         self.datasetChanged.emit()
         self.alphaChanged.emit()
 
+    def release(self) -> None:
+        """Let the dataset go (before a new one loads, so two are never in memory at once);
+        emits datasetReleased when there was one."""
+        if self.dataset is None:
+            return
+        self.dataset, self._cursor, self._shape = None, None, None
+        self.index = -1
+        self.history.reset(self.index)
+        self.touched = False
+        self.datasetReleased.emit()
+
     def set_topology(self, dataset: Dataset) -> bool:
-        """Take the topology-complete version of the current dataset (same complex); unless
-        the alpha moved since the dataset opened, go to its opening alpha. False (nothing
-        done) for another dataset's result."""
-        if self.dataset is None or dataset.ac is not self.dataset.ac:
+        """Take the topology-complete version of the current dataset (same table: the same
+        TableIndex); unless the alpha moved since the dataset opened, go to its opening
+        alpha. False (nothing done) for another dataset's result."""
+        if self.dataset is None or dataset.ac.index is not self.dataset.ac.index:
             return False
         self.dataset = dataset
         self.topologyChanged.emit()

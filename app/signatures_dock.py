@@ -61,15 +61,22 @@ def symlog_threshold(values: np.ndarray) -> float:
     return float(np.quantile(size, 0.05)) if len(size) else 1.0
 
 
-def markers_of(ac) -> tuple[Marker, list[Marker]]:
-    """The optimal alpha and the suggested alphas of a complex, as markers."""
-    optimal = float(ac.optimal_alpha())
+def markers_of(ac, optimal: float | None = None) -> tuple[Marker, list[Marker]]:
+    """The optimal alpha (ac's own unless given: the dataset knows it) and the suggested
+    alphas of a complex, as markers."""
+    optimal = float(ac.optimal_alpha() if optimal is None else optimal)
     suggested = [
         Marker(r.alpha, f"suggestion {i}: Betti numbers {r.betti} for alpha in "
                         f"[{r.low:.4g}, {r.high:.4g})")
         for i, r in enumerate(ac.suggest_alphas(N_SUGGESTIONS), start=1)
     ]
     return Marker(optimal, "optimal alpha (CGAL): every point in one solid"), suggested
+
+
+def persistence_of(dataset):
+    """The dataset's persistence pairs: found with its topology (in a topology process, so
+    the GUI thread does not compute them), else computed by its complex."""
+    return dataset.ac.persistence() if dataset.persistence is None else dataset.persistence
 
 
 def measure_names(dim: int) -> tuple[str, str]:
@@ -112,6 +119,7 @@ class SignaturesPanel(QWidget):
         self.drawn_pairs: list[DrawnPairs] = []
         model.datasetChanged.connect(self.plot)
         model.topologyChanged.connect(self.plot)
+        model.datasetReleased.connect(self.plot)
         model.alphaChanged.connect(self.move_cursor)
         self.canvas.mpl_connect("button_press_event", self._clicked)
         self.canvas.mpl_connect("motion_notify_event", self._hovered)
@@ -133,7 +141,7 @@ class SignaturesPanel(QWidget):
         for ax in axes[:3]:
             self._add_markers(ax)
         self.persistence_ax = axes[3]
-        self.drawn_pairs = draw_persistence(axes[3], self.model.dataset.ac.persistence(),
+        self.drawn_pairs = draw_persistence(axes[3], persistence_of(self.model.dataset),
                                             np.asarray(sig.alphas))
         self.cursors.append(axes[3].axvline(sig.alphas[-1], color="#444444", linewidth=1))
         self.death_cursor = axes[3].axhline(sig.alphas[-1], color="#444444", linewidth=1)
@@ -170,7 +178,7 @@ class SignaturesPanel(QWidget):
 
     def _add_markers(self, ax) -> None:
         """The optimal (★) and suggested (▼) alphas at the top edge of ax (clickable)."""
-        optimal, suggested = markers_of(self.model.dataset.ac)
+        optimal, suggested = markers_of(self.model.dataset.ac, self.model.dataset.optimal_alpha)
         for markers, symbol, colour, size in ((suggested, "v", SUGGESTED_COLOUR, 7),
                                               ([optimal], "*", OPTIMAL_COLOUR, 13)):
             if not markers:
@@ -232,7 +240,7 @@ class SignaturesPanel(QWidget):
 
     def _pair_at(self, event) -> tuple[str, float, float] | None:
         """The persistence pair under the mouse (series name, birth, death), or None."""
-        top = infinity_level(self.model.dataset.ac.persistence(), self.model.spectrum)
+        top = infinity_level(persistence_of(self.model.dataset), self.model.spectrum)
         return nearest_pair(self.persistence_ax, self.drawn_pairs, event.x, event.y, top)
 
     def _hovered(self, event) -> None:

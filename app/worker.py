@@ -3,17 +3,19 @@ window's background runners (app.jobs).
 
 Big triangulations run in a child process (app.build_process) that Cancel kills at once. The
 load job hands the dataset over as soon as the slider can use it (the table and its cursor);
-the topology job (signatures, optimal alpha, persistence) follows in a runner of its own, so
-a newer open cancels it and drops its result like any stale request.
+the topology job (signatures, optimal alpha, persistence) follows in a runner of its own (in
+a child process of its own for big sets: app.topology_process), so a newer open cancels it
+and drops its result like any stale request.
 """
 
 from __future__ import annotations
 
 import threading
+import time
 from pathlib import Path
 
-from app import build_process
-from app.dataset import Dataset, ImportOptions, load_dataset, with_topology
+from app import build_process, topology_process
+from app.dataset import Dataset, ImportOptions, load_dataset, with_parts, with_topology
 from app.jobs import Job, Progress
 from core.errors import AlphaScoopError, Cancelled
 from core.modes import Mode
@@ -34,15 +36,21 @@ def load_job(path: str | Path, mode: Mode | None = None,
 
 
 def topology_job(dataset: Dataset) -> Job:
-    """A job that completes dataset's topology (app.dataset.with_topology); its result is the
-    completed Dataset. Cancel stops it between its stages."""
+    """A job that completes dataset's topology; its result is the completed Dataset. Big
+    datasets are completed in a topology process (app.topology_process) that Cancel kills;
+    small ones here (app.dataset.with_topology), stopped by Cancel between its stages."""
     def work(progress: Progress, cancel: threading.Event) -> Dataset:
         def check() -> None:
             if cancel.is_set():
                 raise Cancelled("topology cancelled")
 
         progress(0.0, "topology")
-        return with_topology(dataset, check)
+        if dataset.has_topology or len(dataset.ac.points) < topology_process.IN_THREAD_BELOW:
+            return with_topology(dataset, check)
+        started = time.perf_counter()
+        parts = topology_process.topology_parts(dataset.ac, dataset.entry, progress, cancel)
+        check()
+        return with_parts(dataset, parts, time.perf_counter() - started)
 
     return Job(f"topology of {dataset.path.name}", work,
                lambda error: f"topology of {dataset.path.name} failed: "

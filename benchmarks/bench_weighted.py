@@ -66,7 +66,8 @@ def ours(path: str, weighted: bool) -> dict:
     ac = AlphaComplex.from_points(points, weights=weights if weighted else None,
                                   progress=clock)
     result = probe.result(counts=[len(ac.simplices(k)) for k in range(ac.dim + 1)],
-                          hidden=int((ac.input_index < 0).sum()))
+                          hidden=int((ac.input_index < 0).sum()),
+                          backend=ac.build_info.backend, note=ac.build_info.backend_note)
     result["stages"] = clock.stages()
     return result
 
@@ -92,6 +93,8 @@ def main(argv: list[str] | None = None) -> int:
             continue
         print(f"  {name:<22} {figures['seconds']:7.2f} s wall {figures['cpu_seconds']:7.2f} s cpu"
               f"  peak +{figures['extra_mib']:.0f} MiB")
+        if figures.get("note"):
+            print(f"      note: {figures['note']}")
         for stage in figures.get("stages", []):
             print(f"      {stage['stage']:<28} {stage['seconds']:6.2f} s")
     if "hidden" in mine:

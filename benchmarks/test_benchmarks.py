@@ -240,12 +240,13 @@ def test_backend_benchmark_small_run(tmp_path, capsys) -> None:
     from benchmarks.bench_backends import main as backends_main
 
     out = tmp_path / "backends.json"
-    steps = "scipy Delaunay,gmsh triangulation,build qhull"
+    steps = "scipy Delaunay,qhull triangulation,gmsh triangulation,build qhull"
     assert backends_main(["--n", "3000", "--sets", "torus", "--steps", steps,
                           "--json", str(out)]) == 0
     result = json.loads(out.read_text())["results"]["torus"]
     delaunay = result["scipy Delaunay"]
     assert delaunay["cells"] > 0 and result["build qhull"]["backend"] == "qhull"
+    assert result["qhull triangulation"]["cells"] == delaunay["cells"]
     assert "error" not in result["gmsh triangulation"] or "gmsh" in result[
         "gmsh triangulation"]["error"]
     assert "gmsh triangulation / scipy Delaunay" in capsys.readouterr().out

@@ -2,7 +2,9 @@
 
 `first_open` opens a file in a new MainWindow with an empty table cache, as a user's first
 open is: file -> slider live (the model has the dataset: the slider moves shapes) -> topology
-done (signatures and optimal alpha; the same moment when the window waits for them). With
+done (signatures and optimal alpha; the same moment when the window waits for them), with the
+longest GUI-thread stall in between (a 10 ms QTimer probe) and the build and topology
+processes' own peaks (sampled VmHWM). With
 `soak`, the same window then opens and cancels the file 10 times and opens the two files
 alternately 10 times; the process RSS is read after each outcome.
 """
@@ -19,6 +21,9 @@ from isolate import MIB, peak_rss_mib, rss_mib
 TIMEOUT_MS = 3_600_000
 CANCELS, REOPENS = 10, 10
 CANCEL_AFTER_S = 2.0  # cancel once the build has run this long (the child is started)
+PROBE_MS = 10  # the stall probe's tick
+DRAG_STEPS = 200  # critical values a probe's drag walks over
+SAMPLE_S = 0.1  # how often the children's peak memory is read
 
 
 def _wait(signal, timeout_ms: int = TIMEOUT_MS) -> tuple:
@@ -72,6 +77,89 @@ def _topology_signal(win):
     return getattr(win.model, "topologyChanged", None)
 
 
+class StallProbe:
+    """A QTimer that ticks every PROBE_MS on the GUI thread: a gap between two ticks beyond
+    PROBE_MS is a time the GUI thread could not answer (a slider drag froze that long)."""
+
+    def __init__(self) -> None:
+        from PySide6.QtCore import QTimer
+
+        self.timer = QTimer()
+        self.timer.setInterval(PROBE_MS)
+        self.timer.timeout.connect(self._tick)
+        self.last = 0.0
+        self.gaps: list[tuple[float, float]] = []  # (when the gap ended, its stall seconds)
+        self.steps: list[tuple[float, float]] = []  # (when a drag step ended, its seconds)
+        self.drag = None
+
+    def start(self, drag=None) -> None:
+        """Start measuring now; with `drag` (a function called on every tick: a slider step's
+        query) its durations are recorded too."""
+        self.last, self.gaps, self.steps, self.drag = time.perf_counter(), [], [], drag
+        self.timer.start()
+
+    def _tick(self) -> None:
+        now = time.perf_counter()
+        self.gaps.append((now, max(now - self.last - PROBE_MS / 1000, 0.0)))
+        if self.drag is not None:
+            self.drag()
+            self.steps.append((time.perf_counter(), time.perf_counter() - now))
+        self.last = time.perf_counter()
+
+    def longest_step(self, until: float = float("inf")) -> float:
+        """The longest drag step (seconds) among those that ended by `until`."""
+        return max((step for end, step in self.steps if end <= until), default=0.0)
+
+    def stop(self) -> None:
+        """Stop measuring."""
+        self._tick()
+        self.timer.stop()
+
+    def longest(self, until: float = float("inf")) -> float:
+        """The longest stall (seconds) among the gaps that ended by `until` (perf_counter)."""
+        return max((gap for end, gap in self.gaps if end <= until), default=0.0)
+
+
+class ChildPeaks:
+    """Samples the window's child processes (build, topology) every SAMPLE_S: each one's own
+    peak resident set (VmHWM, which starts afresh at exec, unlike ru_maxrss), by name."""
+
+    def __init__(self) -> None:
+        import threading
+
+        self.peaks: dict[str, float] = {}
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        import multiprocessing
+
+        while not self._stop.wait(SAMPLE_S):
+            for child in multiprocessing.active_children():
+                peak = _vm_hwm_mib(child.pid)
+                if peak:
+                    self.peaks[child.name] = max(self.peaks.get(child.name, 0.0), peak)
+
+    def stop(self) -> dict[str, float]:
+        """Stop sampling; {child process name: peak MiB}."""
+        self._stop.set()
+        self._thread.join()
+        return dict(self.peaks)
+
+
+def _vm_hwm_mib(pid: int | None) -> float:
+    """A process's peak resident set in MiB (0 when it is gone)."""
+    try:
+        with open(f"/proc/{pid}/status", encoding="ascii") as handle:
+            for line in handle:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except (OSError, ValueError):
+        pass
+    return 0.0
+
+
 def _cpu_seconds() -> float:
     """CPU seconds so far of this process (all threads) and of its waited-for children (the
     build processes)."""
@@ -79,7 +167,23 @@ def _cpu_seconds() -> float:
     return time.process_time() + children.ru_utime + children.ru_stime
 
 
-def _open_timed(win, path: str) -> dict:
+def _dragging(model):
+    """A slider drag's queries without their renders: each call moves a cursor of its own
+    one critical value, back and forth over DRAG_STEPS values below the opening alpha."""
+    ds = model.dataset
+    cursor, spectrum, start = ds.ac.cursor(), ds.spectrum, model.index
+    state = {"at": start, "way": -1}
+
+    def step() -> None:
+        if not start - DRAG_STEPS < state["at"] + state["way"] <= start:
+            state["way"] = -state["way"]
+        state["at"] += state["way"]
+        cursor.move(alpha=float(spectrum[max(state["at"], 0)]))
+
+    return step
+
+
+def _open_timed(win, path: str, drag: bool = False) -> dict:
     """Open path; seconds (wall, and CPU of this process and its build process) until the
     slider is live and until the topology is done."""
     topology = _topology_signal(win)
@@ -88,6 +192,7 @@ def _open_timed(win, path: str) -> dict:
     def stamp(name: str) -> None:
         stamps.setdefault(name, (time.perf_counter(), _cpu_seconds()))
 
+    probe = StallProbe()
     if topology is not None:
         topology.connect(lambda *_: stamp("topology"))
     stamp("start")
@@ -95,32 +200,49 @@ def _open_timed(win, path: str) -> dict:
     _wait(win.model.datasetChanged)
     stamp("live")
     _spin(0)  # the first frame is requested; let the event loop run once
+    probe.start(_dragging(win.model) if drag else None)
     if topology is not None and "topology" not in stamps and not win.model.dataset.has_topology:
         _wait(topology)
+    probe.stop()
     ds = win.model.dataset
     info = getattr(ds.ac, "build_info", None)
     (start, start_cpu), (live, live_cpu) = stamps["start"], stamps["live"]
     done, done_cpu = stamps.get("topology", stamps["live"])
     return {"live_seconds": live - start, "live_cpu_seconds": live_cpu - start_cpu,
             "topology_seconds": done - start, "topology_cpu_seconds": done_cpu - start_cpu,
+            # while the topology computes (the docks filling in when it arrives apart)
+            "longest_stall_seconds": probe.longest(stamps.get("topology", (0.0,))[0]),
+            "longest_stall_with_arrival_seconds": probe.longest(),
+            "longest_step_seconds": probe.longest_step(stamps.get("topology", (0.0,))[0]),
             "backend": getattr(info, "backend", "qhull"),
             "cells": len(ds.ac.simplices(ds.ac.dim)), "points": len(ds.ac.points)}
 
 
-def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool) -> dict:
-    """First open of points_path in a new window (empty cache): times, peaks, and with
-    `soak` the RSS after cancelled opens of cancel_path and re-opens of points_path /
-    other_path."""
-    from app import memory
+def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool,
+               topology_in_thread: bool = False, drag: bool = False) -> dict:
+    """First open of points_path in a new window (empty cache): times, peaks, the longest
+    GUI-thread stall while the topology completes, and with `soak` the RSS after cancelled
+    opens of cancel_path and re-opens of points_path / other_path. `topology_in_thread`
+    runs the topology pass in a thread of the window (as before issue 15's topology process),
+    for comparison; `drag` has the stall probe step a cursor on every tick (a slider drag's
+    queries) while the topology computes."""
+    from app import memory, topology_process
 
+    if topology_in_thread:
+        topology_process.IN_THREAD_BELOW = 2**62
     with tempfile.TemporaryDirectory(prefix="alphascoop-first-open-") as folder:
         os.environ["ALPHASCOOP_CACHE_DIR"] = os.path.join(folder, "cache")
         win = _window(folder)
         base = rss_mib()
-        result = _open_timed(win, points_path)
+        children = ChildPeaks()
+        result = _open_timed(win, points_path, drag)
+        win.topology.wait()  # the topology process has ended too
         _spin(200)  # the deferred give-back runs
+        peaks = children.stop()
         result.update(base_rss_mib=base, rss_after_mib=rss_mib(), peak_mib=peak_rss_mib(),
-                      child_peak_mib=memory.peak_rss_bytes(children=True) / MIB)
+                      child_peak_mib=max(peaks.values(), default=0.0),
+                      child_peaks_mib=peaks,
+                      child_maxrss_mib=memory.peak_rss_bytes(children=True) / MIB)
         if soak:
             result["soak"] = _soak(win, points_path, other_path, cancel_path)
         win.close()

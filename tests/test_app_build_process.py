@@ -9,7 +9,7 @@ import time
 import numpy as np
 import pytest
 
-from app import build_process
+from app import build_process, child_process
 from core import AlphaComplex
 from core.cache import entry_path
 from core.errors import AlphaScoopError, Cancelled, InputError
@@ -105,7 +105,7 @@ def test_a_child_that_dies_is_a_readable_error():
             return None
 
     with pytest.raises(AlphaScoopError, match="exit code -9"):
-        build_process._follow(Dead(), receiver, never, threading.Event())
+        child_process._follow(Dead(), receiver, never, threading.Event())
 
 
 def test_a_cached_table_without_signatures_is_upgraded_in_place(in_process):

@@ -2,8 +2,9 @@
 
 One window opens a torus scan and cancels it 10 times, then opens a torus and a cube
 alternately 5 times each (the first of each built in the build process, the rest read from
-the table cache). The process RSS after every re-open stays within 1.2x of its value after
-the first, every old dataset is released, and no build process is left behind.
+the table cache). The process RSS after every re-open (and its topology, from the topology
+process) stays within 1.2x of its value after the first, every old dataset is released, and
+no build process is left behind.
 """
 
 from __future__ import annotations
@@ -74,6 +75,7 @@ def test_cancelled_opens_and_reopens_keep_memory_flat(window, qtbot, two_files) 
     for i in range(REOPENS):
         with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
             window.open_path(two_files[i % 2])
+        qtbot.waitUntil(lambda: not window.topology.is_busy(), timeout=BUILD_TIMEOUT_MS)
         qtbot.wait(SETTLE_MS)
         alive.append(weakref.ref(window.model.dataset))
         resident.append(memory.rss_bytes())

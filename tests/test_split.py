@@ -179,3 +179,23 @@ def test_weighted_split_build_equals_gudhi(d: int, monkeypatch) -> None:
     assert ac.build_info.backend_note == ""
     assert (np.asarray(ac.input_index) < 0).sum() > 50
     assert_matches_gudhi(ac, gudhi_weighted_table(points, weights), len(points))
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_weighted_certification_tells_regular_from_delaunay(d: int) -> None:
+    """core.backends.certify with weights: Qhull's regular triangulation passes; the
+    Delaunay triangulation of the same points (not regular for these weights) does not."""
+    from core.backends.certify import why_not_delaunay
+    from core.delaunay import delaunay_cells, regular_cells
+
+    rng = np.random.default_rng(40 + d)
+    points = prepared(rng.uniform(size=(800, d)))
+    weights = spacing_weights(rng, points, 2.0)
+    cells, nbrs = regular_cells(points, weights)
+    hidden = np.ones(len(points), dtype=bool)
+    hidden[cells.ravel()] = False
+    assert hidden.any()
+    assert why_not_delaunay(points, cells, nbrs, weights=weights, hidden=hidden) == ""
+    plain, around = delaunay_cells(points)
+    assert why_not_delaunay(points, plain, around, weights=weights) != ""
+    assert why_not_delaunay(points, plain, around) == ""

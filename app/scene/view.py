@@ -122,11 +122,13 @@ class Scene:
         return actor
 
     def clear(self) -> None:
-        """Remove every layer's actor (only when the dataset changes)."""
+        """Remove every layer's actor and forget the shape (only when the dataset changes or
+        is released)."""
         for name in self.layers:
             self.plotter.remove_actor(name, reset_camera=False, render=False)
         self.layers.clear()
         self.styles.clear()
+        self.shape = None
 
     def set_shape(self, shape) -> None:
         """Show an AlphaShape: swap the connectivity of visible layers, mark hidden ones dirty."""

@@ -125,11 +125,16 @@ def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None
     """Each inner facet once (of a cell in the (t,) bool mask `near`, when given): cell t,
     its vertex i opposite the facet, the cell u across and u's vertex j opposite it
     (neighbour tables are symmetric by construction)."""
-    t, i = np.nonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
-    u = neighbors[t, i]
-    if near is not None:
-        pick = near[t] | near[u]
-        t, i, u = t[pick], i[pick], u[pick]
+    if near is None:
+        t, i = np.nonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
+        u = neighbors[t, i]
+    else:  # the facets of the near cells; a facet between two of them once
+        rows = np.flatnonzero(near)
+        row, i = np.nonzero(neighbors[rows] >= 0)
+        t = rows[row]
+        u = neighbors[t, i]
+        once = ~near[u] | (u > t)
+        t, i, u = t[once], i[once], u[once]
     j = np.argmax(neighbors[u] == t[:, None].astype(np.int32), axis=1)
     return t, i, u, j
 

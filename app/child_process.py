@@ -1,0 +1,151 @@
+"""Run a long pass in a spawned child process that Cancel kills at once and that never holds
+the window's GIL (the build: app.build_process; the topology: app.topology_process).
+
+The child runs `work(*args, progress)` and answers through a pipe: ("progress", fraction,
+stage), then ("done", text) or ("error", class name, message). Its files live in a temporary
+folder named after the window's pid (`scratch`), so a window that was killed leaves folders
+the next window can recognise and remove (`remove_orphans`); the child also exits by itself
+when its window is gone.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import shutil
+import signal
+import tempfile
+import threading
+import time
+from collections.abc import Callable
+from multiprocessing.connection import Connection
+from pathlib import Path
+
+from core import errors
+from core.progress import Progress
+
+POLL_SECONDS = 0.1
+PARENT_POLL_SECONDS = 1.0
+PREFIXES = ("alphascoop-build-", "alphascoop-topology-")
+
+
+def scratch(prefix: str) -> tempfile.TemporaryDirectory:
+    """A temporary folder '<prefix><pid>-<random>' of this process (prefix from PREFIXES)."""
+    return tempfile.TemporaryDirectory(prefix=f"{prefix}{os.getpid()}-")
+
+
+def remove_orphans(folder: str | os.PathLike | None = None) -> list[Path]:
+    """Remove the scratch folders in `folder` (default: the temp dir) whose owner process is
+    dead (a window killed mid-build); folders of living processes, and names without a pid,
+    stay. Returns what was removed."""
+    removed = []
+    for path in Path(folder or tempfile.gettempdir()).glob("alphascoop-*-*-*"):
+        pid = _owner(path.name)
+        if pid is not None and path.is_dir() and not _alive(pid):
+            shutil.rmtree(path, ignore_errors=True)
+            removed.append(path)
+    return removed
+
+
+def _owner(name: str) -> int | None:
+    """The pid in a scratch folder's name, None for other names."""
+    for prefix in PREFIXES:
+        head, _, rest = name.partition(prefix)
+        pid = rest.split("-", 1)[0]
+        if not head and rest and pid.isdigit():
+            return int(pid)
+    return None
+
+
+def _alive(pid: int) -> bool:
+    """True when a process with this pid runs (ours or another user's; a zombie is dead)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        pass
+    try:  # Linux: the state letter follows the parenthesised command name
+        state = Path(f"/proc/{pid}/stat").read_text().rpartition(")")[2].split()[0]
+    except (OSError, IndexError):
+        return True
+    return state not in ("Z", "X")
+
+
+def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
+                 cancel: threading.Event, name: str) -> str:
+    """Run work(*args, progress) in a spawned process; the text it returned. Its errors are
+    raised here as the same core.errors class (MemoryError as MemoryError); Cancelled as
+    soon as `cancel` is set (the child is killed)."""
+    context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
+    receiver, sender = context.Pipe(duplex=False)
+    child = context.Process(target=child_main, args=(work, args, sender, os.getpid()),
+                            name=name, daemon=True)
+    child.start()
+    sender.close()
+    try:
+        return _follow(child, receiver, progress, cancel)
+    finally:
+        if child.is_alive():
+            child.kill()
+        child.join()
+        receiver.close()
+
+
+def _follow(child, receiver: Connection, progress: Progress, cancel: threading.Event) -> str:
+    """Relay the child's messages until it is done; Cancelled as soon as cancel is set."""
+    while True:
+        if cancel.is_set():
+            raise errors.Cancelled("cancelled by the user")
+        try:
+            message = receiver.recv() if receiver.poll(POLL_SECONDS) else None
+        except EOFError:
+            message = ("died",)
+        if message is None:
+            continue
+        kind, *rest = message
+        if kind == "progress":
+            progress(*rest)
+        elif kind == "done":
+            return rest[0]
+        elif kind == "error":
+            raise _error(*rest)
+        else:
+            child.join(1.0)
+            raise errors.AlphaScoopError(
+                f"the background process stopped without a result (exit code "
+                f"{child.exitcode}; out of memory?)")
+
+
+def _error(name: str, text: str) -> Exception:
+    """The exception a child reported by class name."""
+    if name == "MemoryError":
+        return MemoryError(text)
+    error_class = getattr(errors, name, None)
+    if isinstance(error_class, type) and issubclass(error_class, errors.AlphaScoopError):
+        return error_class(text)
+    return errors.AlphaScoopError(text)
+
+
+def child_main(work: Callable[..., str], args: tuple, sender: Connection, parent: int) -> None:
+    """Body of a child process: run work, send its result or its error as one line."""
+    threading.Thread(target=_exit_with_parent, args=(parent,), daemon=True).start()
+    try:
+        sender.send(("done", work(*args, lambda f, s: sender.send(("progress", f, s)))))
+    except errors.AlphaScoopError as error:
+        sender.send(("error", type(error).__name__, str(error)))
+    except MemoryError:
+        sender.send(("error", "MemoryError", "not enough memory for this point set"))
+    except Exception as error:  # reported to the user as one line, never a traceback
+        sender.send(("error", "AlphaScoopError", f"unexpected error in the background process "
+                                                 f"({type(error).__name__}: {error})"))
+    finally:
+        sender.close()
+
+
+def _exit_with_parent(parent: int) -> None:
+    """Child thread: end the process once the window that started it is gone (killed
+    windows leave no build running; its scratch folder is removed by the next window)."""
+    while os.getppid() == parent:
+        time.sleep(PARENT_POLL_SECONDS)
+    os.kill(os.getpid(), signal.SIGKILL)  # at once: nothing of the pass is worth keeping

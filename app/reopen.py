@@ -1,0 +1,21 @@
+"""What the window re-opens when a load it started (after releasing the shown dataset) is
+cancelled or fails: the previous file, in its mode, read as it was (its table comes from the
+cache, so that takes a few percent of a build)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from app.dataset import ImportOptions
+from core.modes import Mode
+
+
+@dataclass(frozen=True)
+class ReopenFallback:
+    """The released dataset's file, its alpha mode and how it was read."""
+
+    path: Path
+    mode: Mode
+    options: ImportOptions | None
+

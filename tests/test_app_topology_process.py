@@ -1,0 +1,166 @@
+"""The topology pass in a child process (issue 15): the same topology as the pass in this
+process, the cache entry upgraded, Cancel kills it, and nothing is left in the temp dir."""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app import child_process, topology_process
+from app.topology_file import read_topology, write_topology
+from core import AlphaComplex
+from core.cache import load_cached
+from core.errors import Cancelled, FileFormatError
+from core.obtain import obtain
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(autouse=True)
+def private_cache(tmp_path, monkeypatch):
+    """Each test starts with an empty table cache."""
+    monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
+
+
+def never(*_args) -> None:
+    """A progress callback that ignores its reports."""
+
+
+def my_scratch() -> list[Path]:
+    """This process's scratch folders in the temp dir."""
+    return list(Path(tempfile.gettempdir()).glob(f"alphascoop-*-{os.getpid()}-*"))
+
+
+def blobs(n: int, dim: int, seed: int) -> np.ndarray:
+    """(n, dim) two noisy blobs and a ring: components, a hole and voids over the spectrum."""
+    rng = np.random.default_rng(seed)
+    angle = rng.uniform(0, 2 * np.pi, n // 2)
+    ring = np.zeros((n // 2, dim))
+    ring[:, 0], ring[:, 1] = np.cos(angle), np.sin(angle)
+    ring += rng.normal(scale=0.1, size=ring.shape)
+    ball = rng.normal(scale=0.3, size=(n - n // 2, dim)) + 3.0
+    return np.concatenate([ring, ball])
+
+
+def assert_same_topology(parts, here: AlphaComplex) -> None:
+    """parts (from the child) equal the pass computed here, array for array."""
+    sig, own = parts.signatures, here.signatures()
+    for name in ("alphas", "betti", "solid_components", "measure", "boundary_measure"):
+        np.testing.assert_array_equal(getattr(sig, name), getattr(own, name), err_msg=name)
+    assert sig.opening_alpha == own.opening_alpha
+    for name in ("vertex_forest", "dual_forest", "dual_edges", "solid_forest"):
+        np.testing.assert_array_equal(getattr(parts.topology, name),
+                                      getattr(here.topology(), name), err_msg=name)
+    for k in (0, here.dim - 1):
+        np.testing.assert_array_equal(parts.persistence.diagram(k), here.persistence().diagram(k))
+    assert parts.optimal_alpha == here.optimal_alpha()
+    assert parts.default_alpha == here.default_alpha()
+
+
+@pytest.mark.parametrize("dim", [3, 2])
+def test_the_child_computes_the_same_topology_and_upgrades_the_entry(dim):
+    points = blobs(3000, dim, seed=dim)
+    obtained = obtain(points)  # the window's load: table cached without its topology
+    assert obtained.entry is not None and not load_cached(points).has_signatures
+    stages: list[str] = []
+    parts = topology_process.topology_parts(obtained.complex, obtained.entry,
+                                            lambda _f, stage: stages.append(stage),
+                                            threading.Event())
+    assert_same_topology(parts, AlphaComplex.from_points(points))
+    assert parts.entry_saved and load_cached(points).has_signatures
+    assert "topology: signatures" in stages
+    assert multiprocessing.active_children() == [] and my_scratch() == []
+
+
+def test_without_a_cache_entry_the_child_reads_a_temporary_copy():
+    points = blobs(1500, 3, seed=7)
+    ac = obtain(points, use_cache=False).complex
+    parts = topology_process.topology_parts(ac, None, never, threading.Event())
+    assert_same_topology(parts, AlphaComplex.from_points(points))
+    assert not parts.entry_saved and my_scratch() == []
+
+
+def test_cancel_kills_the_child_and_leaves_nothing():
+    ac = obtain(blobs(2000, 3, seed=8)).complex
+    cancel = threading.Event()
+
+    def progress(_fraction: float, _stage: str) -> None:
+        cancel.set()  # at the child's first report: it is running
+
+    with pytest.raises(Cancelled):
+        topology_process.topology_parts(ac, None, progress, cancel)
+    assert multiprocessing.active_children() == [] and my_scratch() == []
+
+
+def test_a_topology_file_of_another_table_is_refused(tmp_path):
+    one = AlphaComplex.from_points(blobs(400, 3, seed=9))
+    other = AlphaComplex.from_points(blobs(500, 3, seed=10))
+    write_topology(tmp_path / "t.npz", one, entry_saved=False)
+    assert read_topology(tmp_path / "t.npz", one).signatures.betti.shape[1] == 3
+    with pytest.raises(FileFormatError, match="not this table's topology"):
+        read_topology(tmp_path / "t.npz", other)
+
+
+def test_orphaned_scratch_folders_are_removed_only_when_their_owner_is_dead(tmp_path):
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    orphan = tmp_path / f"alphascoop-build-{dead.pid}-abc"
+    mine = tmp_path / f"alphascoop-topology-{os.getpid()}-def"
+    unnamed = tmp_path / "alphascoop-build-xyz"
+    for folder in (orphan, mine, unnamed):
+        folder.mkdir()
+        (folder / "points.npy").write_bytes(b"x")
+    assert child_process.remove_orphans(tmp_path) == [orphan]
+    assert not orphan.exists() and mine.is_dir() and unnamed.is_dir()
+
+
+ORPHAN = """
+import sys, threading
+from app.child_process import run_in_child
+from test_app_topology_process import sleep_in_child
+run_in_child(sleep_in_child, (sys.argv[1],), lambda *a: None, threading.Event(), "sleeper")
+"""
+
+
+def running(pid: int) -> bool:
+    """True while pid is a process that has not ended (a zombie has)."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return False
+    return stat.rpartition(")")[2].split()[0] not in ("Z", "X")
+
+
+def sleep_in_child(pid_file: str, progress) -> str:
+    """A child body that writes its pid and sleeps (long enough to outlive its parent)."""
+    Path(pid_file).write_text(str(os.getpid()))
+    time.sleep(60)
+    return "slept"
+
+
+def test_a_child_ends_when_its_window_is_killed(tmp_path):
+    pid_file = tmp_path / "pid"
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), str(ROOT / "tests")])}
+    parent = subprocess.Popen([sys.executable, "-c", ORPHAN, str(pid_file)], env=env)
+    try:
+        deadline = time.monotonic() + 60
+        while not pid_file.exists() or not pid_file.read_text():
+            assert time.monotonic() < deadline and parent.poll() is None
+            time.sleep(0.05)
+        child = int(pid_file.read_text())
+    finally:
+        parent.kill()
+        parent.wait()
+    deadline = time.monotonic() + 10
+    while running(child) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not running(child)
