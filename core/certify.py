@@ -85,7 +85,8 @@ class _Mesh:
         the triangulator laid flat or inverted on near-coplanar hull faces. The hull repair
         fills what they covered, if anything."""
         while True:
-            ids = np.flatnonzero(self.bad & self.alive & (self.nbs < 0).any(axis=1))
+            ids = np.flatnonzero(self.bad & self.alive)
+            ids = ids[(self.nbs[ids] < 0).any(axis=1)]
             if not len(ids):
                 return
             dropped = np.zeros(len(self.cells), dtype=bool)
@@ -273,7 +274,9 @@ def _fill_reflex_hull(mesh: _Mesh) -> int:
     the Delaunay triangulation (near-collinear or near-coplanar hull points Qhull left out).
     Returns how many reflex ridges are left unfilled (the hull is then not convex there)."""
     d = mesh.cells.shape[1] - 1
-    t, k = np.nonzero((mesh.nbs < 0) & mesh.alive[:, None] & ~mesh.bad[:, None])
+    t, k = np.nonzero(mesh.nbs < 0)
+    keep = mesh.alive[t] & ~mesh.bad[t]
+    t, k = t[keep], k[keep]
     if not len(t):
         return 0
     others = np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
@@ -429,7 +432,8 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
     if mesh.flips and not _valid(mesh):  # a repair went wrong: keep the backend's cells
         return Certified(tri, mesh.exact, 0, int((tri.neighbors >= 0).sum()) // 2)
     out = _compact(mesh, tri) if mesh.flips else tri
-    invalid = int(np.sum(mesh.bad[:, None] & (mesh.nbs >= 0) & mesh.alive[:, None]))
+    bad = np.flatnonzero(mesh.bad & mesh.alive)
+    invalid = int(np.sum(mesh.nbs[bad] >= 0))
     return Certified(out, mesh.exact, mesh.flips, stuck + invalid + concave,
                      None if mesh.flips else mesh.spheres)
 
