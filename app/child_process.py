@@ -10,6 +10,8 @@ when its window is gone.
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import multiprocessing
 import os
 import shutil
@@ -17,7 +19,7 @@ import signal
 import tempfile
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from multiprocessing.connection import Connection
 from pathlib import Path
 
@@ -29,9 +31,19 @@ PARENT_POLL_SECONDS = 1.0
 PREFIXES = ("alphascoop-build-", "alphascoop-topology-")
 
 
-def scratch(prefix: str) -> tempfile.TemporaryDirectory:
-    """A temporary folder '<prefix><pid>-<random>' of this process (prefix from PREFIXES)."""
-    return tempfile.TemporaryDirectory(prefix=f"{prefix}{os.getpid()}-")
+LOCK_NAME = ".owner.lock"
+
+
+@contextlib.contextmanager
+def scratch(prefix: str) -> Iterator[str]:
+    """A temporary folder '<prefix><pid>-<random>' of this process (prefix from PREFIXES),
+    removed on exit. The process holds an advisory lock on a file in it for as long as it
+    exists, so `remove_orphans` can tell a living owner even where its pid is not visible
+    (another pid namespace sharing the temp dir); the kernel drops the lock when it dies."""
+    with tempfile.TemporaryDirectory(prefix=f"{prefix}{os.getpid()}-") as folder:
+        with open(Path(folder) / LOCK_NAME, "wb") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            yield folder
 
 
 def remove_orphans(folder: str | os.PathLike | None = None) -> list[Path]:
@@ -41,10 +53,22 @@ def remove_orphans(folder: str | os.PathLike | None = None) -> list[Path]:
     removed = []
     for path in Path(folder or tempfile.gettempdir()).glob("alphascoop-*-*-*"):
         pid = _owner(path.name)
-        if pid is not None and path.is_dir() and not _alive(pid):
+        if pid is not None and path.is_dir() and not _alive(pid) and not _locked(path):
             shutil.rmtree(path, ignore_errors=True)
             removed.append(path)
     return removed
+
+
+def _locked(folder: Path) -> bool:
+    """True when some living process holds the folder's owner lock (see `scratch`)."""
+    try:
+        with open(folder / LOCK_NAME, "rb") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except FileNotFoundError:
+        return False
+    except OSError:  # held (BlockingIOError), or unreadable: leave the folder alone
+        return True
+    return False
 
 
 def _owner(name: str) -> int | None:

@@ -16,9 +16,12 @@ from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
 from matplotlib.figure import Figure
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
+from app.dataset import Dataset
 from app.model import ExplorerModel
 from app.palette import CLASS_COLOURS
 from app.persistence_plot import DrawnPairs, draw_persistence, infinity_level, nearest_pair
+from core.complex import AlphaComplex
+from core.persistence import Persistence
 
 MAX_SAMPLES = 2000
 MIN_PLOT_HEIGHT = 160  # pixels: tick labels, titles and a readable plot area
@@ -61,7 +64,7 @@ def symlog_threshold(values: np.ndarray) -> float:
     return float(np.quantile(size, 0.05)) if len(size) else 1.0
 
 
-def markers_of(ac, optimal: float | None = None) -> tuple[Marker, list[Marker]]:
+def markers_of(ac: AlphaComplex, optimal: float | None = None) -> tuple[Marker, list[Marker]]:
     """The optimal alpha (ac's own unless given: the dataset knows it) and the suggested
     alphas of a complex, as markers."""
     optimal = float(ac.optimal_alpha() if optimal is None else optimal)
@@ -73,7 +76,7 @@ def markers_of(ac, optimal: float | None = None) -> tuple[Marker, list[Marker]]:
     return Marker(optimal, "optimal alpha (CGAL): every point in one solid"), suggested
 
 
-def persistence_of(dataset):
+def persistence_of(dataset: Dataset) -> Persistence:
     """The dataset's persistence pairs: found with its topology (in a topology process, so
     the GUI thread does not compute them), else computed by its complex."""
     return dataset.ac.persistence() if dataset.persistence is None else dataset.persistence

@@ -64,6 +64,7 @@ def read_topology(path: str | os.PathLike, ac: AlphaComplex) -> TopologyParts:
                       "sig_boundary": (s,), "sig_opening": (), "topo_dual_edges": (None, 2),
                       "pers_components": (None, 2), "pers_cavities": (None, 2),
                       "optimal_alpha": (), "default_alpha": (), "entry_saved": ()})
+    _expect_forests(a, path, len(levels[0].enter), n_cells)
     topology = Topology(dim=dim, n_cells=n_cells,
                         enter_sorted=tuple(ascending(level.enter) for level in levels),
                         vertex_forest=readonly(a["topo_vertex_forest"]),
@@ -101,3 +102,15 @@ def _expect(a: dict[str, np.ndarray], path, shapes: dict[str, tuple]) -> None:
     for name in ("topo_vertex_forest", "topo_dual_forest", "topo_solid_forest"):
         if a.get(name) is None or a[name].ndim != 1:
             raise FileFormatError(f"{path}: not this table's topology ({name})")
+
+
+def _expect_forests(a: dict[str, np.ndarray], path, n_vertices: int, n_cells: int) -> None:
+    """The forests fit a table of n_vertices and n_cells: a spanning forest has fewer edges
+    than nodes, one dual edge per dual-forest value, dual nodes 0..n_cells (n_cells = outside)."""
+    edges = a["topo_dual_edges"]
+    fits = (len(a["topo_vertex_forest"]) < max(n_vertices, 1)
+            and len(a["topo_solid_forest"]) < max(n_cells, 1)
+            and len(a["topo_dual_forest"]) == len(edges) <= n_cells
+            and (not edges.size or (edges.min() >= 0 and edges.max() <= n_cells)))
+    if not fits:
+        raise FileFormatError(f"{path}: not this table's topology (forest sizes)")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -110,6 +111,21 @@ def test_a_topology_file_of_another_table_is_refused(tmp_path):
         read_topology(tmp_path / "t.npz", other)
 
 
+def test_a_topology_file_with_forests_too_long_for_the_table_is_refused(tmp_path):
+    ac = AlphaComplex.from_points(blobs(400, 3, seed=9))
+    write_topology(tmp_path / "t.npz", ac, entry_saved=False)
+    with np.load(tmp_path / "t.npz", allow_pickle=False) as archive:
+        arrays = {name: archive[name] for name in archive.files}
+    n_cells = len(ac.intervals(3))
+    for name, bad in (("topo_dual_edges", np.full((len(arrays["topo_dual_edges"]), 2),
+                                                  n_cells + 1)),
+                      ("topo_vertex_forest", np.zeros(len(ac.points))),
+                      ("topo_dual_forest", np.zeros(len(arrays["topo_dual_forest"]) + 1))):
+        np.savez(tmp_path / "bad.npz", **{**arrays, name: bad})
+        with pytest.raises(FileFormatError, match="forest sizes"):
+            read_topology(tmp_path / "bad.npz", ac)
+
+
 def test_orphaned_scratch_folders_are_removed_only_when_their_owner_is_dead(tmp_path):
     dead = subprocess.Popen([sys.executable, "-c", "pass"])
     dead.wait()
@@ -121,6 +137,19 @@ def test_orphaned_scratch_folders_are_removed_only_when_their_owner_is_dead(tmp_
         (folder / "points.npy").write_bytes(b"x")
     assert child_process.remove_orphans(tmp_path) == [orphan]
     assert not orphan.exists() and mine.is_dir() and unnamed.is_dir()
+
+
+def test_a_scratch_folder_whose_owner_holds_its_lock_is_kept(tmp_path, monkeypatch):
+    """A living owner whose pid this process cannot see (another pid namespace) keeps its
+    folder: it holds the folder's lock; once released the folder is an orphan."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    with child_process.scratch("alphascoop-build-") as folder:
+        monkeypatch.setattr(child_process, "_alive", lambda pid: False)
+        assert child_process.remove_orphans(tmp_path) == []
+        assert Path(folder).is_dir()
+        kept = Path(folder).with_name(Path(folder).name + "-copy")
+        shutil.copytree(folder, kept)  # same name pattern, lock file present but not held
+    assert child_process.remove_orphans(tmp_path) == [kept]
 
 
 ORPHAN = """
