@@ -199,3 +199,11 @@ def test_weighted_certification_tells_regular_from_delaunay(d: int) -> None:
     plain, around = delaunay_cells(points)
     assert why_not_delaunay(points, plain, around, weights=weights) != ""
     assert why_not_delaunay(points, plain, around) == ""
+
+
+def test_one_cpu_never_splits(monkeypatch) -> None:
+    monkeypatch.setattr(split.os, "sched_getaffinity", lambda pid: {0}, raising=False)
+    assert not split.worth_splitting(10 * split.SPLIT_FROM_POINTS)
+    monkeypatch.setattr(split.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    assert split.worth_splitting(split.SPLIT_FROM_POINTS)
+    assert not split.worth_splitting(split.SPLIT_FROM_POINTS - 1)

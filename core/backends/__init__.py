@@ -92,9 +92,9 @@ def regular(points: np.ndarray, weights: np.ndarray) -> tuple[Triangulation, Cho
 def _by_qhull(points: np.ndarray, weights: np.ndarray | None,
               note: str = "") -> tuple[Triangulation, Choice]:
     """Qhull's triangulation (regular, with weights): in two halves on two threads from
-    split.SPLIT_FROM_POINTS points on, else (or where the halves cannot promise the same
-    cells: the reason joins the note) in one call."""
-    if len(points) >= split_backend.SPLIT_FROM_POINTS:
+    split.SPLIT_FROM_POINTS points on where a second CPU is there, else (or where the
+    halves cannot promise the same cells: the reason joins the note) in one call."""
+    if split_backend.worth_splitting(len(points)):
         tri = split_backend.split_triangulation(points, weights)
         if isinstance(tri, Triangulation):
             return tri, Choice("qhull", note)

@@ -12,6 +12,7 @@ doubt the caller makes one Qhull call on all points instead.
 
 from __future__ import annotations
 
+import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -31,6 +32,16 @@ from .restore import boundary_facets, joined, outside
 #: 2-core machine: it pays from 40k-80k points; below, the band and the check cost about
 #: what the second core saves).
 SPLIT_FROM_POINTS = 50_000
+
+
+def worth_splitting(n_points: int) -> bool:
+    """Whether to triangulate `n_points` points in halves: enough of them, and a second CPU
+    this process may run on."""
+    try:
+        cpus = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        cpus = os.cpu_count() or 1
+    return n_points >= SPLIT_FROM_POINTS and cpus >= 2
 
 
 @dataclass(frozen=True)
