@@ -44,38 +44,63 @@ def cross(u: Vec, w: Vec) -> Vec:
     return [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
 
 
-def combined_normals(corners: list[Vec], dots: dict[tuple[int, int], np.ndarray]) -> Vec:
-    """Unit normal columns of simplices from their vertex normals `corners` (one Vec per
-    vertex; 0 where they cancel) and their pairwise dots {(i, j): (n,)}: the sum with the
-    signs (the first fixed) that make it longest. The squared length of a signed sum is
-    constant + 2 sum s_i s_j n_i.n_j, so the dots pick the signs; near-ties (e.g.
-    perpendicular normals) take the loop over the sign patterns, whose rounding decides which
-    of the equally long sums wins."""
+def signed_sums(corners: list[Vec], dots: dict[tuple[int, int], np.ndarray]) -> Vec:
+    """The sums of simplices' vertex normals `corners` (one Vec per vertex) with the signs
+    (the first fixed) that make them longest, from their pairwise dots {(i, j): (n,)}. The
+    squared length of a signed sum is constant + 2 sum s_i s_j n_i.n_j, so the dots pick the
+    signs; near-ties (e.g. perpendicular normals) take the loop over the sign patterns, whose
+    rounding decides which of the equally long sums wins."""
     width = len(corners)
-    total = [c.copy() for c in corners[0]]
-    if width > 1:
-        best, second, pattern = None, None, None
-        for combo in range(2 ** (width - 1)):  # sign patterns, not simplices
-            signs = [1.0] + [-1.0 if combo >> (j - 1) & 1 else 1.0 for j in range(1, width)]
-            value = sum(signs[i] * signs[j] * dots[i, j] for i, j in sorted(dots))
-            if best is None:
-                best, second = value, np.full(len(value), -np.inf)
-                pattern = np.zeros(len(value), dtype=np.int8)
-                continue
-            better = value > best
-            second = np.where(better, best, np.maximum(second, value))
-            best = np.maximum(best, value)
-            pattern[better] = combo
-        for j in range(1, width):
-            sign = np.where(pattern >> (j - 1) & 1, -1.0, 1.0)
-            for t, c in zip(total, corners[j], strict=True):
-                t += sign * c
-        near = np.flatnonzero(best - second <= _NEAR_TIE)
-        if len(near):
-            fixed = _longest_sum(np.stack([np.stack([c[near] for c in v], axis=1)
-                                           for v in corners], axis=1))
-            for i, t in enumerate(total):
-                t[near] = fixed[:, i]
+    if width == 2:  # the pattern loop's result for two, in fewer passes
+        flip = dots[0, 1] < 0
+        total = [a + np.where(flip, -b, b) for a, b in zip(*corners, strict=True)]
+        near = np.flatnonzero(np.abs(dots[0, 1]) <= 0.5 * _NEAR_TIE)
+    else:
+        total = [c.copy() for c in corners[0]]
+        near = np.empty(0, dtype=np.intp) if width == 1 else _pick_signs(corners, dots, total)
+    if len(near):
+        fixed = _longest_sum(np.stack([np.stack([c[near] for c in v], axis=1)
+                                       for v in corners], axis=1))
+        for i, t in enumerate(total):
+            t[near] = fixed[:, i]
+    return total
+
+
+def _pick_signs(corners: list[Vec], dots: dict[tuple[int, int], np.ndarray],
+                total: Vec) -> np.ndarray:
+    """Add the other corners to `total` (the first's copy) with the longest sum's signs;
+    return the rows whose best and second best sign patterns are near-ties."""
+    width = len(corners)
+    best, second, pattern = None, None, None
+    for combo in range(2 ** (width - 1)):  # sign patterns, not simplices
+        signs = [1.0] + [-1.0 if combo >> (j - 1) & 1 else 1.0 for j in range(1, width)]
+        value = None
+        for i, j in sorted(dots):  # sum s_i s_j n_i.n_j, adding or subtracting
+            if value is None:
+                value = dots[i, j].copy() if signs[i] == signs[j] else -dots[i, j]
+            elif signs[i] == signs[j]:
+                value += dots[i, j]
+            else:
+                value -= dots[i, j]
+        if best is None:
+            best, second = value, np.full(len(value), -np.inf)
+            pattern = np.zeros(len(value), dtype=np.int8)
+            continue
+        better = value > best
+        second = np.where(better, best, np.maximum(second, value))
+        best = np.maximum(best, value)
+        pattern[better] = combo
+    for j in range(1, width):
+        sign = np.where(pattern >> (j - 1) & 1, -1.0, 1.0)
+        for t, c in zip(total, corners[j], strict=True):
+            t += sign * c
+    return np.flatnonzero(best - second <= _NEAR_TIE)
+
+
+def combined_normals(corners: list[Vec], dots: dict[tuple[int, int], np.ndarray]) -> Vec:
+    """Unit normal columns of simplices: signed_sums scaled to length 1 (0 where the vertex
+    normals cancel)."""
+    total = signed_sums(corners, dots)
     length = np.sqrt(dot(total, total))
     length[length == 0] = 1.0
     return [t / length for t in total]

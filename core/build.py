@@ -18,7 +18,14 @@ from .backends import BACKENDS, Choice, check_backend, delaunay, regular
 from .certify import Certified, certified_triangulation
 from .delaunay import Triangulation
 from .errors import InputError
-from .modes import Mode, check_normals, make_mode, scaled_table, unit_rows
+from .modes import (
+    Mode,
+    check_normals,
+    local_geometry_beside,
+    make_mode,
+    scaled_table,
+    unit_rows,
+)
 from .points import Frame, as_points, check_spread, merge_duplicates, spatial_order
 from .progress import Progress, Stepper
 from .table import Table, build_table
@@ -208,6 +215,11 @@ def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper,
     are reused when they were computed on the same points (same scale)."""
     coords, w, mode = prep.coords, prep.weights, given.mode
     scale = power_of_two_scale(coords)
+    local = None
+    if mode.active:  # the points' neighbourhoods, estimated beside the classic table
+        normals = (_point_normals(given.normals, prep.input_index, len(coords), prep.frame)
+                   if mode.normals == "given" else None)
+        local = local_geometry_beside(coords, mode, normals)
     spheres = None
     if certified is not None and certified.scale == scale:
         spheres = certified.spheres
@@ -219,10 +231,9 @@ def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper,
     for level in table.levels:
         for arr in (level.enter, level.regular, level.interior):
             arr *= scale
-    if mode.active:
-        normals = (_point_normals(given.normals, prep.input_index, len(coords), prep.frame)
-                   if mode.normals == "given" else None)
-        table = scaled_table(table, coords, mode, normals, step.part(0.9, 0.1))
+    if local is not None:
+        step(0.9, "neighbours")  # the wait for what is left of them when the table is done
+        table = scaled_table(table, coords, mode, local(), step.part(0.9, 0.1))
     with np.errstate(over="ignore"):
         measure_scale = np.float64(scale) ** coords.shape[1]
     if not np.isfinite(measure_scale):

@@ -21,6 +21,9 @@ table, which every query, cursor, signature and export then uses unchanged:
 
 from __future__ import annotations
 
+import threading
+from collections.abc import Callable
+from concurrent.futures import Future
 from dataclasses import dataclass
 
 import numpy as np
@@ -130,9 +133,10 @@ def _own_values(table: Table, points: np.ndarray, mode: Mode, spacing_: np.ndarr
                  for k, level in enumerate(table.levels[1:], start=1)]
     out = [np.zeros(len(table.levels[0].enter))]
     for level, own in zip(table.levels[1:], radii, strict=True):
-        if spacing_ is not None:
-            gathered = spacing_[level.simplices]
-            own /= gathered.max(axis=1) if mode.combine == "max" else gathered.mean(axis=1)
+        if spacing_ is not None:  # cells and unattached faces (attached ones stay inf)
+            ids = np.flatnonzero(np.isfinite(own))
+            gathered = spacing_[level.simplices[ids]]
+            own[ids] /= gathered.max(axis=1) if mode.combine == "max" else gathered.mean(axis=1)
         out.append(own)
     return out
 
@@ -190,28 +194,60 @@ def _resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
                  argsort_radii(levels[d - 1].interior).astype(np.int32))
 
 
-def scaled_table(table: Table, points: np.ndarray, mode: Mode, normals: np.ndarray | None = None,
-                 progress: Progress | None = None) -> Table:
-    """The mode's interval table from the classic one of `points` ((m, d) float64, the
-    coordinates the table's radii are in); `normals` (m, d) for mode.normals == "given"."""
-    def step(fraction: float, stage: str) -> None:
-        if progress is not None:
-            progress(fraction, stage)
+@dataclass(frozen=True, eq=False)
+class LocalGeometry:
+    """What a mode needs of each point's neighbourhood: (m,) local spacing (density scaling,
+    else None) and (m, d) unit normals (anisotropy, else None)."""
 
-    step(0.0, "neighbours")
-    wanted = max(mode.density or 0, NORMAL_NEIGHBOURS if mode.anisotropy > 0.0 else 0)
+    spacing: np.ndarray | None
+    normals: np.ndarray | None
+
+
+def local_geometry(points: np.ndarray, mode: Mode,
+                   normals: np.ndarray | None = None) -> LocalGeometry:
+    """The spacing and normals of (m, d) `points` for an active `mode`; `normals` (m, d) for
+    mode.normals == "given" (else estimated: PCA, oriented)."""
     if len(points) < 2:
         raise InputError("a mode needs at least two points")
+    wanted = max(mode.density or 0, NORMAL_NEIGHBOURS if mode.anisotropy > 0.0 else 0)
     dist, ids = neighbours(points, wanted)
     spacing_ = None
     if mode.density is not None:
         spacing_ = spacing(dist[:, : min(mode.density, dist.shape[1])])
     if mode.anisotropy > 0.0 and normals is None:
-        step(0.2, "normals")
         normals = point_normals(points, ids[:, :NORMAL_NEIGHBOURS])
-    del dist, ids
+    return LocalGeometry(spacing_, normals if mode.anisotropy > 0.0 else None)
+
+
+def local_geometry_beside(points: np.ndarray, mode: Mode,
+                          normals: np.ndarray | None = None) -> Callable[[], LocalGeometry]:
+    """Start local_geometry in a thread of its own and return the function that waits for
+    it (re-raising its error): it needs only the points, so it runs while the classic table
+    is built, whose passes leave the second core partly idle."""
+    if len(points) < 2:
+        raise InputError("a mode needs at least two points")
+    future: Future[LocalGeometry] = Future()
+
+    def run() -> None:
+        try:
+            future.set_result(local_geometry(points, mode, normals))
+        except BaseException as exc:  # handed to the waiting caller
+            future.set_exception(exc)
+
+    threading.Thread(target=run, name="alphascoop-mode-geometry", daemon=True).start()
+    return future.result
+
+
+def scaled_table(table: Table, points: np.ndarray, mode: Mode, local: LocalGeometry,
+                 progress: Progress | None = None) -> Table:
+    """The mode's interval table from the classic one of `points` ((m, d) float64, the
+    coordinates the table's radii are in) and their `local` geometry."""
+    def step(fraction: float, stage: str) -> None:
+        if progress is not None:
+            progress(fraction, stage)
+
     step(0.4, "scaled radii")
-    own = _own_values(table, points, mode, spacing_, normals)
+    own = _own_values(table, points, mode, local.spacing, local.normals)
     step(0.8, "filtration repair")
     return _resorted(table, _repair(table, own))
 

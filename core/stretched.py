@@ -16,7 +16,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from .anisotropy import Vec, combined_normals, dot, minus, sphere_centres, stretch
+from .anisotropy import (
+    Vec,
+    combined_normals,
+    dot,
+    minus,
+    signed_sums,
+    sphere_centres,
+    stretch,
+)
 from .parallel import in_chunks
 from .table import Table
 from .tolerances import ON_SPHERE_RTOL
@@ -48,7 +56,7 @@ def _simplex_frames(corners: _Corners, rows: np.ndarray, extra: float):
     """For a chunk of (n, k+1) simplices: their vertices, vertex normals, pairwise normal
     dots, unit normals and stretched edge vectors from the first vertex."""
     width = rows.shape[1]
-    gathered = [corners.of(np.ascontiguousarray(rows[:, i])) for i in range(width)]
+    gathered = [corners.of(rows[:, i].astype(np.intp)) for i in range(width)]
     points = [p for p, _ in gathered]
     normals = [n for _, n in gathered]
     dots = {(i, j): dot(normals[i], normals[j]) for i, j in _pairs(width)}
@@ -113,17 +121,24 @@ def _edge_tests(points: list[Vec], normals: list[Vec], dots: dict, gain: float,
                 face_ids: np.ndarray, edge_attached: np.ndarray) -> None:
     """Set edge_attached[e] for the edges e of a chunk of triangles whose stretched diametral
     sphere holds the triangle's third vertex (module doc); face_ids (n, 3) is the edge
-    opposite each vertex."""
+    opposite each vertex. The edge's normal is its unit combined normal m / |m|, so
+    gain (n.q)(n.w) = gain (m.q)(m.w) / |m|²."""
+    sides = {(0, 1): minus(points[1], points[0]), (0, 2): minus(points[2], points[0]),
+             (1, 2): minus(points[2], points[1])}
     for i, j, far in ((0, 1, 2), (0, 2, 1), (1, 2, 0)):
-        unit = combined_normals([normals[i], normals[j]], {(0, 1): dots[i, j]})
-        q, w = minus(points[far], points[i]), minus(points[far], points[j])
-        nq, nw = dot(unit, q), dot(unit, w)
-        span = minus(q, w)
-        along = nq - nw
-        limit = dot(span, span)
-        limit += gain * along * along
-        angle = dot(q, w)
-        angle += gain * nq * nw
+        m = signed_sums([normals[i], normals[j]], {(0, 1): dots[i, j]})
+        q = sides[min(i, far), max(i, far)]  # p_far - p_i, or both it and w reversed
+        w = sides[min(j, far), max(j, far)]  # p_far - p_j, reversed alone when i < far < j
+        sign = -1.0 if i < far < j else 1.0
+        mq, mw = dot(m, q), dot(m, w)
+        mm = dot(m, m)
+        scaled = gain / np.where(mm > 0, mm, 1.0)
+        along = mq - sign * mw
+        limit = dot(sides[i, j], sides[i, j])
+        limit += scaled * along * along
+        angle = dot(q, w) + scaled * mq * mw
+        if sign < 0:
+            angle = -angle
         hit = angle < -0.5 * ON_SPHERE_RTOL * limit
         edge_attached[face_ids[hit, far]] = True
 

@@ -320,3 +320,20 @@ def test_estimated_normals_face_out_of_a_sphere():
     pts /= np.linalg.norm(pts, axis=1)[:, None]
     normals = point_normals(pts, neighbours(pts, NORMAL_NEIGHBOURS)[1])
     assert (np.einsum("nd,nd->n", normals, pts) > 0.99).all()
+
+
+def test_local_geometry_beside_the_table_is_the_same_and_raises_its_errors():
+    from core.modes import local_geometry, local_geometry_beside
+
+    pts = _cloud(14, 500, 3)
+    for mode in (make_mode(4), make_mode(None, "mean", 0.5), make_mode(6, "max", 0.3)):
+        want, got = local_geometry(pts, mode), local_geometry_beside(pts, mode)()
+        for a, b in ((want.spacing, got.spacing), (want.normals, got.normals)):
+            assert (a is None) == (b is None) and (a is None or np.array_equal(a, b))
+    bad = pts.copy()
+    bad[3] = np.nan  # (the build checks points first; here the k-d tree refuses them)
+    wait = local_geometry_beside(bad, make_mode(4))
+    with pytest.raises(ValueError, match="finite"):  # an error in the thread reaches the caller
+        wait()
+    with pytest.raises(InputError, match="two points"):
+        local_geometry_beside(pts[:1], make_mode(4))
