@@ -8,7 +8,6 @@ and certified) against scipy's Delaunay, in one run, each step in its own fresh 
 
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import sys
@@ -19,7 +18,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from benchmarks.datasets import bunny_scan, noisy_torus
-from benchmarks.isolate import Probe, StageClock, run_isolated
+from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
 
 #: (mine, theirs, goal): ratio of wall times mine / theirs must be <= goal.
 GOALS = (("build gmsh", "gudhi fast", 0.5), ("build qhull", "gudhi fast", 0.8),
@@ -135,12 +134,9 @@ def report(name: str, n: int, results: dict) -> list[str]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=200_000)
+    parser = size_options(__doc__, 200_000, "points of each set")
     parser.add_argument("--sets", default="torus,bunny")
     parser.add_argument("--steps", default=",".join(STEPS))
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--json", help="write the figures to this file")
     args = parser.parse_args(argv)
     everything = {}
     for name in args.sets.split(","):

@@ -7,7 +7,6 @@ the floating-point build of the same points, in one run, each in its own fresh i
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import json
 import os
@@ -19,7 +18,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from benchmarks.datasets import noisy_torus
-from benchmarks.isolate import Probe, StageClock, run_isolated
+from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
 
 GOAL = 1.10  # the certified build at most 10 % slower
 
@@ -40,10 +39,7 @@ def build(path: str, certify: bool) -> dict:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=200_000)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--json", help="write the figures to this file")
+    parser = size_options(__doc__, 200_000, "torus points")
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory() as folder:
         path = os.path.join(folder, "torus.npy")

@@ -23,6 +23,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from datasets import noisy_torus
+from isolate import size_options
 
 from core import AlphaComplex
 
@@ -32,10 +33,7 @@ MODES = {"classic": {}, "density k=8": {"density": 8}, "anisotropic tau=0.5": {"
 
 def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     """Command-line options."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=200_000, help="torus points (default 200000)")
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--json", help="write the figures to this JSON file")
+    parser = size_options(__doc__, 200_000, "torus points")
     return parser.parse_args(argv)
 
 

@@ -14,7 +14,6 @@ step's query, without its render), and the longest step is reported too.
 
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import sys
@@ -24,7 +23,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from datasets import noisy_torus, write_points
-from isolate import run_isolated
+from isolate import run_isolated, size_options
 from window_open import first_open
 
 WAYS = (("thread", True), ("process", False))
@@ -59,10 +58,7 @@ def format_report(n: int, results: dict) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     """Measure both ways once, print the table, write the JSON."""
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--n", type=int, default=100_000, help="torus points")
-    parser.add_argument("--seed", type=int, default=0, help="torus sample seed")
-    parser.add_argument("--json", metavar="PATH", help="also write the results as JSON")
+    parser = size_options(__doc__, 100_000, "torus points")
     args = parser.parse_args(argv)
     if not os.environ.get("DISPLAY"):
         print("bench_stall needs a display: run it under xvfb-run -a", file=sys.stderr)

@@ -7,7 +7,6 @@ build of the same points, and our weighted build with Qhull in one call instead 
 
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import sys
@@ -17,7 +16,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from benchmarks.isolate import Probe, StageClock, run_isolated
+from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
 
 GOALS = (("gudhi weighted fast", 0.8), ("our classic build", 2.0),
          ("weighted, one Qhull call", None))
@@ -80,10 +79,7 @@ def ours(path: str, weighted: bool, split: bool = True) -> dict:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=200_000)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--json", help="write the figures to this file")
+    parser = size_options(__doc__, 200_000, "weighted points")
     args = parser.parse_args(argv)
     points, weights = packing(args.n, args.seed)
     with tempfile.TemporaryDirectory() as folder:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import multiprocessing as mp
 import os
 import resource
@@ -106,3 +107,13 @@ def run_isolated(fn: Callable[..., dict], *args: Any) -> dict:
         why = " (killed: out of memory?)" if code is not None and code < 0 else ""
         result = {"error": f"measurement process died with exit code {code}{why}"}
     return result
+
+
+def size_options(doc: str, n: int, what: str = "points") -> argparse.ArgumentParser:
+    """A benchmark's parser with the options every size-driven benchmark shares: --n (how
+    many `what`, default n), --seed and --json; the script adds its own."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument("--n", type=int, default=n, help=f"{what} (default {n})")
+    parser.add_argument("--seed", type=int, default=0, help="sample seed")
+    parser.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
+    return parser
