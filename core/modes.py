@@ -67,6 +67,12 @@ class Mode:
                                  ("anisotropic", self.anisotropy > 0.0)) if on]
         return "+".join(parts) or "classic"
 
+    @property
+    def classic_radii(self) -> bool:
+        """Whether the mode's own values start from the classic radii (density scaling
+        alone); otherwise its table is built without them (core.table.build_table)."""
+        return self.density is not None and self.anisotropy == 0.0
+
     def describe(self) -> str:
         """One line for the info dock, `info` and export metadata."""
         parts = []
@@ -241,7 +247,9 @@ def local_geometry_beside(points: np.ndarray, mode: Mode,
 def scaled_table(table: Table, points: np.ndarray, mode: Mode, local: LocalGeometry,
                  progress: Progress | None = None) -> Table:
     """The mode's interval table from the classic one of `points` ((m, d) float64, the
-    coordinates the table's radii are in) and their `local` geometry."""
+    coordinates the table's radii are in) and their `local` geometry. The classic table may
+    be unsorted and, unless mode.classic_radii, without its faces' radii (build_table's
+    sort=False, radii=False): only its structure and those radii are read."""
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
