@@ -16,7 +16,11 @@ table, which every query, cursor, signature and export then uses unchanged:
   cofacet as in the classic rule. regular(T) = min enter over cofacets, interior(T) = max
   enter over the cells around T (inf on the convex hull), as in DESIGN.md section 1; so
   enter <= regular <= interior and classes are monotone in alpha.
-- every level is re-sorted by its new enter, and the ids that point into it are renumbered.
+- every level is sorted by its new enter, and the ids that point into it are renumbered
+  (core/mode_filtration.py). The classic table a mode starts from is built unsorted and,
+  unless the mode is density scaling alone, without its faces' radii (core.table's
+  build_table sort=False, radii=False: Mode.classic_radii), so the build sorts each level
+  once and computes no radii it throws away.
 """
 
 from __future__ import annotations
