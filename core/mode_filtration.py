@@ -52,7 +52,8 @@ def _renumber(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
 
 
 def resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
-    """The table with the new values, each level sorted by enter, ids renumbered."""
+    """The table with the new values, each level sorted by enter, ids renumbered (the
+    count of exact sign decisions kept: the mode's classic radii may have needed some)."""
     d = len(values) - 1
     orders = _orders([enter for enter, _, _ in values])
     inverses = []
@@ -72,4 +73,4 @@ def resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
     facets = orders[d - 1]
     return Table(levels, _renumber(take(table.facet_cells, facets), inverses[d]),
                  take(table.facet_flip, facets), take(table.cell_measure, orders[d]),
-                 by_interior())
+                 by_interior(), table.exact_predicates)

@@ -337,3 +337,15 @@ def test_local_geometry_beside_the_table_is_the_same_and_raises_its_errors():
         wait()
     with pytest.raises(InputError, match="two points"):
         local_geometry_beside(pts[:1], make_mode(4))
+
+
+def test_density_keeps_the_classic_exact_decisions_anisotropy_needs_none():
+    """Density scaling reads the classic radii (decided exactly where floats doubt, counted
+    in build_info as for classic); anisotropy builds its table without them."""
+    grid = np.stack(np.meshgrid(*[np.arange(5.0)] * 3), axis=-1).reshape(-1, 3)  # cospherical
+    classic = AlphaComplex.from_points(grid).build_info.exact_predicates
+    assert classic > 0
+    assert AlphaComplex.from_points(grid, density=4).build_info.exact_predicates == classic
+    normals = np.tile([0.0, 0.0, 1.0], (len(grid), 1))
+    assert AlphaComplex.from_points(grid, anisotropy=0.5,
+                                    normals=normals).build_info.exact_predicates < classic
