@@ -25,7 +25,7 @@ MAX_REGION_CELLS = 3000
 #: New cells per region cell after which the wrap is abandoned (it ran away: an invalid seed).
 MAX_GROWTH = 8
 #: Above this many points the pivot candidates are those near the region, not all points.
-ALL_CANDIDATES = 20_000
+ALL_CANDIDATES = 4096
 
 
 class WrapFailed(Exception):
