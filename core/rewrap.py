@@ -80,9 +80,11 @@ def _float_heights(points: np.ndarray, facet: np.ndarray, normal_sign: int,
 def _pivot(wrap: _Wrap, facet: np.ndarray, apex: int) -> int:
     """The point beyond `facet` (away from `apex`) whose cell with it is Delaunay, or -1 when
     no point is beyond (a hull facet)."""
-    side = -int(_orient(wrap, np.append(facet, apex)[None])[0])
     pool = wrap.candidates
-    beyond = pool[_orient(wrap, np.column_stack((np.tile(facet, (len(pool), 1)), pool))) == side]
+    ids = np.append(pool, apex)
+    signs = _orient(wrap, np.column_stack((np.tile(facet, (len(ids), 1)), ids)))
+    side = -int(signs[-1])
+    beyond = pool[signs[:-1] == side]  # the cell facet + p has orientation `side`
     if not len(beyond):
         if len(pool) < len(wrap.points):  # a hull facet of the region: of all the points?
             everyone = np.arange(len(wrap.points))
@@ -92,16 +94,15 @@ def _pivot(wrap: _Wrap, facet: np.ndarray, apex: int) -> int:
         return -1
     heights = _float_heights(wrap.points, facet, side, beyond)
     best = int(beyond[np.argmin(heights)])
+    signs = np.full(len(beyond) - 1, side, dtype=np.int8)
     for _ in range(len(beyond)):
-        cell = np.append(facet, best)
-        sign = _orient(wrap, cell[None])
-        rest = beyond[beyond != best]
-        inside, n_exact = in_sphere(wrap.points, np.tile(cell, (len(rest), 1)), rest,
-                                    np.repeat(sign, len(rest)), wrap.ties)
+        rest = beyond != best
+        cells = np.tile(np.append(facet, best), (len(signs), 1))
+        inside, n_exact = in_sphere(wrap.points, cells, beyond[rest], signs, wrap.ties)
         wrap.exact += n_exact
         if not inside.any():
             return best
-        best = int(rest[inside][np.argmin(heights[beyond != best][inside])])
+        best = int(beyond[rest][inside][np.argmin(heights[rest][inside])])
     raise WrapFailed("the pivot did not settle")
 
 
