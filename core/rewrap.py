@@ -49,6 +49,7 @@ class _Wrap:
 
 
 def _orient(wrap: _Wrap, rows: np.ndarray) -> np.ndarray:
+    """Exact orientation signs of (n, d+1) rows, counting the exact evaluations."""
     signs, n_exact = orientations(wrap.points, rows)
     wrap.exact += n_exact
     return signs
