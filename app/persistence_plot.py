@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from app.signature_figure import plain_log_ticks
+from app.signature_figure import TITLE_STYLE, plain_log_ticks
 
 MAX_PAIRS = 4000  # longest-lived pairs drawn per diagram (rows come longest first)
 PAIR_COLOURS = ("#4c9be8", "#59b86a")
@@ -56,7 +56,7 @@ class PersistenceArtists:
         (self.diagonal,) = ax.plot([0, 1], [0, 1], color="#aaaaaa", linewidth=0.8)
         ax.set_xlabel("birth alpha (data units)", fontsize="x-small")
         ax.set_ylabel("death alpha", fontsize="x-small")
-        ax.set_title("persistence", fontsize="small", pad=10)
+        ax.set_title("persistence", **TITLE_STYLE)
 
     def update(self, persistence, alphas: np.ndarray) -> list[DrawnPairs]:
         """Show persistence's component and hole/void pairs; returns what is drawn, by series."""

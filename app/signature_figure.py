@@ -17,6 +17,8 @@ from matplotlib.ticker import FuncFormatter, MaxNLocator, NullFormatter
 LEFT_PT, RIGHT_PT, BOTTOM_PT, TOP_PT, GAP_PT = 50.0, 8.0, 30.0, 24.0, 52.0
 WIDTH_RATIOS = (1.0, 1.0, 1.0, 1.1)
 CURSOR_COLOUR = "#444444"
+# Titles at a fixed height (y given): else every draw measures the axis under each title.
+TITLE_STYLE = {"fontsize": "small", "pad": 10, "y": 1.0}
 
 
 def decade_label(value: float, linthresh: float = 0.0) -> str:

@@ -21,6 +21,7 @@ from app.palette import CLASS_COLOURS
 from app.persistence_plot import DrawnPairs, PersistenceArtists, infinity_level, nearest_pair
 from app.signature_figure import (
     CURSOR_COLOUR,
+    TITLE_STYLE,
     fit,
     margins,
     new_figure,
@@ -157,7 +158,7 @@ class SignaturesPanel(QWidget):
             steps.append(ax.plot([], [], drawstyle="steps-post", color=CLASS_COLOURS[colour])[0])
             plain_linear_ticks(ax.yaxis)
         for ax, title in zip(axes, ("Betti numbers", "measure", "boundary"), strict=True):
-            ax.set_title(title, fontsize="small", pad=10)
+            ax.set_title(title, **TITLE_STYLE)
         axes[0].set_ylabel("count", fontsize="x-small")
         return steps
 
@@ -210,7 +211,7 @@ class SignaturesPanel(QWidget):
         axes[0].legend(handles=self.steps[:n_betti], fontsize="x-small")
         titles = measure_names(sig.dim)
         for ax, title in zip(axes[1:], titles, strict=True):
-            ax.set_title(title, fontsize="small", pad=10)
+            ax.set_title(title, **TITLE_STYLE)
             ax.set_ylabel(title.split(" (")[1].rstrip(")"), fontsize="x-small")
         threshold = symlog_threshold(x) if weighted else 1.0
         for ax, curves in zip(axes, (self.steps[:n_betti], self.steps[3:4], self.steps[4:]),
