@@ -24,6 +24,8 @@ CANCEL_AFTER_S = 2.0  # cancel once the build has run this long (the child is st
 PROBE_MS = 10  # the stall probe's tick
 DRAG_STEPS = 200  # critical values a probe's drag walks over
 SAMPLE_S = 0.1  # how often the children's peak memory is read
+ARRIVAL_MS = 2000  # the probe runs on this long after the topology arrived: the docks' and
+# the view's deferred redraws (matplotlib's draw_idle, the render at the opening alpha) count
 
 
 def _wait(signal, timeout_ms: int = TIMEOUT_MS) -> tuple:
@@ -203,6 +205,8 @@ def _open_timed(win, path: str, drag: bool = False) -> dict:
     probe.start(_dragging(win.model) if drag else None)
     if topology is not None and "topology" not in stamps and not win.model.dataset.has_topology:
         _wait(topology)
+    if topology is not None:
+        _spin(ARRIVAL_MS)
     probe.stop()
     ds = win.model.dataset
     info = getattr(ds.ac, "build_info", None)
