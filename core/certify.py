@@ -17,6 +17,7 @@ from .cell_pass import CellSpheres, first_pass
 from .delaunay import Triangulation, regular_triangulate, sort_rows
 from .errors import InputError
 from .predicates import in_sphere, orientations
+from .rewrap import grow, rewrap, sound
 
 #: Rounds after which a 3D triangulation that still has unflippable violations is left as is.
 MAX_ROUNDS = 10_000
@@ -78,6 +79,8 @@ class _Mesh:
         self.bad = (self.signs == 0) | _folded(len(self.cells), self.signs, *self.first)
         self.flips = 0
         self.touched = np.zeros(len(self.cells), dtype=bool)  # cells changed or relinked
+        self.stuck = np.empty(0, dtype=np.int64)  # cells of the last round's stuck flips
+        self.concave = np.empty(0, dtype=np.int64)  # cells on unfilled reflex hull ridges
         self._peel()
 
     def _peel(self) -> None:
@@ -243,6 +246,7 @@ def _flip_3d(mesh: _Mesh, t, i, u, j) -> int:
     two_two = level & (v < 0) & (v_u < 0)
     four = level & (v >= 0) & (v_u >= 0) & (x == y) & (_vertex_slot(mesh, v, p) == v_u)
     flippable = through | three_two | two_two | four
+    mesh.stuck = np.concatenate((t[~flippable], u[~flippable]))
     v = np.where(three_two | four, v, -1)
     v_u = np.where(four, v_u, -1)
     around = [np.where((cell >= 0)[:, None], mesh.nbs[np.maximum(cell, 0)], -1)
@@ -274,6 +278,7 @@ def _fill_reflex_hull(mesh: _Mesh) -> int:
     the Delaunay triangulation (near-collinear or near-coplanar hull points Qhull left out).
     Returns how many reflex ridges are left unfilled (the hull is then not convex there)."""
     d = mesh.cells.shape[1] - 1
+    mesh.concave = np.empty(0, dtype=np.int64)
     t, k = np.nonzero(mesh.nbs < 0)
     keep = mesh.alive[t] & ~mesh.bad[t]
     t, k = t[keep], k[keep]
@@ -295,6 +300,7 @@ def _fill_reflex_hull(mesh: _Mesh) -> int:
     outer_sign = mesh.orient(outer)
     reflex = (outer_sign == -mesh.orient(np.column_stack((facets[f], inner)))) & (outer_sign != 0)
     found = int(reflex.sum())
+    mesh.concave = np.concatenate((t[f[reflex]], t[g[reflex]]))
     if d == 3:  # the new hull facets (x, y, a), (x, y, b) must face away from the cell below,
         # unless they are hull facets already (then glued: a hull vertex under three facets)
         x, (a, b) = facets[f, lonely[first]], ridges[first].T
@@ -402,12 +408,14 @@ def tie_weights(m: int) -> np.ndarray:
     return np.random.default_rng(14).random(m)
 
 
-def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = None
-            ) -> Certified:
+def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = None,
+            *, repair: bool = True) -> Certified:
     """Check every interior facet of `tri` (cells of the (m, d) `points`) for the local
-    Delaunay condition, exactly, and flip until all hold (module docstring). `ties`: the
-    points' perturbation weights (default tie_weights(m))."""
-    mesh = _Mesh(points, tri, tie_weights(len(points)) if ties is None else ties)
+    Delaunay condition, exactly, and flip until all hold (module docstring); what flips
+    cannot repair is re-triangulated locally (core.rewrap) unless `repair` is False. `ties`:
+    the points' perturbation weights (default tie_weights(m))."""
+    ties = tie_weights(len(points)) if ties is None else ties
+    mesh = _Mesh(points, tri, ties)
     d = points.shape[1]
     pending = None
     stuck = concave = 0
@@ -429,13 +437,53 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
             if mesh.flips == before:
                 break
         pending = np.unique(np.concatenate((t, u, np.arange(size, len(mesh.cells)))))
-    if mesh.flips and not _valid(mesh):  # a repair went wrong: keep the backend's cells
-        return Certified(tri, mesh.exact, 0, int((tri.neighbors >= 0).sum()) // 2)
+    broken = bool(mesh.flips) and not _valid(mesh)
+    # a repair went wrong: the backend's cells, unless the local re-triangulation mends it
+    backend = Certified(tri, mesh.exact, 0, int((tri.neighbors >= 0).sum()) // 2)
+    if broken and not repair:
+        return backend
     out = _compact(mesh, tri) if mesh.flips else tri
     bad = np.flatnonzero(mesh.bad & mesh.alive)
     invalid = int(np.sum(mesh.nbs[bad] >= 0))
-    return Certified(out, mesh.exact, mesh.flips, stuck + invalid + concave,
-                     None if mesh.flips else mesh.spheres)
+    result = Certified(out, mesh.exact, mesh.flips, stuck + invalid + concave,
+                       None if mesh.flips else mesh.spheres)
+    if not (result.uncertified or broken) or not repair:
+        return result
+    seeds = np.zeros(len(mesh.cells), dtype=bool)
+    seeds[np.concatenate((bad, mesh.stuck, mesh.concave))] = True
+    if broken:
+        touched = np.flatnonzero(mesh.touched & mesh.alive)
+        seeds[touched[_overlapping(mesh, touched)]] = True
+        result = replace(result, uncertified=backend.uncertified)
+    fixed = _rewrapped(points, ties, result, seeds[mesh.alive])
+    if broken and fixed.uncertified:
+        return replace(backend, exact_predicates=fixed.exact_predicates)
+    return fixed
+
+
+#: Rings of cells (sharing a vertex) added around the unrepaired cells, one per attempt.
+REWRAP_RINGS = 3
+
+
+def _rewrapped(points: np.ndarray, ties: np.ndarray, before: Certified,
+               seeds: np.ndarray) -> Certified:
+    """`before` with the cells around `seeds` (their unrepaired cells, (n,) bool) exactly
+    re-triangulated (core.rewrap), kept only if the whole result then certifies; the region
+    grows by a ring of cells on each failed attempt."""
+    tri, region, exact = before.triangulation, seeds, 0
+    for _ in range(REWRAP_RINGS):
+        region = grow(tri.cells, region)
+        fixed, n_exact = rewrap(points, tri, ties, region)
+        exact += n_exact
+        if fixed is None or not sound(fixed, len(region) - int(region.sum())):
+            continue
+        again = certify(points, fixed, ties, repair=False)
+        exact += again.exact_predicates
+        if not again.uncertified:
+            made = len(fixed.cells) - len(tri.cells) + int(region.sum())
+            return replace(again, exact_predicates=before.exact_predicates + exact,
+                           flips=before.flips + made + again.flips)
+    return replace(before, exact_predicates=before.exact_predicates + exact)
 
 
 #: Lifted heights of the retry are lowered by up to this times the squared extent: enough to
@@ -443,10 +491,11 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
 JITTER_RTOL = 1e-9
 
 
-def _certified_cells(points: np.ndarray, tri: Triangulation) -> Certified:
+def _certified_cells(points: np.ndarray, tri: Triangulation, repair: bool = False
+                     ) -> Certified:
     """`certify` on the points that are vertices; points the triangulator merged into a
     neighbour count as uncertified (an exact triangulation keeps every distinct point)."""
-    out = certify(points[tri.kept], tri, tie_weights(len(points))[tri.kept])
+    out = certify(points[tri.kept], tri, tie_weights(len(points))[tri.kept], repair=repair)
     return replace(out, uncertified=out.uncertified + len(points) - len(tri.kept))
 
 
@@ -457,10 +506,23 @@ def certified_triangulation(points: np.ndarray, tri: Triangulation) -> Certified
     Where the backend merged near-cospherical groups into flat or folded cells (which no flip
     repairs), Qhull runs once more on the points lifted with tiny weights, the same that
     break exact ties in the symbolic perturbation (so it resolves them the same way), and the
-    certified result with fewer uncertified facets is kept (the first on a tie)."""
+    certified result with fewer uncertified facets is kept (the first on a tie). What is
+    still uncertified then is re-triangulated locally and exactly (core.rewrap)."""
     first = _certified_cells(points, tri)
     if not first.uncertified:
         return first
+    best = _retried(points, first)
+    if not best.uncertified:
+        return best
+    again = _certified_cells(points, best.triangulation, repair=True)
+    kept = again if again.uncertified < best.uncertified else best
+    return replace(kept, exact_predicates=best.exact_predicates + again.exact_predicates,
+                   flips=best.flips + again.flips)
+
+
+def _retried(points: np.ndarray, first: Certified) -> Certified:
+    """Qhull once more on the points lifted by tiny weights (certified_triangulation), the
+    result with fewer uncertified facets kept."""
     centred = points - 0.5 * (points.min(axis=0) + points.max(axis=0))
     centred /= float(np.abs(centred).max())
     weights = JITTER_RTOL * tie_weights(len(points))
