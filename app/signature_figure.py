@@ -16,9 +16,33 @@ from matplotlib.ticker import FuncFormatter, MaxNLocator, NullFormatter
 # marker row. Fixed, so a redraw never measures text to lay the figure out.
 LEFT_PT, RIGHT_PT, BOTTOM_PT, TOP_PT, GAP_PT = 50.0, 8.0, 30.0, 24.0, 52.0
 WIDTH_RATIOS = (1.0, 1.0, 1.0, 1.1)
+MAX_SAMPLES = 2000  # spectrum entries drawn per curve
 CURSOR_COLOUR = "#444444"
 # Titles at a fixed height (y given): else every draw measures the axis under each title.
 TITLE_STYLE = {"fontsize": "small", "pad": 10, "y": 1.0}
+
+
+def log_samples(alphas: np.ndarray, count: int = MAX_SAMPLES) -> np.ndarray:
+    """Indexes of at most ~count spectrum entries, log-spaced over the positive alphas."""
+    positive = np.flatnonzero(alphas > 0)
+    if len(positive) <= count:
+        return positive
+    lo, hi = np.log(alphas[positive[0]]), np.log(alphas[-1])
+    picks = np.searchsorted(alphas, np.exp(np.linspace(lo, hi, count)), side="right") - 1
+    return np.unique(np.clip(picks, positive[0], len(alphas) - 1))
+
+
+def rank_samples(count_all: int, count: int = MAX_SAMPLES) -> np.ndarray:
+    """Indexes of at most ~count entries evenly spread over all count_all spectrum entries."""
+    if count_all <= count:
+        return np.arange(count_all)
+    return np.unique(np.linspace(0, count_all - 1, count).round().astype(np.int64))
+
+
+def symlog_threshold(values: np.ndarray) -> float:
+    """Width of the linear part of a symmetric-log axis: a low quantile of the non-zero |x|."""
+    size = np.abs(values[values != 0])
+    return float(np.quantile(size, 0.05)) if len(size) else 1.0
 
 
 def decade_label(value: float, linthresh: float = 0.0) -> str:

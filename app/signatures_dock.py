@@ -23,17 +23,19 @@ from app.signature_figure import (
     CURSOR_COLOUR,
     TITLE_STYLE,
     fit,
+    log_samples,
     margins,
     new_figure,
     plain_linear_ticks,
     plain_log_ticks,
+    rank_samples,
     set_alpha_scale,
+    symlog_threshold,
 )
 from core.complex import AlphaComplex
 from core.persistence import Persistence
 from core.suggest import AlphaRange
 
-MAX_SAMPLES = 2000
 MIN_PLOT_HEIGHT = 160  # pixels: tick labels, titles and a readable plot area
 BETTI_COLOURS = ("#4c9be8", "#e4572e", "#59b86a")
 OPTIMAL_COLOUR, SUGGESTED_COLOUR = "#e0a800", "#6f42c1"
@@ -48,29 +50,6 @@ class Marker:
 
     alpha: float
     text: str
-
-
-def log_samples(alphas: np.ndarray, count: int = MAX_SAMPLES) -> np.ndarray:
-    """Indexes of at most ~count spectrum entries, log-spaced over the positive alphas."""
-    positive = np.flatnonzero(alphas > 0)
-    if len(positive) <= count:
-        return positive
-    lo, hi = np.log(alphas[positive[0]]), np.log(alphas[-1])
-    picks = np.searchsorted(alphas, np.exp(np.linspace(lo, hi, count)), side="right") - 1
-    return np.unique(np.clip(picks, positive[0], len(alphas) - 1))
-
-
-def rank_samples(count_all: int, count: int = MAX_SAMPLES) -> np.ndarray:
-    """Indexes of at most ~count entries evenly spread over all count_all spectrum entries."""
-    if count_all <= count:
-        return np.arange(count_all)
-    return np.unique(np.linspace(0, count_all - 1, count).round().astype(np.int64))
-
-
-def symlog_threshold(values: np.ndarray) -> float:
-    """Width of the linear part of a symmetric-log axis: a low quantile of the non-zero |x|."""
-    size = np.abs(values[values != 0])
-    return float(np.quantile(size, 0.05)) if len(size) else 1.0
 
 
 def markers_of(ac: AlphaComplex, optimal: float | None = None,
