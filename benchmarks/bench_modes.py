@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 from itertools import pairwise
@@ -55,18 +56,24 @@ def run(n: int, seed: int) -> dict:
     """Every build of the run, the classic baseline and each mode's ratios."""
     points = noisy_torus(n, seed)
     AlphaComplex.from_points(points[:50])  # imports and first-call set-up, not timed
+    load_before = os.getloadavg()[0]
     runs = {name: timed_build(points, kwargs) for name, kwargs in MODES.items()}
     again = timed_build(points, {})
     base = min((runs["classic"], again), key=lambda r: r["wall"])
     runs["classic"] = base
     ratios = {name: {"wall": r["wall"] / base["wall"], "cpu": r["cpu"] / base["cpu"]}
               for name, r in runs.items() if name != "classic"}
-    return {"n": n, "seed": seed, "builds": runs, "ratios": ratios, "goal": GOAL}
+    load = [load_before, os.getloadavg()[0]]  # 1-minute load average before and after
+    return {"n": n, "seed": seed, "builds": runs, "ratios": ratios, "goal": GOAL,
+            "load": load}
 
 
 def report(result: dict) -> str:
     """The figures as text: builds, mode stages, ratios against the goal."""
-    lines = [f"{result['n']:,} torus points (seed {result['seed']})",
+    before, after = result["load"]
+    lines = [f"{result['n']:,} torus points (seed {result['seed']}), load average "
+             f"{before:.1f} before, {after:.1f} after (other processes share the cores: "
+             "wall times are worth comparing only on a quiet machine)",
              f"{'build':<22}{'wall s':>9}{'cpu s':>9}"]
     for name, r in result["builds"].items():
         lines.append(f"{name:<22}{r['wall']:>9.2f}{r['cpu']:>9.2f}")
@@ -76,9 +83,9 @@ def report(result: dict) -> str:
         if own:
             lines.append(f"  {name}: " + ", ".join(f"{s} {t:.2f} s" for s, t in own.items()))
     for name, ratio in result["ratios"].items():
-        verdict = "PASS" if ratio["wall"] <= GOAL else "FAIL"
+        verdict = "PASS" if max(ratio["wall"], ratio["cpu"]) <= GOAL else "FAIL"
         lines.append(f"{name:<22} ratio {ratio['wall']:.3f} wall, {ratio['cpu']:.3f} cpu "
-                     f"(goal <= {GOAL}): {verdict}")
+                     f"(goal <= {GOAL} on both): {verdict}")
     return "\n".join(lines)
 
 

@@ -140,7 +140,9 @@ def test_bench_modes_end_to_end(tmp_path, capsys):
     assert set(result["ratios"]) == {"density k=8", "anisotropic tau=0.5"}
     assert all(r["wall"] > 0 and r["cpu"] > 0 for r in result["ratios"].values())
     assert "neighbours" in result["builds"]["density k=8"]["stages"]
-    assert "ratio" in capsys.readouterr().out
+    assert len(result["load"]) == 2
+    out = capsys.readouterr().out
+    assert "ratio" in out and "load average" in out
 
 
 def test_weighted_packing_radii_span_one_to_two_spacings() -> None:

@@ -16,7 +16,11 @@ table, which every query, cursor, signature and export then uses unchanged:
   cofacet as in the classic rule. regular(T) = min enter over cofacets, interior(T) = max
   enter over the cells around T (inf on the convex hull), as in DESIGN.md section 1; so
   enter <= regular <= interior and classes are monotone in alpha.
-- every level is re-sorted by its new enter, and the ids that point into it are renumbered.
+- every level is sorted by its new enter, and the ids that point into it are renumbered
+  (core/mode_filtration.py). The classic table a mode starts from is built unsorted and,
+  unless the mode is density scaling alone, without its faces' radii (core.table's
+  build_table sort=False, radii=False: Mode.classic_radii), so the build sorts each level
+  once and computes no radii it throws away.
 """
 
 from __future__ import annotations
@@ -29,11 +33,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError
+from .mode_filtration import repaired, resorted
 from .neighbourhood import neighbours, orient, pca_normals, spacing
-from .parallel import take
 from .progress import Progress
 from .stretched import stretched_values
-from .table import Level, Table, argsort_radii
+from .table import Table
 
 COMBINES = ("mean", "max")
 NORMAL_SOURCES = ("estimate", "given")
@@ -66,6 +70,12 @@ class Mode:
         parts = [n for n, on in (("density", self.density is not None),
                                  ("anisotropic", self.anisotropy > 0.0)) if on]
         return "+".join(parts) or "classic"
+
+    @property
+    def classic_radii(self) -> bool:
+        """Whether the mode's own values start from the classic radii (density scaling
+        alone); otherwise its table is built without them (core.table.build_table)."""
+        return self.density is not None and self.anisotropy == 0.0
 
     def describe(self) -> str:
         """One line for the info dock, `info` and export metadata."""
@@ -141,59 +151,6 @@ def _own_values(table: Table, points: np.ndarray, mode: Mode, spacing_: np.ndarr
     return out
 
 
-def _repair(table: Table, own: list[np.ndarray]) -> list[tuple[np.ndarray, ...]]:
-    """(enter, regular, interior) per level from the own values, cells down (module doc)."""
-    d = len(own) - 1
-    cells = own[d]
-    fc = table.facet_cells
-    outside = fc[:, 1] < 0
-    second = np.where(outside, np.inf, cells[np.maximum(fc[:, 1], 0)])
-    first = cells[fc[:, 0]]
-    regular, interior = np.minimum(first, second), np.maximum(first, second)
-    out = [(cells, cells, cells), (np.minimum(own[d - 1], regular), regular, interior)]
-    for k in range(d - 2, -1, -1):
-        enter_up, interior_up = out[-1][0], out[-1][2]
-        faces = table.levels[k + 1].face_ids if k > 0 else table.levels[1].simplices
-        flat_faces = faces.ravel()
-        regular = np.full(len(own[k]), np.inf)
-        interior = np.full(len(own[k]), -np.inf)
-        np.minimum.at(regular, flat_faces, np.repeat(enter_up, k + 2))
-        np.maximum.at(interior, flat_faces, np.repeat(interior_up, k + 2))
-        enter = np.zeros(len(own[k])) if k == 0 else np.minimum(own[k], regular)
-        out.append((enter, regular, interior))
-    return out[::-1]
-
-
-def _renumber(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
-    """Apply a new numbering (int32 `inverse`) to int32 ids, -1 = none kept: one gather (in
-    halves) from the inverse with -1 appended, which index -1 reads."""
-    return take(np.append(inverse, np.int32(-1)), ids.ravel()).reshape(ids.shape)
-
-
-def _resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
-    """The table with the new values, each level sorted by enter, ids renumbered."""
-    d = len(values) - 1
-    orders = [np.arange(len(values[0][0]))]  # vertices keep their rows: they all enter at 0
-    orders += [argsort_radii(enter) for enter, _, _ in values[1:]]
-    inverses = []
-    for order in orders:
-        inverse = np.empty(len(order), dtype=np.int32)
-        inverse[order] = np.arange(len(order), dtype=np.int32)
-        inverses.append(inverse)
-    levels = [Level(table.levels[0].simplices.copy(), *(a.copy() for a in values[0]))]
-    for k in range(1, d + 1):
-        old, order, row = table.levels[k], orders[k], values[k]
-        enter = take(row[0], order)
-        regular, interior = ((enter.copy(), enter.copy()) if k == d
-                             else (take(row[1], order), take(row[2], order)))
-        levels.append(Level(take(old.simplices, order), enter, regular, interior,
-                            _renumber(take(old.face_ids, order), inverses[k - 1])))
-    facets = orders[d - 1]
-    return Table(levels, _renumber(take(table.facet_cells, facets), inverses[d]),
-                 take(table.facet_flip, facets), take(table.cell_measure, orders[d]),
-                 argsort_radii(levels[d - 1].interior).astype(np.int32))
-
-
 @dataclass(frozen=True, eq=False)
 class LocalGeometry:
     """What a mode needs of each point's neighbourhood: (m,) local spacing (density scaling,
@@ -241,7 +198,9 @@ def local_geometry_beside(points: np.ndarray, mode: Mode,
 def scaled_table(table: Table, points: np.ndarray, mode: Mode, local: LocalGeometry,
                  progress: Progress | None = None) -> Table:
     """The mode's interval table from the classic one of `points` ((m, d) float64, the
-    coordinates the table's radii are in) and their `local` geometry."""
+    coordinates the table's radii are in) and their `local` geometry. The classic table may
+    be unsorted and, unless mode.classic_radii, without its faces' radii (build_table's
+    sort=False, radii=False): only its structure and those radii are read."""
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
@@ -249,7 +208,7 @@ def scaled_table(table: Table, points: np.ndarray, mode: Mode, local: LocalGeome
     step(0.4, "scaled radii")
     own = _own_values(table, points, mode, local.spacing, local.normals)
     step(0.8, "filtration repair")
-    return _resorted(table, _repair(table, own))
+    return resorted(table, repaired(table, own))
 
 
 def file_normals(mode: Mode, attributes: dict, source: str) -> np.ndarray | None:

@@ -25,7 +25,7 @@ MAX_REGION_CELLS = 3000
 #: New cells per region cell after which the wrap is abandoned (it ran away: an invalid seed).
 MAX_GROWTH = 8
 #: Above this many points the pivot candidates are those near the region, not all points.
-ALL_CANDIDATES = 20_000
+ALL_CANDIDATES = 4096
 
 
 class WrapFailed(Exception):
@@ -49,6 +49,7 @@ class _Wrap:
 
 
 def _orient(wrap: _Wrap, rows: np.ndarray) -> np.ndarray:
+    """Exact orientation signs of (n, d+1) rows, counting the exact evaluations."""
     signs, n_exact = orientations(wrap.points, rows)
     wrap.exact += n_exact
     return signs
@@ -80,9 +81,11 @@ def _float_heights(points: np.ndarray, facet: np.ndarray, normal_sign: int,
 def _pivot(wrap: _Wrap, facet: np.ndarray, apex: int) -> int:
     """The point beyond `facet` (away from `apex`) whose cell with it is Delaunay, or -1 when
     no point is beyond (a hull facet)."""
-    side = -int(_orient(wrap, np.append(facet, apex)[None])[0])
     pool = wrap.candidates
-    beyond = pool[_orient(wrap, np.column_stack((np.tile(facet, (len(pool), 1)), pool))) == side]
+    ids = np.append(pool, apex)
+    signs = _orient(wrap, np.column_stack((np.tile(facet, (len(ids), 1)), ids)))
+    side = -int(signs[-1])
+    beyond = pool[signs[:-1] == side]  # the cell facet + p has orientation `side`
     if not len(beyond):
         if len(pool) < len(wrap.points):  # a hull facet of the region: of all the points?
             everyone = np.arange(len(wrap.points))
@@ -92,16 +95,15 @@ def _pivot(wrap: _Wrap, facet: np.ndarray, apex: int) -> int:
         return -1
     heights = _float_heights(wrap.points, facet, side, beyond)
     best = int(beyond[np.argmin(heights)])
+    signs = np.full(len(beyond) - 1, side, dtype=np.int8)
     for _ in range(len(beyond)):
-        cell = np.append(facet, best)
-        sign = _orient(wrap, cell[None])
-        rest = beyond[beyond != best]
-        inside, n_exact = in_sphere(wrap.points, np.tile(cell, (len(rest), 1)), rest,
-                                    np.repeat(sign, len(rest)), wrap.ties)
+        rest = beyond != best
+        cells = np.tile(np.append(facet, best), (len(signs), 1))
+        inside, n_exact = in_sphere(wrap.points, cells, beyond[rest], signs, wrap.ties)
         wrap.exact += n_exact
         if not inside.any():
             return best
-        best = int(rest[inside][np.argmin(heights[beyond != best][inside])])
+        best = int(beyond[rest][inside][np.argmin(heights[rest][inside])])
     raise WrapFailed("the pivot did not settle")
 
 

@@ -66,8 +66,11 @@ class Table:
     exact_predicates: int = 0  # sign decisions that needed exact arithmetic (core.table_signs)
 
 
-def _permute(level: Level, order: np.ndarray) -> np.ndarray:
-    """Reorder `level` by `order` in place; return the inverse permutation."""
+def _permute(level: Level, order: np.ndarray | None) -> np.ndarray | None:
+    """Reorder `level` by `order` in place; return the inverse permutation (None: no
+    order, the level stays as built)."""
+    if order is None:
+        return None
     level.simplices = take(level.simplices, order)
     shared = level.regular is level.enter and level.interior is level.enter  # cells
     level.enter = take(level.enter, order)
@@ -111,8 +114,9 @@ def argsort_radii(values: np.ndarray) -> np.ndarray:
     return order[np.argsort(values[order], kind="stable")]
 
 
-def _sort_by_enter(level: Level) -> np.ndarray:
-    return _permute(level, argsort_radii(level.enter))
+def _order(enter: np.ndarray, sort: bool) -> np.ndarray | None:
+    """The order that sorts a level by enter, None when the level keeps its built order."""
+    return argsort_radii(enter) if sort else None
 
 
 def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> None:
@@ -174,7 +178,7 @@ def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: n
 
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
            weights: np.ndarray | None = None, exact: list[int] | None = None,
-           spheres: CellSpheres | None = None):
+           spheres: CellSpheres | None = None, sort: bool = True):
     """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
     cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas.
     Counts of exactly decided predicates are appended to `exact`. `spheres`: the cells'
@@ -195,7 +199,10 @@ def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
         det[flat] = 0.0  # orientation unknown: the facets use the other side or the hull
         _delay_flat(enter, flat, neighbors)
     level = Level(cells, enter, enter, enter)
-    order = argsort_radii(enter)
+    order = _order(enter, sort)
+    if order is None:  # as built; three arrays, as _permute leaves them
+        level.regular, level.interior = enter.copy(), enter.copy()
+        return level, neighbors, det, bits, measure
     inverse = _permute(level, order)
     return (level, _remap(take(neighbors, order), inverse), take(det, order), take(bits, order),
             take(measure, order))
@@ -246,8 +253,9 @@ def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarra
 
 def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray,
             bits: np.ndarray, weights: np.ndarray | None = None,
-            exact: list[int] | None = None):
-    """Level d-1 from the cells' neighbour table: each shared facet taken once."""
+            exact: list[int] | None = None, sort: bool = True, radii: bool = True):
+    """Level d-1 from the cells' neighbour table: each shared facet taken once. radii=False:
+    the facets' own radii and attachment are not computed (enter = regular)."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
     slot0 = np.flatnonzero(keep)  # cell-major, as np.nonzero lists them
@@ -258,29 +266,34 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     has1 = np.flatnonzero(t1 >= 0)
     j1 = _slot_of(neighbors, t1[has1], t0[has1])
 
-    radius, obtuse, global_test = _facet_spheres(points, simplices, weights, exact)
+    if radii:
+        radius, obtuse, global_test = _facet_spheres(points, simplices, weights, exact)
+    else:  # a mode supplies its own values: only the cofacet values are taken
+        obtuse = None
     t1h = t1[has1]
-    inside0 = ((bits[t0] >> i0) & 1).astype(bool)
-    inside1 = ((bits[t1h] >> j1) & 1).astype(bool)
     e0 = cells.enter[t0]
     e1 = np.full(len(t0), np.inf)
     e1[has1] = cells.enter[t1h]
-    if weights is None and exact is not None:  # doubtful float decisions made exact
-        sides = [(slice(None), t0, i0, inside0, e0), (has1, t1h, j1, inside1, e1[has1])]
-        attached, n_exact = settle_facets(points, cells.simplices, cells.enter, det, simplices,
-                                          radius, sides)
-        exact.append(n_exact)
-    else:
-        attached = inside0.copy()
-        attached[has1] |= inside1
     near_flat = det[t0] == 0
     near_flat[has1] |= det[t1h] == 0
-    if near_flat.any():
-        ids = np.flatnonzero(near_flat)
-        attached[ids] |= global_test(ids)
     regular = np.minimum(e0, e1)
     interior = np.maximum(e0, e1)
-    enter = np.where(attached, regular, np.minimum(radius, regular))
+    enter = regular.copy()
+    if radii:
+        inside0 = ((bits[t0] >> i0) & 1).astype(bool)
+        inside1 = ((bits[t1h] >> j1) & 1).astype(bool)
+        if weights is None and exact is not None:  # doubtful float decisions made exact
+            sides = [(slice(None), t0, i0, inside0, e0), (has1, t1h, j1, inside1, e1[has1])]
+            attached, n_exact = settle_facets(points, cells.simplices, cells.enter, det,
+                                              simplices, radius, sides)
+            exact.append(n_exact)
+        else:
+            attached = inside0.copy()
+            attached[has1] |= inside1
+        if near_flat.any():
+            ids = np.flatnonzero(near_flat)
+            attached[ids] |= global_test(ids)
+        enter = np.where(attached, regular, np.minimum(radius, regular))
 
     flip = (i0 % 2 == 1) ^ (det[t0] < 0)
     better = np.abs(det[t1[has1]]) > np.abs(det[t0[has1]])
@@ -295,7 +308,10 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     cell_faces.ravel()[t1[has1].astype(np.int64) * width + j1] = fid[has1]
     level = Level(simplices.astype(np.int32), enter, regular, interior)
     facet_cells = np.stack((t0, t1), axis=1).astype(np.int32)
-    order = argsort_radii(enter)
+    order = _order(enter, sort)
+    if order is None:
+        cells.face_ids = cell_faces
+        return level, facet_cells, flip, near_flat, obtuse
     inverse = _permute(level, order)
     cells.face_ids = inverse[cell_faces]
     return (level, facet_cells[order], flip[order], near_flat[order],
@@ -380,37 +396,11 @@ def _gathered(source: np.ndarray, ids: np.ndarray | None) -> Callable[[int, int]
     return lambda lo, hi: np.take(source, ids[lo:hi])
 
 
-def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
-           bits: np.ndarray, weights: np.ndarray | None = None) -> Level:
-    """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values.
-
-    `bits` (bit j: vertex j attaches the opposite edge) come from facet_radii2; edges of
-    triangles next to flat cells (`near_flat`) get the global attachment test.
-    """
-    m = len(points)
-    tris = triangles.simplices
-    keys, tri_ids, ids_ascend = _edge_incidences(tris, m)
-    is_start = np.empty(len(keys), dtype=bool)
-    is_start[0] = True
-    np.not_equal(keys[1:], keys[:-1], out=is_start[1:])
-    starts = np.flatnonzero(is_start)
-
-    inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m)
-    del is_start, bits
-    n = len(keys)
-    if ids_ascend:
-        regular = take(triangles.enter, take(tri_ids, starts))
-    else:
-        regular = reduce_segments(np.minimum, _gathered(triangles.enter, tri_ids), starts, n,
-                                  np.float64)
-    interior = reduce_segments(np.maximum, _gathered(triangles.interior, tri_ids), starts, n,
-                               np.float64)
-    attached = reduce_segments(np.logical_or, _gathered(inside, None), starts, n, bool)
-    check = np.flatnonzero(reduce_segments(np.logical_or, _gathered(near_flat, tri_ids),
-                                           starts, n, bool))
-    edge_keys = keys[starts]
-    del keys, tri_ids, inside
-    a, b = np.divmod(edge_keys, m)
+def _edge_enter(points: np.ndarray, a: np.ndarray, b: np.ndarray, regular: np.ndarray,
+                attached: np.ndarray, check: np.ndarray,
+                weights: np.ndarray | None) -> np.ndarray:
+    """(e,) enter of the edges (a, b): their own (half length, or signed radius of power)
+    unless attached; the edges `check` get the global attachment test."""
     if weights is None:
         half = 0.5 * np.sqrt(((points[b] - points[a]) ** 2).sum(axis=1))
         if len(check):
@@ -421,10 +411,50 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
         half = signed_sqrt(power)
         if len(check):
             attached[check] |= any_point_below(points, weights, centres[check], power[check])
-    enter = np.where(attached, regular, np.minimum(half, regular))
+    return np.where(attached, regular, np.minimum(half, regular))
+
+
+def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
+           bits: np.ndarray | None, weights: np.ndarray | None = None,
+           sort: bool = True) -> Level:
+    """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values.
+
+    `bits` (bit j: vertex j attaches the opposite edge) come from facet_radii2; edges of
+    triangles next to flat cells (`near_flat`) get the global attachment test. bits=None:
+    the edges' own radii and attachment are not computed (enter = regular).
+    """
+    m = len(points)
+    tris = triangles.simplices
+    keys, tri_ids, ids_ascend = _edge_incidences(tris, m)
+    is_start = np.empty(len(keys), dtype=bool)
+    is_start[0] = True
+    np.not_equal(keys[1:], keys[:-1], out=is_start[1:])
+    starts = np.flatnonzero(is_start)
+
+    radii = bits is not None
+    inside, face_ids = _incidences(keys, tri_ids, is_start, tris,
+                                   bits if radii else np.zeros(len(tris), np.uint8), m)
+    del is_start, bits
+    n = len(keys)
+    if ids_ascend and sort:  # triangles sorted by enter: each edge's first is its least
+        regular = take(triangles.enter, take(tri_ids, starts))
+    else:
+        regular = reduce_segments(np.minimum, _gathered(triangles.enter, tri_ids), starts, n,
+                                  np.float64)
+    interior = reduce_segments(np.maximum, _gathered(triangles.interior, tri_ids), starts, n,
+                               np.float64)
+    if radii:
+        attached = reduce_segments(np.logical_or, _gathered(inside, None), starts, n, bool)
+        check = np.flatnonzero(reduce_segments(np.logical_or, _gathered(near_flat, tri_ids),
+                                               starts, n, bool))
+    edge_keys = keys[starts]
+    del keys, tri_ids, inside
+    a, b = np.divmod(edge_keys, m)
+    enter = (_edge_enter(points, a, b, regular, attached, check, weights) if radii
+             else regular.copy())
     level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
-    inverse = _sort_by_enter(level)
-    triangles.face_ids = take(inverse, face_ids).reshape(-1, 3)
+    inverse = _permute(level, _order(enter, sort))
+    triangles.face_ids = (face_ids if inverse is None else take(inverse, face_ids)).reshape(-1, 3)
     return level
 
 
@@ -451,14 +481,23 @@ def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
 
 def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
                 progress: Progress | None = None, weights: np.ndarray | None = None,
-                exact: bool = True, spheres: CellSpheres | None = None) -> Table:
+                exact: bool = True, spheres: CellSpheres | None = None, *,
+                sort: bool = True, radii: bool = True) -> Table:
     """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled).
 
     With (m,) `weights` (squared radii >= 0, same scale), the cells are the regular
     triangulation's and the values signed radii of powers (module docstring). `exact`: the
     classic table's doubtful sign decisions and ill-conditioned radii are made exact
     (core/table_signs.py); False keeps the floating-point ones. `spheres`: the classic
-    cells' spheres from the certification's shared pass (core.cell_pass), consumed."""
+    cells' spheres from the certification's shared pass (core.cell_pass), consumed.
+
+    For an alpha mode (core/modes.py), which supplies its own values and sorts once by them:
+    sort=False keeps every level in the order it was built (ids consistent; no
+    facet_interior_order), and radii=False (with sort=False) skips the faces' own radii and
+    attachment: a face's enter is then the least enter of its cofacets, a placeholder for
+    the mode's (the cells' values and every interior stay the classic ones)."""
+    if sort and not radii:
+        raise ValueError("radii=False is for an unsorted table (sort=False)")
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
@@ -466,19 +505,20 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
     exact_counts: list[int] | None = [] if exact else None
-    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights, exact_counts,
-                                                spheres)
+    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights,
+                                                exact_counts if radii else None, spheres, sort)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
-                                                           weights, exact_counts)
+                                                           weights, exact_counts, sort, radii)
     del neighbors
     levels = [facets, top]
     if d == 3:
         step(0.55, "edges")
-        levels.insert(0, _edges(points, facets, near_flat, obtuse, weights))
+        levels.insert(0, _edges(points, facets, near_flat, obtuse, weights, sort))
     step(0.9, "vertices")
     levels.insert(0, _vertices(len(points), levels[0], points, weights))
-    by_interior = argsort_radii(facets.interior).astype(np.int32)
+    by_interior = (argsort_radii(facets.interior).astype(np.int32) if sort
+                   else np.empty(0, dtype=np.int32))
     step(1.0, "done")
     return Table(levels, facet_cells, flip, measure, by_interior, sum(exact_counts or []))
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+import core.rewrap as rewrap_module
 from core.certify import certify, tie_weights
 from core.delaunay import triangulate
 from core.rewrap import grow, rewrap
@@ -27,7 +28,11 @@ def _links_are_symmetric(tri) -> bool:
 
 @pytest.mark.parametrize("dim", [2, 3])
 @pytest.mark.parametrize("where", ["inside", "hull"])
-def test_rewrap_of_a_delaunay_region_gives_the_same_cells(dim: int, where: str) -> None:
+@pytest.mark.parametrize("pool", ["all points", "near the region"])
+def test_rewrap_of_a_delaunay_region_gives_the_same_cells(dim: int, where: str, pool: str,
+                                                          monkeypatch) -> None:
+    if pool == "near the region":  # as for large inputs: pivots among the points nearby
+        monkeypatch.setattr(rewrap_module, "ALL_CANDIDATES", 50)
     pts = np.random.default_rng(dim).random((300, dim))
     tri = triangulate(pts)
     hull = (tri.neighbors < 0).any(axis=1)

@@ -1,0 +1,79 @@
+"""build_table's mode path (sort=False, radii=False): the same simplices, adjacency and
+cofacet values as the classic sorted table, only in the order they were built."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial import Delaunay
+
+from core.table import Table, build_table
+
+
+def _table(points: np.ndarray, **kwargs) -> Table:
+    tri = Delaunay(points)
+    order = np.argsort(tri.simplices, axis=1)  # rows ascending, neighbours kept opposite
+    cells = np.take_along_axis(tri.simplices, order, axis=1).astype(np.int32)
+    neighbors = np.take_along_axis(tri.neighbors, order, axis=1).astype(np.int32)
+    return build_table(points, cells, neighbors, **kwargs)
+
+
+def _by_simplex(table: Table, k: int, columns: tuple[str, ...]) -> dict[tuple, tuple]:
+    """Every simplex of level k -> the named values, its facets (as vertex tuples) and, for
+    facets, its cells (as vertex tuples)."""
+    levels = table.levels
+    level = levels[k]
+    out = {}
+    for row, simplex in enumerate(level.simplices):
+        values = tuple(float(getattr(level, c)[row]) for c in columns)
+        faces = () if k == 0 else tuple(sorted(
+            tuple(levels[k - 1].simplices[f]) for f in level.face_ids[row]))
+        cells = ()
+        if k == len(levels) - 2:
+            cells = tuple(sorted(tuple(levels[-1].simplices[c]) for c in table.facet_cells[row]
+                                 if c >= 0))
+        out[tuple(simplex)] = (values, faces, cells)
+    return out
+
+
+def _outward(table: Table) -> dict[tuple, tuple]:
+    """Every facet -> the cell (vertex tuple) its orientation faces out of (facet_flip is
+    relative to facet_cells[:, 0], which depends on the cells' order)."""
+    cells = table.levels[-1].simplices
+    out = {}
+    for facet, pair, flip in zip(table.levels[-2].simplices, table.facet_cells,
+                                 table.facet_flip, strict=True):
+        away = pair[0] if not flip or pair[1] < 0 else pair[1]
+        out[tuple(facet)] = (tuple(cells[away]), bool(flip) if pair[1] < 0 else None)
+    return out
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("grid", [False, True])
+def test_unsorted_table_is_the_sorted_one_in_another_order(dim, grid):
+    rng = np.random.default_rng(dim)
+    points = (rng.integers(-3, 4, (150, dim)).astype(float) if grid  # cospherical, flat cells
+              else rng.uniform(-1, 1, (300, dim)))
+    points = np.unique(points, axis=0)
+    classic = _table(points)
+    unsorted = _table(points, sort=False)
+    structure = _table(points, sort=False, radii=False)
+    assert len(unsorted.facet_interior_order) == 0
+    everything = ("enter", "regular", "interior")
+    for k in range(dim + 1):
+        want = _by_simplex(classic, k, everything)
+        assert _by_simplex(unsorted, k, everything) == want
+        if k > 0:  # without the faces' own radii: the structure and the cells' values
+            first = {dim: 0, dim - 1: 1}.get(k, 2)  # from the cells: facets' regular, interior
+            got = _by_simplex(structure, k, everything[first:])
+            assert got == {s: (v[first:], f, c) for s, (v, f, c) in want.items()}
+    assert _outward(structure) == _outward(classic)
+    measure = dict(zip(map(tuple, classic.levels[-1].simplices), classic.cell_measure,
+                       strict=True))
+    assert all(measure[tuple(s)] == m for s, m in zip(structure.levels[-1].simplices,
+                                                      structure.cell_measure, strict=True))
+
+
+def test_a_sorted_table_needs_its_radii():
+    with pytest.raises(ValueError, match="radii=False"):
+        _table(np.random.default_rng(0).uniform(size=(20, 2)), radii=False)
