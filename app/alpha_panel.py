@@ -23,12 +23,12 @@ from PySide6.QtWidgets import (
 )
 
 from app.alpha_slider import AlphaSlider, Mark
+from app.dataset import suggestions_of
 from app.log_travel import LogTravel, snap_index
 from app.model import ExplorerModel
 from app.palette import MARK_COLOURS
 from app.signed_travel import SignedTravel
 
-N_SUGGESTED = 5
 OPTIMAL_TEXT, OPTIMAL_WAIT_TEXT = "Optimal", "Optimal: computing…"
 
 
@@ -158,7 +158,7 @@ class AlphaPanel(QWidget):
             return [opening]
         marks = [Mark(self.travel.position(snap_index(ds.spectrum, r.alpha)),
                       MARK_COLOURS["suggested"], f"suggested: r {r.alpha:.4g} (Betti {r.betti})")
-                 for r in ds.ac.suggest_alphas(N_SUGGESTED)]
+                 for r in suggestions_of(ds)]
         marks.append(opening)
         marks.append(Mark(self.travel.position(model.optimal_index()), MARK_COLOURS["optimal"],
                           f"optimal: r {ds.optimal_alpha:.4g}"))

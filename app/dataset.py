@@ -23,9 +23,11 @@ from core.opening import opening_alpha_of
 from core.persistence import Persistence
 from core.progress import Progress
 from core.signatures import Signatures
+from core.suggest import AlphaRange
 
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 POINTS_READ = "points read"  # the stage reported once the file was read, before the table
+N_SUGGESTIONS = 5  # suggested alphas shown (slider ticks, the signature plots' ▼ markers)
 SOURCE_WORDS = {"built": "built", "cache": "loaded from cache",
                 "rebuilt": "rebuilt (its cached table was damaged)"}
 
@@ -61,6 +63,9 @@ class Dataset:
     molecule: MoleculeMeasures | None = None
     atomic_numbers: np.ndarray | None = None
     persistence: Persistence | None = None  # known with the topology (None before)
+    #: The N_SUGGESTIONS suggested alphas, found with the topology off the GUI thread (None
+    #: before, or for a dataset made elsewhere: suggestions_of computes them then).
+    suggestions: tuple[AlphaRange, ...] | None = None
 
     @property
     def has_topology(self) -> bool:
@@ -189,7 +194,7 @@ def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> 
     ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
     return replace(dataset, signatures=ac.signatures(), optimal_alpha=float(ac.optimal_alpha()),
                    default_alpha=float(default), entry=obtained.entry,
-                   persistence=ac.persistence(),
+                   persistence=ac.persistence(), suggestions=ac.suggest_alphas(N_SUGGESTIONS),
                    topology_seconds=0.0 if came else time.perf_counter() - started)
 
 
@@ -201,8 +206,16 @@ def with_parts(dataset: Dataset, parts: TopologyParts, seconds: float) -> Datase
     ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
     return replace(dataset, ac=ac, signatures=ac.signatures(), optimal_alpha=parts.optimal_alpha,
                    default_alpha=float(default), persistence=parts.persistence,
+                   suggestions=ac.suggest_alphas(N_SUGGESTIONS),
                    entry=dataset.entry if parts.entry_saved else None,
                    topology_seconds=seconds)
+
+
+def suggestions_of(dataset: Dataset) -> tuple[AlphaRange, ...]:
+    """The dataset's suggested alphas (those found with its topology, else computed now)."""
+    if dataset.suggestions is not None:
+        return dataset.suggestions
+    return dataset.ac.suggest_alphas(N_SUGGESTIONS)
 
 
 def aligned_attributes(attributes: dict[str, np.ndarray], input_index: np.ndarray,

@@ -13,19 +13,30 @@ from dataclasses import dataclass
 
 import numpy as np
 from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
-from matplotlib.figure import Figure
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
-from app.dataset import Dataset
+from app.dataset import N_SUGGESTIONS, Dataset, suggestions_of
 from app.model import ExplorerModel
 from app.palette import CLASS_COLOURS
-from app.persistence_plot import DrawnPairs, draw_persistence, infinity_level, nearest_pair
+from app.persistence_plot import DrawnPairs, PersistenceArtists, infinity_level, nearest_pair
+from app.signature_figure import (
+    CURSOR_COLOUR,
+    TITLE_STYLE,
+    fit,
+    log_samples,
+    margins,
+    new_figure,
+    plain_linear_ticks,
+    plain_log_ticks,
+    rank_samples,
+    set_alpha_scale,
+    symlog_threshold,
+)
 from core.complex import AlphaComplex
 from core.persistence import Persistence
+from core.suggest import AlphaRange
 
-MAX_SAMPLES = 2000
 MIN_PLOT_HEIGHT = 160  # pixels: tick labels, titles and a readable plot area
-N_SUGGESTIONS = 5
 BETTI_COLOURS = ("#4c9be8", "#e4572e", "#59b86a")
 OPTIMAL_COLOUR, SUGGESTED_COLOUR = "#e0a800", "#6f42c1"
 COMPUTING = "Signatures: computing the topology… (the slider already works)"
@@ -41,37 +52,17 @@ class Marker:
     text: str
 
 
-def log_samples(alphas: np.ndarray, count: int = MAX_SAMPLES) -> np.ndarray:
-    """Indexes of at most ~count spectrum entries, log-spaced over the positive alphas."""
-    positive = np.flatnonzero(alphas > 0)
-    if len(positive) <= count:
-        return positive
-    lo, hi = np.log(alphas[positive[0]]), np.log(alphas[-1])
-    picks = np.searchsorted(alphas, np.exp(np.linspace(lo, hi, count)), side="right") - 1
-    return np.unique(np.clip(picks, positive[0], len(alphas) - 1))
-
-
-def rank_samples(count_all: int, count: int = MAX_SAMPLES) -> np.ndarray:
-    """Indexes of at most ~count entries evenly spread over all count_all spectrum entries."""
-    if count_all <= count:
-        return np.arange(count_all)
-    return np.unique(np.linspace(0, count_all - 1, count).round().astype(np.int64))
-
-
-def symlog_threshold(values: np.ndarray) -> float:
-    """Width of the linear part of a symmetric-log axis: a low quantile of the non-zero |x|."""
-    size = np.abs(values[values != 0])
-    return float(np.quantile(size, 0.05)) if len(size) else 1.0
-
-
-def markers_of(ac: AlphaComplex, optimal: float | None = None) -> tuple[Marker, list[Marker]]:
-    """The optimal alpha (ac's own unless given: the dataset knows it) and the suggested
-    alphas of a complex, as markers."""
+def markers_of(ac: AlphaComplex, optimal: float | None = None,
+               suggestions: tuple[AlphaRange, ...] | None = None) -> tuple[Marker, list[Marker]]:
+    """The optimal alpha and the suggested alphas of a complex, as markers (ac's own unless
+    given: the dataset knows them)."""
     optimal = float(ac.optimal_alpha() if optimal is None else optimal)
+    if suggestions is None:
+        suggestions = ac.suggest_alphas(N_SUGGESTIONS)
     suggested = [
         Marker(r.alpha, f"suggestion {i}: Betti numbers {r.betti} for alpha in "
                         f"[{r.low:.4g}, {r.high:.4g})")
-        for i, r in enumerate(ac.suggest_alphas(N_SUGGESTIONS), start=1)
+        for i, r in enumerate(suggestions, start=1)
     ]
     return Marker(optimal, "optimal alpha (CGAL): every point in one solid"), suggested
 
@@ -101,102 +92,128 @@ def value_line(sig, alpha: float) -> str:
 
 class SignaturesPanel(QWidget):
     """Three signature plots sharing a log-alpha axis and a persistence diagram, with a cursor
-    at the model's alpha, clickable markers and a readout."""
+    at the model's alpha, clickable markers and a readout. The axes and their artists are
+    made once; a dataset only changes their data (app.signature_figure: no layout engine)."""
 
     def __init__(self, model: ExplorerModel, parent: QWidget | None = None) -> None:
-        """Create an empty figure; it fills when a dataset with signatures arrives."""
+        """Create the figure's axes and artists, hidden until signatures arrive."""
         super().__init__(parent)
         self.model = model
-        self.figure = Figure(figsize=(10, 2.4), layout="constrained")
+        self.figure, axes = new_figure()
         self.canvas = FigureCanvasQTAgg(self.figure)
-        self.canvas.setMinimumHeight(MIN_PLOT_HEIGHT)  # lower, the layout has no room for axes
+        self.canvas.setMinimumHeight(MIN_PLOT_HEIGHT)  # lower, there is no room for axes
         self.readout = QLabel(HINT)
         self.readout.setWordWrap(True)
         column = QVBoxLayout(self)
         column.addWidget(self.canvas, 1)
         column.addWidget(self.readout)
-        self.cursors: list = []  # vertical current-alpha lines, one per plot
-        self.death_cursor = None  # the horizontal current-alpha line of the persistence plot
-        self.marker_lines: list = []  # (line artist, markers) per signature plot
-        self.persistence_ax = None
+        self.computing = self.figure.text(0.5, 0.5, COMPUTING, ha="center", va="center",
+                                          color="#666666", visible=False)
+        self.steps = self._make_steps(axes[:3])
+        self.persistence_ax = axes[3]
+        self.persistence = PersistenceArtists(axes[3])
+        # vertical current-alpha lines, one per plot (the persistence plot's last)
+        self.cursors = [ax.axvline(1.0, color=CURSOR_COLOUR, linewidth=1) for ax in axes]
+        self.death_cursor = axes[3].axhline(1.0, color=CURSOR_COLOUR, linewidth=1)
+        self.marker_lines = [pair for ax in axes[:3] for pair in self._make_markers(ax)]
         self.drawn_pairs: list[DrawnPairs] = []
+        self._lay_out()
         model.datasetChanged.connect(self.plot)
         model.topologyChanged.connect(self.plot)
         model.datasetReleased.connect(self.plot)
         model.alphaChanged.connect(self.move_cursor)
         self.canvas.mpl_connect("button_press_event", self._clicked)
         self.canvas.mpl_connect("motion_notify_event", self._hovered)
+        self.canvas.mpl_connect("resize_event", self._lay_out)
+
+    @staticmethod
+    def _make_steps(axes) -> list:
+        """The step curves: per Betti number on the first plot, then measure and boundary."""
+        steps = [axes[0].plot([], [], drawstyle="steps-post", color=colour)[0]
+                 for colour in BETTI_COLOURS]
+        axes[0].set_yscale("symlog", linthresh=10)
+        plain_log_ticks(axes[0].yaxis)
+        for ax, colour in zip(axes[1:], ("interior", "regular"), strict=True):
+            steps.append(ax.plot([], [], drawstyle="steps-post", color=CLASS_COLOURS[colour])[0])
+            plain_linear_ticks(ax.yaxis)
+        for ax, title in zip(axes, ("Betti numbers", "measure", "boundary"), strict=True):
+            ax.set_title(title, **TITLE_STYLE)
+        axes[0].set_ylabel("count", fontsize="x-small")
+        return steps
+
+    @staticmethod
+    def _make_markers(ax) -> list:
+        """Empty (line, markers) pairs for the suggested (▼) and optimal (★) alphas at the top
+        edge of ax (clickable; filled by plot)."""
+        return [(ax.plot([], [], symbol, color=colour, markersize=size, clip_on=False,
+                         transform=ax.get_xaxis_transform(), pickradius=6, zorder=5,
+                         markeredgecolor="white", markeredgewidth=0.6)[0], [])
+                for symbol, colour, size in (("v", SUGGESTED_COLOUR, 7),
+                                             ("*", OPTIMAL_COLOUR, 13))]
+
+    def _lay_out(self, _event=None) -> None:
+        """Fixed margins for the canvas's size (no text is measured)."""
+        box = self.figure.bbox
+        self.figure.subplots_adjust(**margins(box.width, box.height, self.figure.dpi))
 
     def plot(self) -> None:
-        """Draw the current dataset's signatures (clears the figure when there are none, and
+        """Show the current dataset's signatures (hides the axes when there are none, and
         says so while its topology is being computed)."""
-        self.figure.clear()
-        self.cursors, self.marker_lines, self.drawn_pairs = [], [], []
-        self.persistence_ax = self.death_cursor = None
-        sig = self.model.dataset.signatures if self.model.dataset else None
-        if sig is None:
-            if self.model.dataset is not None:
-                self.figure.text(0.5, 0.5, COMPUTING, ha="center", va="center", color="#666666")
-            self.canvas.draw_idle()
-            return
-        axes = self.figure.subplots(1, 4, width_ratios=(1, 1, 1, 1.1))
-        self._plot_signatures(sig, axes[:3])
-        for ax in axes[:3]:
-            self._add_markers(ax)
-        self.persistence_ax = axes[3]
-        self.drawn_pairs = draw_persistence(axes[3], persistence_of(self.model.dataset),
-                                            np.asarray(sig.alphas))
-        self.cursors.append(axes[3].axvline(sig.alphas[-1], color="#444444", linewidth=1))
-        self.death_cursor = axes[3].axhline(sig.alphas[-1], color="#444444", linewidth=1)
-        for ax in axes:
-            ax.tick_params(labelsize="x-small")
-        self.move_cursor()
+        dataset = self.model.dataset
+        sig = dataset.signatures if dataset is not None else None
+        self.drawn_pairs = []
+        for ax in self.figure.axes:
+            ax.set_visible(sig is not None)
+        self.computing.set_visible(dataset is not None and sig is None)
+        if sig is not None:
+            self._show_signatures(sig)
+            self._show_markers(dataset)
+            self.drawn_pairs = self.persistence.update(persistence_of(dataset),
+                                                       np.asarray(sig.alphas))
+            self.move_cursor()
+        self.canvas.draw_idle()
 
-    def _plot_signatures(self, sig, axes) -> None:
-        """Betti numbers, measure and boundary measure against log alpha, with cursors."""
+    def _show_signatures(self, sig) -> None:
+        """Betti numbers, measure and boundary measure against log alpha (sampled)."""
         weighted = self.model.weighted
         alphas = np.asarray(sig.alphas)
         rows = rank_samples(len(alphas)) if weighted else log_samples(alphas)
         x = self.plot_x(alphas[rows])
         names = ("b0 components", "b1 tunnels" if sig.dim == 3 else "b1 holes", "b2 voids")
-        for k in range(sig.betti.shape[1]):
-            axes[0].step(x, sig.betti[rows, k], where="post", color=BETTI_COLOURS[k],
-                         label=names[k])
-        axes[0].set_yscale("symlog", linthresh=10)
-        axes[0].legend(fontsize="x-small")
-        axes[1].step(x, sig.measure[rows], where="post", color=CLASS_COLOURS["interior"])
-        axes[2].step(x, sig.boundary_measure[rows], where="post", color=CLASS_COLOURS["regular"])
-        titles = ("Betti numbers", *measure_names(sig.dim))
-        ylabels = ("count", *(name.split(" (")[1].rstrip(")") for name in titles[1:]))
-        for ax, title, ylabel in zip(axes, titles, ylabels, strict=True):
-            if weighted:
-                ax.set_xscale("symlog", linthresh=symlog_threshold(x))
-                ax.set_xlabel("alpha² (symmetric log, data units²)", fontsize="x-small")
-            else:
-                ax.set_xscale("log")
-                ax.set_xlabel("alpha (radius, data units)", fontsize="x-small")
-            ax.set_title(title, fontsize="small", pad=10)
-            ax.set_ylabel(ylabel, fontsize="x-small")
-            self.cursors.append(ax.axvline(x[0], color="#444444", linewidth=1))
+        n_betti = sig.betti.shape[1]
+        columns = [sig.betti[rows, k] if k < n_betti else np.zeros(0) for k in range(3)]
+        columns += [sig.measure[rows], sig.boundary_measure[rows]]
+        for step, y, label in zip(self.steps, columns, (*names, "", ""), strict=True):
+            step.set_data(x[: len(y)], y)
+            step.set_label(label)
+        axes = self.figure.axes[:3]
+        axes[0].legend(handles=self.steps[:n_betti], fontsize="x-small")
+        titles = measure_names(sig.dim)
+        for ax, title in zip(axes[1:], titles, strict=True):
+            ax.set_title(title, **TITLE_STYLE)
+            ax.set_ylabel(title.split(" (")[1].rstrip(")"), fontsize="x-small")
+        threshold = symlog_threshold(x) if weighted else 1.0
+        for ax, curves in zip(axes, (self.steps[:n_betti], self.steps[3:4], self.steps[4:]),
+                              strict=True):
+            set_alpha_scale(ax, weighted, threshold)
+            fit(ax, np.concatenate([c.get_xdata() for c in curves]),
+                np.concatenate([c.get_ydata() for c in curves]))
 
-    def _add_markers(self, ax) -> None:
-        """The optimal (★) and suggested (▼) alphas at the top edge of ax (clickable)."""
-        optimal, suggested = markers_of(self.model.dataset.ac, self.model.dataset.optimal_alpha)
-        for markers, symbol, colour, size in ((suggested, "v", SUGGESTED_COLOUR, 7),
-                                              ([optimal], "*", OPTIMAL_COLOUR, 13)):
-            if not markers:
-                continue
-            (line,) = ax.plot(self.plot_x(np.array([m.alpha for m in markers])),
-                              [1.0] * len(markers), symbol,
-                              color=colour, markersize=size, clip_on=False,
-                              transform=ax.get_xaxis_transform(), pickradius=6, zorder=5,
-                              markeredgecolor="white", markeredgewidth=0.6)
-            self.marker_lines.append((line, markers))
+    def _show_markers(self, dataset: Dataset) -> None:
+        """Put the optimal (★) and suggested (▼) alphas of dataset on the marker lines."""
+        optimal, suggested = markers_of(dataset.ac, dataset.optimal_alpha,
+                                        suggestions_of(dataset))
+        for i, (line, markers) in enumerate(self.marker_lines):
+            markers[:] = suggested if i % 2 == 0 else [optimal]
+            line.set_data(self.plot_x(np.array([m.alpha for m in markers])),
+                          np.ones(len(markers)))
 
     def marker_at(self, event) -> Marker | None:
         """The marker under a mouse event (the nearest one where several overlap), if any."""
         best, best_distance = None, np.inf
         for line, markers in self.marker_lines:
+            if not markers or not line.axes.get_visible():
+                continue
             hit, info = line.contains(event)
             for i in info.get("ind", ()) if hit else ():
                 x = line.get_transform().transform((line.get_xdata()[int(i)], 1.0))[0]
@@ -207,7 +224,7 @@ class SignaturesPanel(QWidget):
     def move_cursor(self) -> None:
         """Put the cursors at the current alpha (redraw is coalesced by matplotlib)."""
         alpha = self.model.alpha
-        if not self.cursors or not (alpha > 0 or self.model.weighted):
+        if not self.drawn_pairs or not (alpha > 0 or self.model.weighted):
             return
         x = float(self.plot_x(np.array([alpha]))[0])
         for cursor in self.cursors[:-1]:

@@ -1,7 +1,7 @@
 """Benchmark of a first open in the window (issue 15), against gudhi's bare build, in one run.
 
-    xvfb-run -a python benchmarks/bench_first_open.py [--n 1000000] [--seed 0] [--soak]
-        [--skip-gudhi] [--json out.json]
+    xvfb-run -a python benchmarks/bench_first_open.py [--n 1000000] [--seed 0]
+        [--steps scipy,gudhi,qhull,gmsh,window] [--soak | --soak-cycles N] [--json out.json]
 
 Each step runs in its own fresh process (isolate.run_isolated), so its peak memory is its
 own: scipy's Delaunay alone, gudhi's `AlphaComplex(precision="fast").create_simplex_tree()`,
@@ -10,8 +10,11 @@ installed), and a first open in a real MainWindow with an empty table cache: fil
 live (the window has the dataset) -> topology done (signatures, optimal alpha). The window's
 peak is its own process's and, apart, its build and topology processes' own. With --soak the
 same window then opens and cancels a third file 10 times and re-opens a cube and the torus
-alternately 10 times (RSS after each). Ratios are against gudhi fast (time) and scipy
-Delaunay (peak memory).
+alternately 10 times (RSS after each); --soak-cycles N does N of each (a bounded soak at 1M).
+--steps picks the steps (the window's ratios need gudhi and scipy). Each step's line is
+printed as soon as it ends (and the JSON rewritten), so a run stopped by `timeout` still
+reports what it measured. Ratios are against gudhi fast (time) and scipy Delaunay (peak
+memory).
 """
 
 from __future__ import annotations
@@ -31,7 +34,7 @@ import numpy as np
 from datasets import noisy_torus, write_points
 from isolate import Probe, run_isolated
 from measure import gudhi_alpha, scipy_delaunay
-from window_open import first_open
+from window_open import CANCELS, REOPENS, first_open
 
 GOALS = (  # (figure, reference, goal, at most?)
     ("window: slider live", "gudhi fast", 0.6),
@@ -39,6 +42,7 @@ GOALS = (  # (figure, reference, goal, at most?)
     ("core build, gmsh", "gudhi fast", 0.5),
     ("core build, qhull", "gudhi fast", 0.8),
 )
+STEPS = ("scipy", "gudhi", "qhull", "gmsh", "window")
 PEAK_GOAL = 2.5  # first open's peak (either process) / scipy Delaunay's peak
 SOAK_GOAL = 1.2  # RSS after each re-open / RSS after the first open
 
@@ -48,12 +52,28 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--n", type=int, default=1_000_000, help="torus points")
     parser.add_argument("--seed", type=int, default=0, help="torus sample seed")
-    parser.add_argument("--soak", action="store_true", help="cancelled opens and re-opens")
+    parser.add_argument("--steps", default=",".join(STEPS),
+                        help=f"comma-separated steps to run, of {','.join(STEPS)} (default all)")
+    parser.add_argument("--soak", action="store_true",
+                        help=f"after the window's first open: {CANCELS} cancelled opens and "
+                             f"{REOPENS} re-opens")
+    parser.add_argument("--soak-cycles", type=int, metavar="N",
+                        help="a soak of N cancelled opens and N re-opens (implies --soak)")
     parser.add_argument("--skip-gudhi", action="store_true", help="do not time gudhi")
     parser.add_argument("--json", metavar="PATH", help="also write the results as JSON")
     args = parser.parse_args(argv)
     if args.n < 1000:
         parser.error("--n must be at least 1000")
+    steps = [step.strip() for step in args.steps.split(",") if step.strip()]
+    unknown = sorted(set(steps) - set(STEPS))
+    if unknown or not steps:
+        parser.error(f"--steps: unknown {', '.join(unknown) or 'empty list'}; "
+                     f"choose from {','.join(STEPS)}")
+    if args.soak_cycles is not None and args.soak_cycles < 1:
+        parser.error("--soak-cycles must be at least 1")
+    args.steps = [step for step in STEPS if step in steps
+                  and not (step == "gudhi" and args.skip_gudhi)]
+    args.cycles = args.soak_cycles or (max(CANCELS, REOPENS) if args.soak else 0)
     return args
 
 
@@ -69,32 +89,43 @@ def core_build(points_path: str, backend: str) -> dict:
 
 
 def _step(name: str, fn: object, *fn_args: object) -> dict:
-    """Run one isolated measurement, logging its name and wall time to stderr."""
+    """Run one isolated measurement, logging its name and wall time to stderr and its
+    figures to stdout as soon as it ends."""
     print(f"  {name} ...", end="", file=sys.stderr, flush=True)
     start = time.perf_counter()
     result = run_isolated(fn, *fn_args)
     print(f" {time.perf_counter() - start:.1f} s ({result.get('error', 'ok')})",
           file=sys.stderr, flush=True)
+    print(f"step done: {name}: " + ", ".join(
+        f"{key} {value:.2f}" if isinstance(value, float) else f"{key} {value}"
+        for key, value in result.items() if not isinstance(value, dict)), flush=True)
     return result
 
 
-def measure(args: argparse.Namespace, folder: str) -> dict:
-    """Every step, each in its own process; {name: result}."""
+def measure(args: argparse.Namespace, folder: str, save=lambda _results: None) -> dict:
+    """The chosen steps, each in its own process; {name: result}. save(results) is called
+    after each step (the JSON of a run stopped early)."""
     torus, cube, other = (os.path.join(folder, f"{name}.npy") for name in ("torus", "cube",
                                                                             "cancelled"))
     write_points(noisy_torus(args.n, args.seed), torus)
-    write_points(np.random.default_rng(args.seed + 1).random((args.n, 3)), cube)
-    write_points(noisy_torus(args.n, args.seed + 2), other)
-    results = {"scipy Delaunay": _step("scipy Delaunay", scipy_delaunay, torus)}
-    if not args.skip_gudhi:
-        results["gudhi fast"] = _step("gudhi fast", gudhi_alpha, torus)
-    backends = ["qhull"] + (["gmsh"] if importlib.util.find_spec("gmsh") else [])
-    for backend in backends:
-        results[f"core build, {backend}"] = _step(f"core build ({backend})", core_build,
-                                                  torus, backend)
-    window = _step("window first open", first_open, torus, cube, other, args.soak)
-    results["window"] = window
-    if "error" not in window:
+    if args.cycles:
+        write_points(np.random.default_rng(args.seed + 1).random((args.n, 3)), cube)
+        write_points(noisy_torus(args.n, args.seed + 2), other)
+    have_gmsh = importlib.util.find_spec("gmsh") is not None
+    steps = {"scipy": ("scipy Delaunay", scipy_delaunay, torus),
+             "gudhi": ("gudhi fast", gudhi_alpha, torus),
+             "qhull": ("core build, qhull", core_build, torus, "qhull"),
+             "gmsh": ("core build, gmsh", core_build, torus, "gmsh"),
+             "window": ("window", first_open, torus, cube, other, args.cycles)}
+    results: dict = {}
+    for step in args.steps:
+        if step == "gmsh" and not have_gmsh:
+            continue
+        name, fn, *fn_args = steps[step]
+        results[name] = _step(name, fn, *fn_args)
+        save(results)
+    window = results.get("window", {})
+    if window and "error" not in window:
         for key, name in (("live", "slider live"), ("topology", "topology done")):
             results[f"window: {name}"] = {"seconds": window[f"{key}_seconds"],
                                           "cpu_seconds": window[f"{key}_cpu_seconds"]}
@@ -171,18 +202,30 @@ def format_report(n: int, results: dict) -> str:
     return "\n".join(lines)
 
 
+def load_text() -> str:
+    """The machine's load average now (1, 5, 15 minutes): read the figures with it."""
+    return "load average " + " ".join(f"{value:.1f}" for value in os.getloadavg())
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run every step once, print the tables, write the JSON."""
     args = parse_args(argv)
     if not os.environ.get("DISPLAY"):
         print("bench_first_open needs a display: run it under xvfb-run -a", file=sys.stderr)
         return 2
+    def save(results: dict) -> None:
+        if args.json:
+            Path(args.json).write_text(json.dumps(
+                {"n": args.n, "seed": args.seed, "steps": args.steps, "soak_cycles": args.cycles,
+                 "load_average": os.getloadavg(), "results": results}, indent=1, default=str))
+
+    print(f"n = {args.n:,}, steps {','.join(args.steps)}, soak cycles {args.cycles}, "
+          f"{load_text()} at the start", flush=True)
     with tempfile.TemporaryDirectory(prefix="alphascoop-bench-") as folder:
-        results = measure(args, folder)
+        results = measure(args, folder, save)
+    save(results)
+    print(f"{load_text()} at the end", flush=True)
     print(format_report(args.n, results), flush=True)
-    if args.json:
-        Path(args.json).write_text(json.dumps({"n": args.n, "seed": args.seed,
-                                               "results": results}, indent=1, default=str))
     return 0
 
 

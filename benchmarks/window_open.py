@@ -24,6 +24,8 @@ CANCEL_AFTER_S = 2.0  # cancel once the build has run this long (the child is st
 PROBE_MS = 10  # the stall probe's tick
 DRAG_STEPS = 200  # critical values a probe's drag walks over
 SAMPLE_S = 0.1  # how often the children's peak memory is read
+ARRIVAL_MS = 2000  # the probe runs on this long after the topology arrived: the docks' and
+# the view's deferred redraws (matplotlib's draw_idle, the render at the opening alpha) count
 
 
 def _wait(signal, timeout_ms: int = TIMEOUT_MS) -> tuple:
@@ -203,6 +205,8 @@ def _open_timed(win, path: str, drag: bool = False) -> dict:
     probe.start(_dragging(win.model) if drag else None)
     if topology is not None and "topology" not in stamps and not win.model.dataset.has_topology:
         _wait(topology)
+    if topology is not None:
+        _spin(ARRIVAL_MS)
     probe.stop()
     ds = win.model.dataset
     info = getattr(ds.ac, "build_info", None)
@@ -218,11 +222,12 @@ def _open_timed(win, path: str, drag: bool = False) -> dict:
             "cells": len(ds.ac.simplices(ds.ac.dim)), "points": len(ds.ac.points)}
 
 
-def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool,
+def first_open(points_path: str, other_path: str, cancel_path: str, soak: int,
                topology_in_thread: bool = False, drag: bool = False) -> dict:
     """First open of points_path in a new window (empty cache): times, peaks, the longest
-    GUI-thread stall while the topology completes, and with `soak` the RSS after cancelled
-    opens of cancel_path and re-opens of points_path / other_path. `topology_in_thread`
+    GUI-thread stall while the topology completes, and with `soak` (a count of cycles; True
+    = CANCELS and REOPENS) the RSS after that many cancelled opens of cancel_path and re-opens
+    of points_path / other_path. `topology_in_thread`
     runs the topology pass in a thread of the window (as before issue 15's topology process),
     for comparison; `drag` has the stall probe step a cursor on every tick (a slider drag's
     queries) while the topology computes."""
@@ -244,21 +249,23 @@ def first_open(points_path: str, other_path: str, cancel_path: str, soak: bool,
                       child_peaks_mib=peaks,
                       child_maxrss_mib=memory.peak_rss_bytes(children=True) / MIB)
         if soak:
-            result["soak"] = _soak(win, points_path, other_path, cancel_path)
+            cycles = (CANCELS, REOPENS) if soak is True else (int(soak), int(soak))
+            result["soak"] = _soak(win, points_path, other_path, cancel_path, *cycles)
         win.close()
     return result
 
 
-def _soak(win, first: str, second: str, cancel: str) -> dict:
-    """Open/cancel `cancel` CANCELS times (its build never finishes, so each one starts the
-    build process), then REOPENS alternate opens (second first); RSS in MiB
+def _soak(win, first: str, second: str, cancel: str, cancels: int = CANCELS,
+          reopens: int = REOPENS) -> dict:
+    """Open/cancel `cancel` `cancels` times (its build never finishes, so each one starts the
+    build process), then `reopens` alternate opens (second first); RSS in MiB
     after each, the seconds of each re-open, and the old datasets still alive at the end."""
     import gc
     import multiprocessing
     import weakref
 
     cancelled, reopened, seconds, alive = [], [], [], []
-    for _ in range(CANCELS):
+    for _ in range(cancels):
         win.open_path(cancel)
         _spin(int(CANCEL_AFTER_S * 1000))
         win.loader.cancel()
@@ -267,7 +274,7 @@ def _soak(win, first: str, second: str, cancel: str) -> dict:
         _spin(200)
         cancelled.append(rss_mib())
     left = len(multiprocessing.active_children())
-    for i in range(REOPENS):
+    for i in range(reopens):
         start = time.perf_counter()
         win.open_path(second if i % 2 == 0 else first)
         _wait(win.model.datasetChanged)

@@ -20,6 +20,10 @@ from .tolerances import (
 )
 
 CHUNK = 1 << 19
+#: Rows per chunk of the arithmetic passes with many (n, 3) temporaries: small enough that
+#: they stay in the caches (1.7-2.5x faster at 1M rows than CHUNK chunks; rowwise, so the
+#: chunking never changes a value).
+CACHE_CHUNK = 1 << 14
 
 
 _CROSS = ((1, 2), (2, 0), (0, 1))  # component i of a x b is a[j] b[k] - a[k] b[j]
@@ -244,7 +248,7 @@ def cell_spheres(
     def part(lo: int, hi: int) -> None:
         _, r2[lo:hi], dets[lo:hi], flat[lo:hi], bits[lo:hi] = _spheres(points, cells[lo:hi])
 
-    in_chunks(part, n, CHUNK)
+    in_chunks(part, n, CACHE_CHUNK)
     return r2, dets, flat, bits
 
 
@@ -273,7 +277,7 @@ def facet_radii2(points: np.ndarray, facets: np.ndarray, exact: bool = False
         out[lo:hi], bits[lo:hi] = _triangle_radii2(
             points, facets[lo:hi], None if doubt is None else doubt[lo:hi])
 
-    in_chunks(part, len(facets), CHUNK)
+    in_chunks(part, len(facets), CACHE_CHUNK)
     return (out, bits) if doubt is None else (out, bits, doubt)
 
 
@@ -339,5 +343,5 @@ def facet_sizes(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
         if rows.shape[1] == 3:
             out[lo:hi] /= 2.0
 
-    in_chunks(part, len(facets), CHUNK)
+    in_chunks(part, len(facets), CACHE_CHUNK)
     return out

@@ -22,7 +22,7 @@ import numpy as np
 
 from .cell_pass import CellSpheres
 from .geometry import (
-    CHUNK,
+    CACHE_CHUNK,
     any_point_inside,
     cell_spheres,
     circumspheres,
@@ -137,6 +137,26 @@ def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> N
         ids = ids[grow]
 
 
+def _thin_pairs(neighbors: np.ndarray, thin: np.ndarray, flat: np.ndarray
+                ) -> tuple[np.ndarray, ...]:
+    """Each pair of neighbouring non-flat cells with a thin one once, as (t, i, u, j): cell
+    t's neighbour opposite its vertex i is u, whose vertex j is opposite t (t < u), in no
+    particular order. Read from the thin cells' rows only."""
+    width = neighbors.shape[1]
+    rows = np.flatnonzero(thin)
+    a = np.repeat(rows, width)
+    b = take(neighbors, rows).ravel().astype(np.int64)
+    slot = np.tile(np.arange(width), len(rows))
+    keep = b >= 0
+    keep[keep] = ~flat[b[keep]]
+    keep &= ~thin[np.maximum(b, 0)] | (a < b)  # two thin cells: their pair once
+    a, b, slot = a[keep], b[keep], slot[keep]
+    other = _slot_of(neighbors, b, a)
+    low = a < b
+    t, u = np.where(low, a, b), np.where(low, b, a)
+    return t, np.where(low, slot, other), u, np.where(low, other, slot)
+
+
 def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: np.ndarray,
             flat: np.ndarray) -> np.ndarray:
     """(n,) bool: non-flat cells on a fold, i.e. on the same side of a facet as a non-flat
@@ -152,13 +172,7 @@ def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: n
     thin = (np.abs(det) <= FOLD_CANDIDATE_RTOL * extent ** points.shape[1]) & ~flat
     if not thin.any():
         return np.zeros(n, dtype=bool)
-    real = neighbors >= 0
-    pair = real & (neighbors > np.arange(n, dtype=np.int32)[:, None])
-    pair &= thin[:, None] | thin[np.maximum(neighbors, 0)]
-    pair &= ~flat[:, None] & ~flat[np.maximum(neighbors, 0)]
-    t, i = np.nonzero(pair)
-    u = neighbors[t, i]
-    j = np.argmax(neighbors[u] == t[:, None], axis=1)
+    t, i, u, j = _thin_pairs(neighbors, thin, flat)
     # facets listed in ascending vertex order: opposite sides <=> parities of i+j and of
     # the two signs differ
     fold = ((i + j) % 2 == 1) == ((det[t] < 0) ^ (det[u] < 0))
@@ -251,11 +265,41 @@ def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarra
     return signed_sqrt(power), obtuse, power_test
 
 
+def _facet_enter(points: np.ndarray, cells: Level, det: np.ndarray, simplices: np.ndarray,
+                 weights: np.ndarray | None, exact: list[int] | None, side0: tuple,
+                 side1: tuple, near_flat: np.ndarray, regular: np.ndarray, bits: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray | None]:
+    """The facets' enter values (their own radius unless attached, then `regular`) and the
+    (3D) attach bits of their edges. side0 = (t0, i0, e0): every facet's first cell, the
+    vertex opposite, its enter; side1 = (has1, t1, j1, e1): the same for the facets with a
+    second cell."""
+    t0, i0, e0 = side0
+    has1, t1h, j1, e1h = side1
+    radius, obtuse, global_test = _facet_spheres(points, simplices, weights, exact)
+    inside0 = ((take(bits, t0) >> i0) & 1).astype(bool)
+    inside1 = ((take(bits, t1h) >> j1) & 1).astype(bool)
+    if weights is None and exact is not None:  # doubtful float decisions made exact
+        sides = [(slice(None), t0, i0, inside0, e0), (has1, t1h, j1, inside1, e1h)]
+        attached, n_exact = settle_facets(points, cells.simplices, cells.enter, det, simplices,
+                                          radius, sides)
+        exact.append(n_exact)
+    else:
+        attached = inside0.copy()
+        attached[has1] |= inside1
+    del inside0, inside1
+    if near_flat.any():
+        ids = np.flatnonzero(near_flat)
+        attached[ids] |= global_test(ids)
+    return np.where(attached, regular, np.minimum(radius, regular)), obtuse
+
+
 def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray,
             bits: np.ndarray, weights: np.ndarray | None = None,
             exact: list[int] | None = None, sort: bool = True, radii: bool = True):
-    """Level d-1 from the cells' neighbour table: each shared facet taken once. radii=False:
-    the facets' own radii and attachment are not computed (enter = regular)."""
+    """Level d-1 from the cells' neighbour table: each shared facet taken once. Every
+    per-cell value is gathered once per side (the second side's gathers are random) on
+    two threads (core.parallel.take). radii=False: the facets' own radii and attachment are
+    not computed (enter = regular)."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
     slot0 = np.flatnonzero(keep)  # cell-major, as np.nonzero lists them
@@ -264,58 +308,50 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     t1 = take(neighbors.ravel(), slot0)
     simplices = _drop_vertex(cells.simplices, t0, i0)
     has1 = np.flatnonzero(t1 >= 0)
-    j1 = _slot_of(neighbors, t1[has1], t0[has1])
+    t1h = take(t1, has1)
+    j1 = _slot_of(neighbors, t1h, take(t0, has1))
 
-    if radii:
-        radius, obtuse, global_test = _facet_spheres(points, simplices, weights, exact)
-    else:  # a mode supplies its own values: only the cofacet values are taken
-        obtuse = None
-    t1h = t1[has1]
-    e0 = cells.enter[t0]
+    e0, e1h = take(cells.enter, t0), take(cells.enter, t1h)
     e1 = np.full(len(t0), np.inf)
-    e1[has1] = cells.enter[t1h]
-    near_flat = det[t0] == 0
-    near_flat[has1] |= det[t1h] == 0
+    e1[has1] = e1h
+    det0, det1 = take(det, t0), take(det, t1h)
+    near_flat = det0 == 0
+    near_flat[has1] |= det1 == 0
     regular = np.minimum(e0, e1)
     interior = np.maximum(e0, e1)
-    enter = regular.copy()
+    obtuse = None
     if radii:
-        inside0 = ((bits[t0] >> i0) & 1).astype(bool)
-        inside1 = ((bits[t1h] >> j1) & 1).astype(bool)
-        if weights is None and exact is not None:  # doubtful float decisions made exact
-            sides = [(slice(None), t0, i0, inside0, e0), (has1, t1h, j1, inside1, e1[has1])]
-            attached, n_exact = settle_facets(points, cells.simplices, cells.enter, det,
-                                              simplices, radius, sides)
-            exact.append(n_exact)
-        else:
-            attached = inside0.copy()
-            attached[has1] |= inside1
-        if near_flat.any():
-            ids = np.flatnonzero(near_flat)
-            attached[ids] |= global_test(ids)
-        enter = np.where(attached, regular, np.minimum(radius, regular))
+        enter, obtuse = _facet_enter(points, cells, det, simplices, weights, exact,
+                                     (t0, i0, e0), (has1, t1h, j1, e1h), near_flat, regular,
+                                     bits)
+    else:  # a mode supplies its own values: only the cofacets' are taken
+        enter = regular.copy()
+    del e0, e1, e1h
 
-    flip = (i0 % 2 == 1) ^ (det[t0] < 0)
-    better = np.abs(det[t1[has1]]) > np.abs(det[t0[has1]])
-    flip_other = ~((j1 % 2 == 1) ^ (det[t1[has1]] < 0))
+    flip = (i0 % 2 == 1) ^ (det0 < 0)
+    better = np.abs(det1) > np.abs(take(det0, has1))
+    flip_other = ~((j1 % 2 == 1) ^ (det1 < 0))
     flip[has1[better]] = flip_other[better]
+    del det0, det1, better, flip_other
     hull = np.flatnonzero(t1 < 0)
     flip[hull] = _faces_centre(points, simplices[hull])
 
-    fid = np.arange(len(t0), dtype=np.int32)
     cell_faces = np.full((n_cells, width), -1, dtype=np.int32)
-    cell_faces.ravel()[slot0] = fid
-    cell_faces.ravel()[t1[has1].astype(np.int64) * width + j1] = fid[has1]
-    level = Level(simplices.astype(np.int32), enter, regular, interior)
-    facet_cells = np.stack((t0, t1), axis=1).astype(np.int32)
+    cell_faces.ravel()[slot0] = np.arange(len(t0), dtype=np.int32)
+    cell_faces.ravel()[t1h.astype(np.int64) * width + j1] = has1
+    del slot0, t1h, j1
+    level = Level(simplices.astype(np.int32, copy=False), enter, regular, interior)
+    facet_cells = np.empty((len(t0), 2), dtype=np.int32)
+    facet_cells[:, 0], facet_cells[:, 1] = t0, t1
+    del t0, t1, i0, has1
     order = _order(enter, sort)
     if order is None:
         cells.face_ids = cell_faces
         return level, facet_cells, flip, near_flat, obtuse
     inverse = _permute(level, order)
-    cells.face_ids = inverse[cell_faces]
-    return (level, facet_cells[order], flip[order], near_flat[order],
-            None if obtuse is None else obtuse[order])
+    cells.face_ids = take(inverse, cell_faces.ravel()).reshape(cell_faces.shape)
+    return (level, take(facet_cells, order), take(flip, order), take(near_flat, order),
+            None if obtuse is None else take(obtuse, order))
 
 
 def _drop_vertex(simplices: np.ndarray, rows: np.ndarray, drop: np.ndarray) -> np.ndarray:
@@ -373,7 +409,7 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
     inside = np.empty(len(keys), dtype=bool)
     face_ids = np.empty(tris.size, dtype=np.int32)
     first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
-    size = 4 * CHUNK
+    size = 4 * CACHE_CHUNK
     base = np.cumsum([0] + [np.count_nonzero(is_start[lo:lo + size])
                             for lo in range(0, len(keys), size)])
 

@@ -175,3 +175,38 @@ def test_readout_names_the_pair_under_the_mouse(panels, dataset) -> None:
     event = MouseEvent("motion_notify_event", panel.canvas, x, y)
     text = panel.readout_text(event)
     assert f"born at r {birth:.4g}" in text and f"dies at r {death:.4g}" in text
+
+
+def test_a_new_dataset_changes_data_not_the_figure(panels, dataset, monkeypatch) -> None:
+    """The topology's arrival (on the GUI thread) keeps the axes, their artists and the fixed
+    layout: no figure.clear, no layout engine, no mathtext tick labels to parse."""
+    panel, _ = panels
+    figure = panel.figure
+    axes, steps, cursors = list(figure.axes), list(panel.steps), list(panel.cursors)
+    positions = [ax.get_position().bounds for ax in axes]
+    monkeypatch.setattr(figure, "clear", lambda *a, **k: pytest.fail("figure cleared"))
+    other = make_dataset(ring_and_ball(500, seed=8)[:, : dataset.ac.dim])
+    panel.model.set_dataset(other)
+    panel.canvas.draw()
+    assert figure.get_layout_engine() is None
+    assert figure.axes == axes and panel.steps == steps and panel.cursors == cursors
+    assert [ax.get_position().bounds for ax in axes] == positions
+    np.testing.assert_array_equal(panel.drawn_pairs[0].pairs,
+                                  other.ac.persistence().diagram(0))
+    labels = [t.get_text() for ax in axes for axis in (ax.xaxis, ax.yaxis)
+              for t in axis.get_ticklabels()]
+    assert any(labels) and not any("$" in text for text in labels)
+
+
+def test_margins_are_fixed_in_points_whatever_the_size(panels) -> None:
+    """Resizing moves the axes to the same margins in points (no text is measured)."""
+    from app.signature_figure import LEFT_PT, TOP_PT
+
+    panel, _ = panels
+    for width, height in ((900, 240), (1500, 420)):
+        panel.resize(width, height)
+        panel.canvas.draw()
+        box, dpi = panel.figure.bbox, panel.figure.dpi
+        left = panel.figure.axes[0].get_position()
+        assert left.x0 * box.width == pytest.approx(LEFT_PT * dpi / 72, rel=1e-6)
+        assert (1 - left.y1) * box.height == pytest.approx(TOP_PT * dpi / 72, rel=1e-6)

@@ -71,8 +71,9 @@ def test_slider_is_usable_before_the_signatures_exist(window, qtbot, held, point
     ds, panel = window.model.dataset, window.alpha_panel
     assert not ds.has_topology and ds.signatures is None
     assert not panel.optimal.isEnabled() and panel.optimal.text() == OPTIMAL_WAIT_TEXT
-    assert window.signatures_panel.figure.axes == []
-    assert COMPUTING in [t.get_text() for t in window.signatures_panel.figure.texts]
+    assert not any(ax.get_visible() for ax in window.signatures_panel.figure.axes)
+    assert window.signatures_panel.computing.get_visible()
+    assert window.signatures_panel.computing.get_text() == COMPUTING
     assert "computing" in window.info_panel.shape.text()
     assert "built in" in window.status.text() and "topology: computing" in window.status.text()
     start = window.model.index
@@ -97,7 +98,8 @@ def test_the_docks_fill_in_and_a_touched_slider_stays(window, qtbot, held, point
     assert ds.has_topology and ds.signatures is not None and ds.optimal_alpha is not None
     assert window.model.index == moved_to  # the user's choice wins over the opening alpha
     assert panel.optimal.isEnabled() and panel.optimal.text() == OPTIMAL_TEXT
-    assert len(window.signatures_panel.figure.axes) == 4
+    assert all(ax.get_visible() for ax in window.signatures_panel.figure.axes)
+    assert not window.signatures_panel.computing.get_visible()
     assert "component" in window.info_panel.shape.text()
     assert "topology in" in window.status.text()
     qtbot.mouseClick(panel.optimal, Qt.MouseButton.LeftButton)

@@ -30,7 +30,8 @@ def everything_split():
     with contextlib.ExitStack() as stack:
         stack.enter_context(mock.patch.object(core.parallel, "PARALLEL_ABOVE", 2))
         stack.enter_context(mock.patch.object(core.geometry, "CHUNK", 7))
-        stack.enter_context(mock.patch.object(core.table, "CHUNK", 7))
+        stack.enter_context(mock.patch.object(core.geometry, "CACHE_CHUNK", 7))
+        stack.enter_context(mock.patch.object(core.table, "CACHE_CHUNK", 7))
         yield
 
 

@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from ..geometry import CHUNK
-from ..parallel import halves
+from ..geometry import CACHE_CHUNK
+from ..parallel import halves, take
 from ..tolerances import BACKEND_CERTAIN_RTOL
 
 
@@ -91,8 +91,8 @@ def orientations(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     sign = np.empty(len(cells), dtype=np.int8)
 
     def part(start: int, stop: int) -> None:
-        for lo in range(start, stop, CHUNK):
-            det, perm = _orient(cols, cells[lo:min(lo + CHUNK, stop)])
+        for lo in range(start, stop, CACHE_CHUNK):
+            det, perm = _orient(cols, cells[lo:min(lo + CACHE_CHUNK, stop)])
             sign[lo:lo + len(det)] = np.where(np.abs(det) > BACKEND_CERTAIN_RTOL * perm,
                                               np.sign(det), 0)
     halves(part, len(cells))
@@ -109,8 +109,8 @@ def in_sphere(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
     out = np.empty(len(cells), dtype=np.int8)
 
     def part(start: int, stop: int) -> None:
-        for lo in range(start, stop, CHUNK):
-            hi = min(lo + CHUNK, stop)
+        for lo in range(start, stop, CACHE_CHUNK):
+            hi = min(lo + CACHE_CHUNK, stop)
             det, perm = _lifted(cols, cells[lo:hi], query[lo:hi], weights)
             # Shewchuk's incircle is > 0 inside a triangle with det > 0; his insphere is > 0
             # inside a tetrahedron with det[v1 - v0, v2 - v0, v3 - v0] < 0
@@ -126,8 +126,9 @@ def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None
     its vertex i opposite the facet, the cell u across and u's vertex j opposite it
     (neighbour tables are symmetric by construction)."""
     if near is None:
-        t, i = np.nonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
-        u = neighbors[t, i]
+        slots = np.flatnonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
+        t, i = np.divmod(slots, neighbors.shape[1])
+        u = np.take(neighbors, slots)
     else:  # the facets of the near cells; a facet between two of them once
         rows = np.flatnonzero(near)
         row, i = np.nonzero(neighbors[rows] >= 0)
@@ -135,7 +136,10 @@ def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None
         u = neighbors[t, i]
         once = ~near[u] | (u > t)
         t, i, u = t[once], i[once], u[once]
-    j = np.argmax(neighbors[u] == t[:, None].astype(np.int32), axis=1)
+    around = take(neighbors, u)
+    j = np.zeros(len(t), dtype=np.int64)
+    for c in range(neighbors.shape[1] - 1, 0, -1):  # one compare per column, not an argmax
+        j[around[:, c] == t] = c
     return t, i, u, j
 
 

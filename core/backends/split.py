@@ -25,7 +25,7 @@ from scipy.spatial import cKDTree
 
 from ..delaunay import Triangulation, compacted, delaunay_cells, regular_cells
 from ..errors import InputError
-from ..geometry import CHUNK, circumspheres
+from ..geometry import CACHE_CHUNK, circumspheres
 from ..power import orthospheres
 from ..tolerances import ILL_CONDITIONED_RTOL, SPLIT_EMPTY_RTOL
 from .certify import why_not_delaunay
@@ -108,8 +108,8 @@ def _spheres(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray
     centres = np.empty((len(cells), len(cols)))
     size = np.empty(len(cells))
     poor = np.empty(len(cells), dtype=bool)
-    for lo in range(0, len(cells), CHUNK):
-        hi = min(lo + CHUNK, len(cells))
+    for lo in range(0, len(cells), CACHE_CHUNK):
+        hi = min(lo + CACHE_CHUNK, len(cells))
         columns, size[lo:hi], shape = _solved(cols, weights, cells[lo:hi])
         for k, col in enumerate(columns):
             centres[lo:hi, k] = col
