@@ -20,6 +20,16 @@ def snap_index(spectrum: np.ndarray, alpha: float) -> int:
     return max(int(np.searchsorted(spectrum, alpha, side="right")) - 1, 0)
 
 
+def sorted_quantile(values: np.ndarray, q: float) -> float:
+    """np.quantile(values, q) (linear interpolation) of (n,) ascending values, n >= 1, read
+    off by index: no sort or copy of a spectrum of millions when a dataset opens."""
+    position = q * (len(values) - 1)
+    below = int(np.floor(position))
+    above = min(below + 1, len(values) - 1)
+    low, high = float(values[below]), float(values[above])
+    return low + (high - low) * (position - below)
+
+
 class LogTravel:
     """Maps spectrum indexes to slider positions 0..TRAVEL and back, linear in log alpha."""
 
@@ -27,10 +37,11 @@ class LogTravel:
         """spectrum: (s,) float64 ascending; reach: an alpha the travel must include (the
         optimal one, say) below the top end."""
         self.spectrum = np.asarray(spectrum, dtype=np.float64)
-        positive = self.spectrum[self.spectrum > 0]
+        positive = self.spectrum[np.searchsorted(self.spectrum, 0.0, side="right"):]  # a view
         if len(positive) == 0:
             positive = np.ones(1)
-        low, high = np.quantile(positive, [LOW_QUANTILE, HIGH_QUANTILE])
+        low, high = sorted_quantile(positive, LOW_QUANTILE), sorted_quantile(positive,
+                                                                             HIGH_QUANTILE)
         if reach is not None and np.isfinite(reach) and reach > 0:
             high = max(high, 2.0 * reach)
         high = max(min(high, positive[-1]), low * 1.0001)

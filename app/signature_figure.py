@@ -10,13 +10,22 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.figure import Figure
-from matplotlib.ticker import FuncFormatter, MaxNLocator, NullFormatter
+from matplotlib.ticker import (
+    FuncFormatter,
+    LogLocator,
+    MaxNLocator,
+    NullFormatter,
+    NullLocator,
+)
+from matplotlib.transforms import ScaledTranslation
 
 # Margins in points (1/72 inch): room for tick labels, axis labels and the titles above the
 # marker row. Fixed, so a redraw never measures text to lay the figure out.
 LEFT_PT, RIGHT_PT, BOTTOM_PT, TOP_PT, GAP_PT = 50.0, 8.0, 30.0, 24.0, 52.0
+XLABEL_PT, YLABEL_PT = 16.0, 32.0  # axis labels' distance from the axes (below, left)
 WIDTH_RATIOS = (1.0, 1.0, 1.0, 1.1)
 MAX_SAMPLES = 2000  # spectrum entries drawn per curve
+MINOR_SUBS = (2.0, 5.0)  # minor ticks of a log axis, per decade
 CURSOR_COLOUR = "#444444"
 # Titles at a fixed height (y given): else every draw measures the axis under each title.
 TITLE_STYLE = {"fontsize": "small", "pad": 10, "y": 1.0}
@@ -81,6 +90,10 @@ def plain_log_ticks(axis, linthresh: float = 0.0) -> None:
     (linthresh: the linear part of a symmetric-log axis, left unlabelled but for 0)."""
     axis.set_major_formatter(FuncFormatter(lambda value, _pos: decade_label(value, linthresh)))
     axis.set_minor_formatter(NullFormatter())
+    # Minor ticks at 2 and 5 per decade (log) or none (symmetric log): each tick is an
+    # object made on the first draw, and eight a decade over many decades cost a second.
+    axis.set_minor_locator(LogLocator(subs=MINOR_SUBS) if axis.get_scale() == "log"
+                           else NullLocator())
 
 
 def plain_linear_ticks(axis) -> None:
@@ -97,6 +110,12 @@ def new_figure() -> tuple[Figure, list]:
     for ax in axes:
         ax.tick_params(labelsize="x-small")
         ax.set_visible(False)
+        # axis labels a fixed distance from the axes: else every draw (a slider step
+        # moves the cursors) measures the tick labels of every axes to place them
+        ax.xaxis.set_label_coords(0.5, 0.0, transform=ax.transAxes + ScaledTranslation(
+            0.0, -XLABEL_PT / 72.0, figure.dpi_scale_trans))
+        ax.yaxis.set_label_coords(0.0, 0.5, transform=ax.transAxes + ScaledTranslation(
+            -YLABEL_PT / 72.0, 0.0, figure.dpi_scale_trans))
     return figure, axes
 
 

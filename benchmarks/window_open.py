@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import resource
+import sys
 import tempfile
 import time
 
@@ -185,6 +186,11 @@ def _dragging(model):
     return step
 
 
+def _say(text: str) -> None:
+    """A progress line on stderr (a run stopped by a timeout still shows how far it got)."""
+    print(f"    window: {text}", file=sys.stderr, flush=True)
+
+
 def _open_timed(win, path: str, drag: bool = False) -> dict:
     """Open path; seconds (wall, and CPU of this process and its build process) until the
     slider is live and until the topology is done."""
@@ -201,11 +207,13 @@ def _open_timed(win, path: str, drag: bool = False) -> dict:
     win.open_path(path)
     _wait(win.model.datasetChanged)
     stamp("live")
+    _say(f"slider live after {stamps['live'][0] - stamps['start'][0]:.1f} s")
     _spin(0)  # the first frame is requested; let the event loop run once
     probe.start(_dragging(win.model) if drag else None)
     if topology is not None and "topology" not in stamps and not win.model.dataset.has_topology:
         _wait(topology)
     if topology is not None:
+        _say(f"topology done after {time.perf_counter() - stamps['start'][0]:.1f} s")
         _spin(ARRIVAL_MS)
     probe.stop()
     ds = win.model.dataset

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from reference import data_dir
 
 from app.history import AlphaHistory
-from app.log_travel import PAGE_FACTOR, TRAVEL, LogTravel
+from app.log_travel import LOW_QUANTILE, PAGE_FACTOR, TRAVEL, LogTravel, sorted_quantile
 from core import AlphaComplex
 
 DATA = data_dir()
@@ -95,3 +97,18 @@ def test_history_merges_quick_successive_visits() -> None:
         now[0] = time
         history.visit(index)
     assert history.entries == [1, 4, 5]
+
+
+@given(st.lists(st.floats(-10.0, 1e6, allow_nan=False), min_size=1, max_size=60),
+       st.sampled_from([0.0, LOW_QUANTILE, 0.37, 0.5, 0.999, 1.0]))
+def test_sorted_quantile_is_numpys_quantile(values, q) -> None:
+    """The travel's ends read off the sorted spectrum equal numpy's (sorting) quantile."""
+    values = np.sort(np.array(values))
+    assert sorted_quantile(values, q) == pytest.approx(float(np.quantile(values, q)),
+                                                       rel=1e-12, abs=1e-9)
+
+
+def test_travel_ends_are_quantiles_of_the_positive_alphas(spectrum) -> None:
+    travel = LogTravel(spectrum)
+    positive = spectrum[spectrum > 0]
+    assert np.exp(travel.log_low) == pytest.approx(np.quantile(positive, LOW_QUANTILE), rel=1e-12)

@@ -112,6 +112,7 @@ class Scene:
         actor = self.plotter.add_mesh(
             source, color=None if coloured else style.colour, opacity=style.opacity,
             scalars="rgb" if coloured else None, rgb=coloured, name=name, reset_camera=False,
+            render=False,  # one render once the dataset is set up, not one per layer
             lighting=layer.kind in ("tris", "tets", "balls") and (self.dim == 3
                                                                    or layer.kind == "balls"),
             **DRAW_OPTIONS.get(name, {}),
