@@ -481,8 +481,9 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
                                np.float64)
     if radii:
         attached = reduce_segments(np.logical_or, _gathered(inside, None), starts, n, bool)
-        check = np.flatnonzero(reduce_segments(np.logical_or, _gathered(near_flat, tri_ids),
-                                               starts, n, bool))
+        # the edges of the (few) triangles next to flat cells, from their face ids: no
+        # gather over all incidences
+        check = np.unique(face_ids.reshape(-1, 3)[np.flatnonzero(near_flat)])
     edge_keys = keys[starts]
     del keys, tri_ids, inside
     a, b = np.divmod(edge_keys, m)
