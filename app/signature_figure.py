@@ -26,6 +26,7 @@ XLABEL_PT, YLABEL_PT = 16.0, 32.0  # axis labels' distance from the axes (below,
 WIDTH_RATIOS = (1.0, 1.0, 1.0, 1.1)
 MAX_SAMPLES = 2000  # spectrum entries drawn per curve
 MINOR_SUBS = (2.0, 5.0)  # minor ticks of a log axis, per decade
+SYMLOG_TICKS = 7  # at most about this many decades labelled on a symmetric-log axis
 CURSOR_COLOUR = "#444444"
 # Titles at a fixed height (y given): else every draw measures the axis under each title.
 TITLE_STYLE = {"fontsize": "small", "pad": 10, "y": 1.0}
@@ -92,8 +93,11 @@ def plain_log_ticks(axis, linthresh: float = 0.0) -> None:
     axis.set_minor_formatter(NullFormatter())
     # Minor ticks at 2 and 5 per decade (log) or none (symmetric log): each tick is an
     # object made on the first draw, and eight a decade over many decades cost a second.
-    axis.set_minor_locator(LogLocator(subs=MINOR_SUBS) if axis.get_scale() == "log"
-                           else NullLocator())
+    if axis.get_scale() == "log":
+        axis.set_minor_locator(LogLocator(subs=MINOR_SUBS))
+    else:  # symmetric log: every decade on both sides of 0 would crowd the labels
+        axis.set_minor_locator(NullLocator())
+        axis.get_major_locator().set_params(numticks=SYMLOG_TICKS)
 
 
 def plain_linear_ticks(axis) -> None:
