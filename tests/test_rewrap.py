@@ -73,3 +73,16 @@ def test_repair_certifies_folds_flips_cannot(seed: int) -> None:
     exact = {tuple(sorted(s)) for s, _ in st.get_simplices() if len(s) == 4}
     assert _cell_set(out.triangulation.cells) == exact
     assert _links_are_symmetric(out.triangulation)
+
+
+def test_nothing_new_runs_on_a_certified_build(monkeypatch) -> None:
+    """The ordinary path: a triangulation that certifies never reaches the re-triangulation."""
+    import core.certify as certify_module
+    from core.build import build_complex
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("rewrap ran on a build that certifies")
+
+    monkeypatch.setattr(certify_module, "rewrap", refuse)
+    built = build_complex(np.random.default_rng(3).random((2000, 3)))
+    assert built.info.uncertified == 0
