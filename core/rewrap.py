@@ -70,7 +70,9 @@ def _float_heights(points: np.ndarray, facet: np.ndarray, normal_sign: int,
     else:
         u, v = corners[1] - a, corners[2] - a
         normal = np.cross(u, v)
-        centre = (u @ u * np.cross(v, normal) + v @ v * np.cross(normal, u)) / (2 * normal @ normal)
+        with np.errstate(all="ignore"):  # a near-collinear facet: the exact tests decide
+            centre = ((u @ u * np.cross(v, normal) + v @ v * np.cross(normal, u))
+                      / (2 * normal @ normal))
     normal = normal * normal_sign
     with np.errstate(all="ignore"):
         out = ((rel - centre) ** 2).sum(axis=1) - centre @ centre
@@ -85,6 +87,8 @@ def _pivot(wrap: _Wrap, facet: np.ndarray, apex: int) -> int:
     ids = np.append(pool, apex)
     signs = _orient(wrap, np.column_stack((np.tile(facet, (len(ids), 1)), ids)))
     side = -int(signs[-1])
+    if side == 0:  # a flat cell (or a facet with collinear corners) on the region's boundary
+        raise WrapFailed("a flat cell on the region's boundary")
     beyond = pool[signs[:-1] == side]  # the cell facet + p has orientation `side`
     if not len(beyond):
         if len(pool) < len(wrap.points):  # a hull facet of the region: of all the points?

@@ -14,6 +14,13 @@ from collections.abc import Iterator
 
 import numpy as np
 import pytest
+from hypothesis import settings
+
+# Property tests draw the same examples on every run (the CI must not depend on luck);
+# HYPOTHESIS_PROFILE=explore draws new ones, to look for failures on purpose.
+settings.register_profile("fixed", derandomize=True, database=None)
+settings.register_profile("explore")
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "fixed"))
 
 XVFB_ARGS = ("-screen", "0", "1280x1024x24", "-nolisten", "tcp")
 XVFB_STOP_TIMEOUT_S = 20.0

@@ -73,3 +73,36 @@ def test_repair_certifies_folds_flips_cannot(seed: int) -> None:
     exact = {tuple(sorted(s)) for s, _ in st.get_simplices() if len(s) == 4}
     assert _cell_set(out.triangulation.cells) == exact
     assert _links_are_symmetric(out.triangulation)
+
+
+def test_nothing_new_runs_on_a_certified_build(monkeypatch) -> None:
+    """The ordinary path: a triangulation that certifies never reaches the re-triangulation."""
+    import core.certify as certify_module
+    from core.build import build_complex
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("rewrap ran on a build that certifies")
+
+    monkeypatch.setattr(certify_module, "rewrap", refuse)
+    built = build_complex(np.random.default_rng(3).random((2000, 3)))
+    assert built.info.uncertified == 0
+
+
+def test_a_flat_cell_on_the_region_boundary_grows_the_region() -> None:
+    """Points snapped to a 0.1 lattice (found by the surface export's property test): a flat
+    kept cell on the first region's boundary has no side to wrap towards; the attempt is
+    declined (no division by its zero normal) and the next ring certifies. The set is exactly
+    degenerate (its Delaunay triangulation is not unique), so the check is certification and
+    a tiling of the convex hull, not gudhi's cells."""
+    from scipy.spatial import ConvexHull
+
+    from core.build import build_complex
+
+    rng = np.random.default_rng(492)
+    pts = np.unique(np.round(rng.uniform(size=(150, 3)), 1), axis=0)
+    built = build_complex(pts)  # the suite turns core's RuntimeWarnings into errors
+    assert built.info.uncertified == 0
+    cells = built.table.levels[3].simplices
+    corners = built.points[cells]
+    volume = np.abs(np.linalg.det(corners[:, 1:] - corners[:, :1])).sum() / 6
+    assert volume == pytest.approx(ConvexHull(pts).volume, rel=1e-12)
