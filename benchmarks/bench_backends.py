@@ -8,7 +8,6 @@ and certified) against scipy's Delaunay, in one run, each step in its own fresh 
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 import tempfile
@@ -19,6 +18,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from benchmarks.datasets import bunny_scan, noisy_torus
 from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
+from benchmarks.report import write_json
 
 #: (mine, theirs, goal): ratio of wall times mine / theirs must be <= goal.
 GOALS = (("build gmsh", "gudhi fast", 0.5), ("build qhull", "gudhi fast", 0.8),
@@ -152,9 +152,7 @@ def main(argv: list[str] | None = None) -> int:
         everything[name] = results
         print("\n".join(report(name, args.n, results)), flush=True)
         if args.json:
-            with open(args.json, "w") as handle:
-                json.dump({"n": args.n, "seed": args.seed, "results": everything}, handle,
-                          indent=2)
+            write_json(args.json, {"n": args.n, "seed": args.seed, "results": everything})
     return 0
 
 

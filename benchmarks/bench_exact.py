@@ -12,7 +12,6 @@ the torus: quantized scans are where the exact path, the flips and the local rep
 from __future__ import annotations
 
 import dataclasses
-import json
 import os
 import sys
 import tempfile
@@ -23,6 +22,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from benchmarks.datasets import noisy_torus
 from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
+from benchmarks.report import write_json
 
 GOAL = 1.10  # the certified build at most 10 % slower
 
@@ -81,9 +81,8 @@ def main(argv: list[str] | None = None) -> int:
             f"time): {'PASS' if cpu <= GOAL else 'FAIL'}")
         print(f"  certified / floating point: {ratio:.3f}x wall, {cpu:.3f}x cpu{verdict}")
     if args.json:
-        with open(args.json, "w") as handle:
-            json.dump({"input": label, "n": len(points), "seed": args.seed, "results": results},
-                      handle, indent=2)
+        write_json(args.json, {"input": label, "n": len(points), "seed": args.seed,
+                               "results": results})
     return 0
 
 

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
-import json
 import os
 import sys
 import tempfile
@@ -35,6 +34,7 @@ import numpy as np
 from datasets import noisy_torus, write_points
 from isolate import Probe, run_isolated
 from measure import gudhi_alpha, scipy_delaunay
+from report import write_json
 from window_open import CANCELS, REOPENS, first_open
 
 GOALS = (  # (figure, reference, goal, at most?)
@@ -217,9 +217,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     def save(results: dict) -> None:
         if args.json:
-            Path(args.json).write_text(json.dumps(
-                {"n": args.n, "seed": args.seed, "steps": args.steps, "soak_cycles": args.cycles,
-                 "load_average": os.getloadavg(), "results": results}, indent=1, default=str))
+            write_json(args.json, {"n": args.n, "seed": args.seed, "steps": args.steps,
+                                   "soak_cycles": args.cycles, "load_average": os.getloadavg(),
+                                   "results": results})
 
     print(f"n = {args.n:,}, steps {','.join(args.steps)}, soak cycles {args.cycles}, "
           f"{load_text()} at the start", flush=True)

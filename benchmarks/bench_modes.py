@@ -14,7 +14,6 @@ what is left of them when the table is done).
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 import time
@@ -25,6 +24,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from datasets import noisy_torus
 from isolate import size_options
+from report import write_json
 
 from core import AlphaComplex
 
@@ -95,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
     result = run(args.n, args.seed)
     print(report(result))
     if args.json:
-        Path(args.json).write_text(json.dumps(result, indent=2) + "\n")
+        write_json(args.json, result)
     return 0
 
 

@@ -14,7 +14,6 @@ step's query, without its render), and the longest step is reported too.
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 import tempfile
@@ -24,6 +23,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from datasets import noisy_torus, write_points
 from isolate import run_isolated, size_options
+from report import write_json
 from window_open import first_open
 
 WAYS = (("thread", True), ("process", False))
@@ -66,8 +66,7 @@ def main(argv: list[str] | None = None) -> int:
     results = measure(args.n, args.seed)
     print(format_report(args.n, results), flush=True)
     if args.json:
-        Path(args.json).write_text(json.dumps({"n": args.n, "results": results}, indent=1,
-                                              default=str))
+        write_json(args.json, {"n": args.n, "results": results})
     return 0
 
 

@@ -7,7 +7,6 @@ build of the same points, and our weighted build with Qhull in one call instead 
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 import tempfile
@@ -17,6 +16,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
+from benchmarks.report import write_json
 
 GOALS = (("gudhi weighted fast", 0.8), ("our classic build", 2.0),
          ("weighted, one Qhull call", None))
@@ -113,8 +113,7 @@ def main(argv: list[str] | None = None) -> int:
                                            f"{'PASS' if ratio <= goal else 'FAIL'}")
         print(f"  weighted / {name}: {ratio:.2f}x wall, {cpu:.2f}x cpu{verdict}")
     if args.json:
-        with open(args.json, "w") as handle:
-            json.dump({"n": args.n, "seed": args.seed, "results": results}, handle, indent=2)
+        write_json(args.json, {"n": args.n, "seed": args.seed, "results": results})
     return 0
 
 
