@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from app.log_travel import HIGH_QUANTILE, LOW_QUANTILE, TRAVEL, snap_index
+from app.log_travel import HIGH_QUANTILE, LOW_QUANTILE, TRAVEL, snap_index, sorted_quantile
 
 PAGE_SHARE = 0.025  # a Page key moves this share of the travel
 
@@ -30,9 +30,9 @@ class SignedTravel:
         size = np.abs(squares[(squares != 0) & np.isfinite(squares)])
         self.scale = float(np.quantile(size, 0.05)) if len(size) else 1.0
         self.keys = symlog(squares, self.scale)
-        finite = self.keys[np.isfinite(self.keys)]
-        low, high = (np.quantile(finite, [LOW_QUANTILE, HIGH_QUANTILE]) if len(finite)
-                     else (0.0, 1.0))
+        finite = self.keys[np.isfinite(self.keys)]  # ascending: symlog keeps the order
+        low, high = ((sorted_quantile(finite, LOW_QUANTILE), sorted_quantile(finite, HIGH_QUANTILE))
+                     if len(finite) else (0.0, 1.0))
         if reach is not None and np.isfinite(reach):
             high = max(high, float(symlog(np.array([2.0 * reach * abs(reach)]), self.scale)[0]))
         self.low, self.high = float(low), float(max(high, low + 1e-12))

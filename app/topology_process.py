@@ -34,7 +34,7 @@ def topology_parts(ac: AlphaComplex, entry: Path | None, progress: Progress,
             table = Path(folder) / "table.npz"
             ac.save(table)
         target = Path(folder) / "topology.npz"
-        written = run_in_child(topology_in_child, (str(table), entry is not None, str(target)),
+        written = run_in_child(topology_in_child, (str(table), table == entry, str(target)),
                                progress, cancel, "alphascoop-topology")
         return read_topology(written, ac)
 

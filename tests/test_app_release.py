@@ -126,6 +126,8 @@ def test_the_topology_process_fills_the_docks(window, qtbot, files, monkeypatch)
     assert ds.optimal_alpha == here.optimal_alpha() and ds.default_alpha == here.default_alpha()
     assert ds.ac.has_signatures and ds.cursor is not None
     assert len(window.signatures_panel.figure.axes) == 4
+    assert all(ax.get_visible() for ax in window.signatures_panel.figure.axes)
+    assert not window.signatures_panel.computing.get_visible()
     assert "topology in" in window.status.text()
     window.topology.wait()
     assert multiprocessing.active_children() == []

@@ -90,6 +90,15 @@ def test_without_a_cache_entry_the_child_reads_a_temporary_copy():
     assert not parts.entry_saved and my_scratch() == []
 
 
+def test_a_cache_entry_gone_meanwhile_is_not_rewritten_from_the_temporary_copy(tmp_path):
+    points = blobs(1500, 3, seed=8)
+    ac = obtain(points, use_cache=False).complex
+    gone = tmp_path / "entry.npz"  # removed (cache cleared) before the topology ran
+    parts = topology_process.topology_parts(ac, gone, never, threading.Event())
+    assert_same_topology(parts, AlphaComplex.from_points(points))
+    assert not parts.entry_saved and not gone.exists() and my_scratch() == []
+
+
 def test_cancel_kills_the_child_and_leaves_nothing():
     ac = obtain(blobs(2000, 3, seed=8)).complex
     cancel = threading.Event()
