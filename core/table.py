@@ -543,7 +543,7 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     step(0.0, "circumspheres of cells")
     exact_counts: list[int] | None = [] if exact else None
     top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights,
-                                                exact_counts if radii else None, spheres, sort)
+                                                exact_counts, spheres, sort)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
                                                            weights, exact_counts, sort, radii)

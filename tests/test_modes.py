@@ -339,7 +339,7 @@ def test_local_geometry_beside_the_table_is_the_same_and_raises_its_errors():
         local_geometry_beside(pts[:1], make_mode(4))
 
 
-def test_density_keeps_the_classic_exact_decisions_anisotropy_needs_none():
+def test_density_keeps_the_classic_exact_decisions_anisotropy_needs_fewer():
     """Density scaling reads the classic radii (decided exactly where floats doubt, counted
     in build_info as for classic); anisotropy builds its table without them."""
     grid = np.stack(np.meshgrid(*[np.arange(5.0)] * 3), axis=-1).reshape(-1, 3)  # cospherical

@@ -81,9 +81,10 @@ def test_nothing_new_runs_on_a_certified_build(monkeypatch) -> None:
     from core.build import build_complex
 
     def refuse(*args, **kwargs):
-        raise AssertionError("rewrap ran on a build that certifies")
+        raise AssertionError("a repair ran on a build that certifies")
 
-    monkeypatch.setattr(certify_module, "rewrap", refuse)
+    for name in ("rewrap", "_rewrapped", "_retried"):  # nor the retry before the repair
+        monkeypatch.setattr(certify_module, name, refuse)
     built = build_complex(np.random.default_rng(3).random((2000, 3)))
     assert built.info.uncertified == 0
 
