@@ -39,6 +39,7 @@ class _Wrap:
     points: np.ndarray
     ties: np.ndarray
     candidates: np.ndarray  # (c,) point ids a pivot may pick
+    others: np.ndarray  # the point ids that are not candidates (checked only for hull facets)
     cells: list  # new cells' vertex rows (final ids start at `base`)
     links: dict  # (cell, slot) -> (cell, slot) for every glued facet, both ways
     open: dict  # sorted facet -> (cell, slot, apex) waiting for the cell beyond
@@ -91,9 +92,8 @@ def _pivot(wrap: _Wrap, facet: np.ndarray, apex: int) -> int:
         raise WrapFailed("a flat cell on the region's boundary")
     beyond = pool[signs[:-1] == side]  # the cell facet + p has orientation `side`
     if not len(beyond):
-        if len(pool) < len(wrap.points):  # a hull facet of the region: of all the points?
-            everyone = np.arange(len(wrap.points))
-            rows = np.column_stack((np.tile(facet, (len(everyone), 1)), everyone))
+        if len(wrap.others):  # a hull facet of the region: of all the points?
+            rows = np.column_stack((np.tile(facet, (len(wrap.others), 1)), wrap.others))
             if (_orient(wrap, rows) == side).any():
                 raise WrapFailed("a point beyond the region's hull")
         return -1
@@ -172,7 +172,9 @@ def _start(points: np.ndarray, ties: np.ndarray, tri: Triangulation,
     near = np.zeros(len(points), dtype=bool)
     near[verts] = True
     touching = kept[near[cells[kept]].any(axis=1)]
-    wrap = _Wrap(points, ties, _candidates(points, verts), [], {}, {}, {}, set(), len(kept))
+    pool = _candidates(points, verts)
+    others = np.setdiff1d(np.arange(len(points)), pool, assume_unique=True)
+    wrap = _Wrap(points, ties, pool, others, [], {}, {}, {}, set(), len(kept))
     for c, k, key in _facet_keys(cells, touching):
         other = int(nbs[c, k])
         if other < 0:
