@@ -29,7 +29,7 @@ from .geometry import (
     edge_vectors,
     facet_radii2,
 )
-from .parallel import in_chunks, reduce_segments, sort, take
+from .parallel import in_chunks, reduce_segments, slot_of, sort, take
 from .power import (
     any_point_below,
     cell_orthospheres,
@@ -151,7 +151,7 @@ def _thin_pairs(neighbors: np.ndarray, thin: np.ndarray, flat: np.ndarray
     keep[keep] = ~flat[b[keep]]
     keep &= ~thin[np.maximum(b, 0)] | (a < b)  # two thin cells: their pair once
     a, b, slot = a[keep], b[keep], slot[keep]
-    other = _slot_of(neighbors, b, a)
+    other = slot_of(neighbors, b, a)
     low = a < b
     t, u = np.where(low, a, b), np.where(low, b, a)
     return t, np.where(low, slot, other), u, np.where(low, other, slot)
@@ -309,7 +309,7 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     simplices = _drop_vertex(cells.simplices, t0, i0)
     has1 = np.flatnonzero(t1 >= 0)
     t1h = take(t1, has1)
-    j1 = _slot_of(neighbors, t1h, take(t0, has1))
+    j1 = slot_of(neighbors, t1h, take(t0, has1))
 
     e0, e1h = take(cells.enter, t0), take(cells.enter, t1h)
     e1 = np.full(len(t0), np.inf)
@@ -361,16 +361,6 @@ def _drop_vertex(simplices: np.ndarray, rows: np.ndarray, drop: np.ndarray) -> n
     for c in range(out.shape[1]):
         np.copyto(out[:, c], np.where(drop > c, full[:, c], full[:, c + 1]))
     return out
-
-
-def _slot_of(neighbors: np.ndarray, cells: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """(n,) int64 first column of neighbors[cells] holding target (0 if none), as argmax
-    would give, by one compare per column instead of a (n, w) boolean argmax."""
-    rows = take(neighbors, cells)
-    slot = np.zeros(len(cells), dtype=np.int64)
-    for c in range(neighbors.shape[1] - 1, -1, -1):
-        slot[rows[:, c] == target] = c
-    return slot
 
 
 def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bool]:

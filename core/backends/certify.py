@@ -16,7 +16,7 @@ import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
 from ..geometry import CACHE_CHUNK
-from ..parallel import halves, take
+from ..parallel import halves, slot_of
 from ..tolerances import BACKEND_CERTAIN_RTOL
 
 
@@ -136,11 +136,7 @@ def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None
         u = neighbors[t, i]
         once = ~near[u] | (u > t)
         t, i, u = t[once], i[once], u[once]
-    around = take(neighbors, u)
-    j = np.zeros(len(t), dtype=np.int64)
-    for c in range(neighbors.shape[1] - 1, 0, -1):  # one compare per column, not an argmax
-        j[around[:, c] == t] = c
-    return t, i, u, j
+    return t, i, u, slot_of(neighbors, u, t)
 
 
 def _outer_facets_are_hull(points: np.ndarray, cells: np.ndarray,
