@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .arrays import split_index
 from .cell_pass import CellSpheres
 from .geometry import (
     CACHE_CHUNK,
@@ -192,11 +193,13 @@ def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: n
 
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
            weights: np.ndarray | None = None, exact: list[int] | None = None,
-           spheres: CellSpheres | None = None, sort: bool = True):
+           spheres: CellSpheres | None = None, sort: bool = True,
+           mirror: np.ndarray | None = None):
     """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
-    cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas.
-    Counts of exactly decided predicates are appended to `exact`. `spheres`: the cells'
-    core.geometry.cell_spheres when already computed (core.cell_pass), used in place."""
+    cells), attach bits (bit i: vertex i attaches the facet opposite it), volumes/areas and
+    the neighbours' mirror columns (None where not given). Counts of exactly decided
+    predicates are appended to `exact`. `spheres`: the cells' core.geometry.cell_spheres
+    when already computed (core.cell_pass), used in place."""
     if weights is None:
         r2, det, flat, bits = (cell_spheres(points, cells) if spheres is None else
                                (spheres.r2, spheres.det, spheres.flat, spheres.bits))
@@ -216,10 +219,10 @@ def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     order = _order(enter, sort)
     if order is None:  # as built; three arrays, as _permute leaves them
         level.regular, level.interior = enter.copy(), enter.copy()
-        return level, neighbors, det, bits, measure
+        return level, neighbors, det, bits, measure, mirror
     inverse = _permute(level, order)
     return (level, _remap(take(neighbors, order), inverse), take(det, order), take(bits, order),
-            take(measure, order))
+            take(measure, order), None if mirror is None else take(mirror, order))
 
 
 def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
@@ -295,21 +298,26 @@ def _facet_enter(points: np.ndarray, cells: Level, det: np.ndarray, simplices: n
 
 def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray,
             bits: np.ndarray, weights: np.ndarray | None = None,
-            exact: list[int] | None = None, sort: bool = True, radii: bool = True):
+            exact: list[int] | None = None, sort: bool = True, radii: bool = True,
+            mirror: np.ndarray | None = None):
     """Level d-1 from the cells' neighbour table: each shared facet taken once. Every
     per-cell value is gathered once per side (the second side's gathers are random) on
     two threads (core.parallel.take). radii=False: the facets' own radii and attachment are
-    not computed (enter = regular)."""
+    not computed (enter = regular). `mirror`: the neighbours' columns that point back, if
+    known (else found from their rows)."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
     slot0 = np.flatnonzero(keep)  # cell-major, as np.nonzero lists them
+    simplices = _facet_rows(cells.simplices, keep)
     del keep
-    t0, i0 = np.divmod(slot0, width)
+    t0, i0 = split_index(slot0, width)
     t1 = take(neighbors.ravel(), slot0)
-    simplices = _drop_vertex(cells.simplices, t0, i0)
     has1 = np.flatnonzero(t1 >= 0)
     t1h = take(t1, has1)
-    j1 = slot_of(neighbors, t1h, take(t0, has1))
+    if mirror is None:
+        j1 = slot_of(neighbors, t1h, take(t0, has1))
+    else:
+        j1 = take(take(mirror.ravel(), slot0), has1).astype(np.int64)
 
     e0, e1h = take(cells.enter, t0), take(cells.enter, t1h)
     e1 = np.full(len(t0), np.inf)
@@ -354,12 +362,21 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
             None if obtuse is None else take(obtuse, order))
 
 
-def _drop_vertex(simplices: np.ndarray, rows: np.ndarray, drop: np.ndarray) -> np.ndarray:
-    """(n, w-1) the ascending rows `rows` of (c, w) `simplices` without column `drop`."""
-    full = take(simplices, rows)
-    out = np.empty((len(rows), simplices.shape[1] - 1), dtype=simplices.dtype)
-    for c in range(out.shape[1]):
-        np.copyto(out[:, c], np.where(drop > c, full[:, c], full[:, c + 1]))
+def _facet_rows(simplices: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """(n, w-1) the facets that the (c, w) bool `keep` marks, cell-major as np.nonzero
+    lists them: the ascending row of (c, w) `simplices` without column i for keep[cell, i].
+    Made per cache-sized chunk of cells (every facet of the chunk, then the kept ones), on
+    two threads: no gather of whole rows in facet order."""
+    n, width = simplices.shape
+    others = np.array([[c for c in range(width) if c != i] for i in range(width)])
+    start = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.count_nonzero(keep, axis=1), out=start[1:])
+    out = np.empty((int(start[-1]), width - 1), dtype=simplices.dtype)
+
+    def part(lo: int, hi: int) -> None:
+        out[start[lo]:start[hi]] = simplices[lo:hi][:, others][keep[lo:hi]]
+
+    in_chunks(part, n, CACHE_CHUNK)
     return out
 
 
@@ -405,7 +422,7 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
 
     def part(lo: int, hi: int) -> None:
         t = tri_ids[lo:hi]
-        a, b = np.divmod(keys[lo:hi], m)
+        a, b = split_index(keys[lo:hi], m)
         local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
         inside[lo:hi] = (bits[t] >> local) & 1
         edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
@@ -476,7 +493,7 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
         check = np.unique(face_ids.reshape(-1, 3)[np.flatnonzero(near_flat)])
     edge_keys = keys[starts]
     del keys, tri_ids, inside
-    a, b = np.divmod(edge_keys, m)
+    a, b = split_index(edge_keys, m)
     enter = (_edge_enter(points, a, b, regular, attached, check, weights) if radii
              else regular.copy())
     level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
@@ -509,7 +526,8 @@ def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
 def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
                 progress: Progress | None = None, weights: np.ndarray | None = None,
                 exact: bool = True, spheres: CellSpheres | None = None, *,
-                sort: bool = True, radii: bool = True) -> Table:
+                sort: bool = True, radii: bool = True, mirror: np.ndarray | None = None
+                ) -> Table:
     """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled).
 
     With (m,) `weights` (squared radii >= 0, same scale), the cells are the regular
@@ -522,7 +540,9 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     sort=False keeps every level in the order it was built (ids consistent; no
     facet_interior_order), and radii=False (with sort=False) skips the faces' own radii and
     attachment: a face's enter is then the least enter of its cofacets, a placeholder for
-    the mode's (the cells' values and every interior stay the classic ones)."""
+    the mode's (the cells' values and every interior stay the classic ones). `mirror`:
+    (t, d+1) int8, each neighbour's column that holds the cell (core.delaunay.Triangulation),
+    when known: saves finding it by a random gather of the neighbours' rows."""
     if sort and not radii:
         raise ValueError("radii=False is for an unsorted table (sort=False)")
     def step(fraction: float, stage: str) -> None:
@@ -532,12 +552,13 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
     exact_counts: list[int] | None = [] if exact else None
-    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights,
-                                                exact_counts, spheres, sort)
+    top, neighbors, det, bits, measure, mirror = _cells(points, cells, neighbors, weights,
+                                                        exact_counts, spheres, sort, mirror)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
-                                                           weights, exact_counts, sort, radii)
-    del neighbors
+                                                           weights, exact_counts, sort, radii,
+                                                           mirror)
+    del neighbors, mirror
     levels = [facets, top]
     if d == 3:
         step(0.55, "edges")
