@@ -27,11 +27,3 @@ def owned_readonly(arr: np.ndarray) -> np.ndarray:
         arr = np.array(arr, order="C")
     arr.flags.writeable = False
     return arr
-
-
-def split_index(values: np.ndarray, base: int) -> tuple[np.ndarray, np.ndarray]:
-    """np.divmod(values, base) for an integer array and a positive int, the same values: a
-    floor division (numpy divides by a scalar with a fast multiply) and one product,
-    several times faster than np.divmod, which does not."""
-    quotient = values // base
-    return quotient, values - quotient * base

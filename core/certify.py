@@ -13,7 +13,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .arrays import split_index
 from .cell_pass import CellSpheres, first_pass
 from .delaunay import Triangulation, regular_triangulate, sort_rows
 from .errors import InputError
@@ -43,7 +42,7 @@ def _interior_facets(cells: np.ndarray, nbs: np.ndarray, mirror: np.ndarray | No
     neighbours' columns that point back, Triangulation.mirror) where given."""
     width = nbs.shape[1]
     slots = np.flatnonzero(nbs > np.arange(len(cells))[:, None])
-    t, i = split_index(slots, width)
+    t, i = np.divmod(slots, width)
     u = np.take(nbs, slots)
     if mirror is not None:
         return t, i, u, np.take(mirror, slots).astype(np.int64)

@@ -20,7 +20,6 @@ PASSES = "passes"  # the helper role of the build's and the topology's passes
 _lock = threading.Lock()
 _pools: dict[str, ThreadPoolExecutor] = {}
 T = TypeVar("T")
-S = TypeVar("S")
 
 
 def _pool(role: str) -> ThreadPoolExecutor:
@@ -54,19 +53,6 @@ def halves(part: Callable[[int, int], object], n: int, role: str = "halves") -> 
     other = _pool(role).submit(part, n // 2, n)
     part(0, n // 2)
     other.result()
-
-
-def beside(mine: Callable[[], T], other: Callable[[], S]) -> tuple[T, S]:
-    """(mine(), other()) with other() run in the passes' helper thread meanwhile (both
-    numpy calls that release the GIL); in that helper itself, one after the other."""
-    if _inside(PASSES):
-        return mine(), other()
-    later = _pool(PASSES).submit(other)
-    try:
-        first = mine()
-    finally:
-        second = later.result()
-    return first, second
 
 
 def in_chunks(part: Callable[[int, int], object], n: int, size: int) -> None:

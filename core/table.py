@@ -20,7 +20,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .arrays import split_index
 from .cell_pass import CellSpheres
 from .geometry import (
     CACHE_CHUNK,
@@ -308,10 +307,10 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
     slot0 = np.flatnonzero(keep)  # cell-major, as np.nonzero lists them
-    simplices = _facet_rows(cells.simplices, keep)
     del keep
-    t0, i0 = split_index(slot0, width)
+    t0, i0 = np.divmod(slot0, width)
     t1 = take(neighbors.ravel(), slot0)
+    simplices = _drop_vertex(cells.simplices, t0, i0)
     has1 = np.flatnonzero(t1 >= 0)
     t1h = take(t1, has1)
     if mirror is None:
@@ -362,21 +361,12 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
             None if obtuse is None else take(obtuse, order))
 
 
-def _facet_rows(simplices: np.ndarray, keep: np.ndarray) -> np.ndarray:
-    """(n, w-1) the facets that the (c, w) bool `keep` marks, cell-major as np.nonzero
-    lists them: the ascending row of (c, w) `simplices` without column i for keep[cell, i].
-    Made per cache-sized chunk of cells (every facet of the chunk, then the kept ones), on
-    two threads: no gather of whole rows in facet order."""
-    n, width = simplices.shape
-    others = np.array([[c for c in range(width) if c != i] for i in range(width)])
-    start = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.count_nonzero(keep, axis=1), out=start[1:])
-    out = np.empty((int(start[-1]), width - 1), dtype=simplices.dtype)
-
-    def part(lo: int, hi: int) -> None:
-        out[start[lo]:start[hi]] = simplices[lo:hi][:, others][keep[lo:hi]]
-
-    in_chunks(part, n, CACHE_CHUNK)
+def _drop_vertex(simplices: np.ndarray, rows: np.ndarray, drop: np.ndarray) -> np.ndarray:
+    """(n, w-1) the ascending rows `rows` of (c, w) `simplices` without column `drop`."""
+    full = take(simplices, rows)
+    out = np.empty((len(rows), simplices.shape[1] - 1), dtype=simplices.dtype)
+    for c in range(out.shape[1]):
+        np.copyto(out[:, c], np.where(drop > c, full[:, c], full[:, c + 1]))
     return out
 
 
@@ -422,7 +412,7 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
 
     def part(lo: int, hi: int) -> None:
         t = tri_ids[lo:hi]
-        a, b = split_index(keys[lo:hi], m)
+        a, b = np.divmod(keys[lo:hi], m)
         local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
         inside[lo:hi] = (bits[t] >> local) & 1
         edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
@@ -493,7 +483,7 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
         check = np.unique(face_ids.reshape(-1, 3)[np.flatnonzero(near_flat)])
     edge_keys = keys[starts]
     del keys, tri_ids, inside
-    a, b = split_index(edge_keys, m)
+    a, b = np.divmod(edge_keys, m)
     enter = (_edge_enter(points, a, b, regular, attached, check, weights) if radii
              else regular.copy())
     level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)

@@ -15,7 +15,6 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from ..arrays import split_index
 from ..geometry import CACHE_CHUNK
 from ..parallel import halves, slot_of
 from ..tolerances import BACKEND_CERTAIN_RTOL
@@ -128,7 +127,7 @@ def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None,
     (neighbour tables are symmetric by construction; j read from `mirror` where given)."""
     if near is None:
         slots = np.flatnonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
-        t, i = split_index(slots, neighbors.shape[1])
+        t, i = np.divmod(slots, neighbors.shape[1])
         u = np.take(neighbors, slots)
         if mirror is not None:
             return t, i, u, np.take(mirror, slots)

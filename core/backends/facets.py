@@ -10,9 +10,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..arrays import split_index
-from ..parallel import beside
-
 
 def _packed(cells: np.ndarray, columns: list[list[int]], base: int,
             dtype: type) -> np.ndarray:
@@ -31,13 +28,13 @@ def _packed(cells: np.ndarray, columns: list[list[int]], base: int,
 def _sorted_facets(cells: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray]:
     """The order that sorts all facet keys (slot cell * (d+1) + i for the facet opposite
     vertex i) and (len - 1,) bool: sorted facet k equals facet k + 1. One uint64 key where
-    m**d fits (sorted as values beside the argsort: faster than gathering them in its
-    order), else a lexsort of (first vertices, last vertex)."""
+    m**d fits, else a lexsort of (first vertices, last vertex)."""
     width = cells.shape[1]
     columns = [[j for j in range(width) if j != i] for i in range(width)]
     if float(n_points) ** (width - 1) < 2.0**64:
         keys = _packed(cells, columns, n_points, np.uint64)
-        order, keys = beside(lambda: np.argsort(keys), lambda: np.sort(keys))
+        order = np.argsort(keys)
+        keys = keys[order]
         return order, keys[1:] == keys[:-1]
     head = _packed(cells, [cols[:-1] for cols in columns], n_points, np.int64)
     tail = np.stack([cells[:, cols[-1]] for cols in columns], axis=1).ravel()
@@ -56,13 +53,14 @@ def paired(cells: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bo
     manifold = not bool(np.any(same[1:] & same[:-1]))
     first, second = order[:-1][same], order[1:][same]
     del order, same
-    nbrs = np.full(width * t, -1, dtype=np.int32)
-    mirror = np.full(width * t, -1, dtype=np.int8)
-    cell, column = split_index(second, width)
-    nbrs[first], mirror[first] = cell, column
-    cell, column = split_index(first, width)
-    nbrs[second], mirror[second] = cell, column
-    return nbrs.reshape(t, width), mirror.reshape(t, width), manifold
+    other = np.full(width * t, -1, dtype=np.int64)  # the slot across each slot
+    other[first] = second
+    other[second] = first
+    del first, second
+    cell, column = np.divmod(other, width)
+    mirror = column.astype(np.int8)
+    mirror[other < 0] = -1
+    return cell.astype(np.int32).reshape(t, width), mirror.reshape(t, width), manifold
 
 
 def neighbours(cells: np.ndarray, n_points: int) -> tuple[np.ndarray, bool]:
