@@ -29,7 +29,7 @@ from .geometry import (
     edge_vectors,
     facet_radii2,
 )
-from .parallel import in_chunks, reduce_segments, slot_of, sort, take
+from .parallel import in_chunks, reduce_segments, slot_of, sort, take, together
 from .power import (
     any_point_below,
     cell_orthospheres,
@@ -117,6 +117,14 @@ def argsort_radii(values: np.ndarray) -> np.ndarray:
 def _order(enter: np.ndarray, sort: bool) -> np.ndarray | None:
     """The order that sorts a level by enter, None when the level keeps its built order."""
     return argsort_radii(enter) if sort else None
+
+
+def _order_beside(enter: np.ndarray, sort: bool) -> Callable[[], np.ndarray | None]:
+    """_order started in a helper thread (core.parallel.together), for the caller to do
+    the level's other work meanwhile; returns the function that waits for it."""
+    if not sort:
+        return lambda: None
+    return together(lambda: argsort_radii(enter))
 
 
 def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> None:
@@ -334,6 +342,7 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     else:  # a mode supplies its own values: only the cofacets' are taken
         enter = regular.copy()
     del e0, e1, e1h
+    order = _order_beside(enter, sort)  # while the facets' orientation and ids are found
 
     flip = (i0 % 2 == 1) ^ (det0 < 0)
     better = np.abs(det1) > np.abs(take(det0, has1))
@@ -351,7 +360,7 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     facet_cells = np.empty((len(t0), 2), dtype=np.int32)
     facet_cells[:, 0], facet_cells[:, 1] = t0, t1
     del t0, t1, i0, has1
-    order = _order(enter, sort)
+    order = order()
     if order is None:
         cells.face_ids = cell_faces
         return level, facet_cells, flip, near_flat, obtuse

@@ -53,14 +53,15 @@ def paired(cells: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bo
     manifold = not bool(np.any(same[1:] & same[:-1]))
     first, second = order[:-1][same], order[1:][same]
     del order, same
-    other = np.full(width * t, -1, dtype=np.int64)  # the slot across each slot
+    index = np.int32 if width * t < 2**31 else np.int64
+    other = np.full(width * t, -1, dtype=index)  # the slot across each slot
     other[first] = second
     other[second] = first
     del first, second
-    cell, column = np.divmod(other, width)
-    mirror = column.astype(np.int8)
+    mirror = np.remainder(other, width).astype(np.int8)
     mirror[other < 0] = -1
-    return cell.astype(np.int32).reshape(t, width), mirror.reshape(t, width), manifold
+    other //= width  # the cell across (-1 stays -1)
+    return other.astype(np.int32, copy=False).reshape(t, width), mirror.reshape(t, width), manifold
 
 
 def neighbours(cells: np.ndarray, n_points: int) -> tuple[np.ndarray, bool]:
