@@ -98,6 +98,6 @@ def opening_alpha_of(index: TableIndex, n_points: int) -> float:
     last = float(index.spectrum()[-1])
     if len(index.simplices(2)) == 0:
         return last
-    edge_first = first_cofaces(index.face_ids(2), index.intervals(2)[:, 0],
+    edge_first = first_cofaces(index.face_ids(2), index.level(2).enter,
                                len(index.simplices(1)))
     return min(opening_alpha(n_points, index.simplices(1), edge_first), last)
