@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from app.build_process import ChildRunner
 from app.camera import Z_UP, ViewFrame, frame_for
 from app.topology_file import TopologyParts, attach
 from core import AlphaComplex
@@ -148,8 +149,9 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     molecule, numbers = _molecule(ac, pointset)
     complete = ac.has_signatures
     # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
+    known = runner.opening_alpha if isinstance(runner, ChildRunner) else None
     alpha = 0.0 if molecule is not None else (
-        float(ac.default_alpha()) if complete else quick_alpha(ac))
+        float(ac.default_alpha()) if complete else quick_alpha(ac) if known is None else known)
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
