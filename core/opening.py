@@ -36,9 +36,13 @@ def first_cofaces(face_ids: np.ndarray, coface_enter: np.ndarray, n_faces: int) 
 
 def joined_share(n_points: int, a: np.ndarray, b: np.ndarray) -> float:
     """Share of n_points in the largest component of the graph with edges (a, b)."""
-    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(n_points, n_points))
-    _, labels = connected_components(graph, directed=False)
-    return float(np.bincount(labels).max()) / n_points
+    return float(np.bincount(_components(n_points, a, b)).max()) / n_points
+
+
+def _components(n_nodes: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(n_nodes,) int32 component label of every node of the graph with edges (a, b)."""
+    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(n_nodes, n_nodes))
+    return connected_components(graph, directed=False)[1]
 
 
 def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndarray,
@@ -53,26 +57,63 @@ def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndar
     order = finite[argsort_radii(values[finite])]
     edges = np.asarray(edges, dtype=np.int64)[order]
     joined = ordered_forest(n_points, edges[:, 0], edges[:, 1])  # in order of arrival
-    a, b = edges[joined, 0], edges[joined, 1]
-    weights = values[order[joined]]
-    low, high = 0, len(weights)  # the first `high` merges reach the share; `low` do not
+    return reaching_alpha(n_points, edges[joined, 0], edges[joined, 1],
+                          values[order[joined]], share)
+
+
+def reaching_alpha(n_points: int, a: np.ndarray, b: np.ndarray, weights: np.ndarray,
+                   share: float = OPENING_SHARE) -> float:
+    """The weight of the first merge (a[j], b[j]) of a forest, merges in ascending (f,)
+    `weights`, after which one component holds >= share of the n_points; inf if none does.
+
+    A binary search over the merges that contracts the ones it has passed: each step labels
+    the components of only the merges still in question, on the components found so far."""
     if n_points == 0 or joined_share(n_points, a, b) < share:
         return float("inf")
+    sizes = np.ones(n_points)  # points in each current node
+    low, high = 0, len(weights)  # the first `high` merges reach the share; `low` do not
     while high - low > 1:
-        middle = (low + high) // 2
-        if joined_share(n_points, a[:middle], b[:middle]) >= share:
-            high = middle
+        half = (high - low) // 2
+        labels = _components(len(sizes), a[:half], b[:half])
+        merged = np.bincount(labels, sizes)
+        if float(merged.max()) / n_points >= share:
+            high, a, b = low + half, a[:half], b[:half]
         else:
-            low = middle
+            low, sizes, a, b = low + half, merged, labels[a[half:]], labels[b[half:]]
     return float(weights[high - 1]) if high > 0 else 0.0
+
+
+def triangle_forest(index: TableIndex, n_points: int) -> tuple:
+    """(a, b, weights): the merges of the points' spanning forest when every edge arrives
+    with its first triangle, triangles in row order (the table's, by enter); (f,) int64
+    vertex rows and (f,) float64 ascending enter of the triangle that brings each merge.
+
+    A triangle's last new edge always closes a cycle (its ends are joined by the triangle's
+    other two edges, already there), so only the others are candidates: a few edges instead
+    of all of them, in order with no sort.
+    """
+    triangles = index.face_ids(2)
+    first = index.first_cofaces(2)
+    new = first[triangles] == np.arange(len(triangles), dtype=np.int32)[:, None]
+    not_last = np.cumsum(new, axis=1) < new.sum(axis=1, keepdims=True)
+    flat = np.flatnonzero(new & not_last)
+    ends = index.simplices(1)[triangles.ravel()[flat]]
+    joined = ordered_forest(n_points, ends[:, 0], ends[:, 1])
+    return (ends[joined, 0].astype(np.int64), ends[joined, 1].astype(np.int64),
+            index.intervals(2)[flat[joined] // triangles.shape[1], 0])
 
 
 def opening_alpha_of(index: TableIndex, n_points: int) -> float:
     """`opening_alpha` of the table `index` of a complex with `n_points` points; the largest
-    critical alpha (the whole triangulation) when no alpha reaches the share."""
+    critical alpha (the whole triangulation) when no alpha reaches the share.
+
+    Ties between edges of equal first-triangle enter may merge in another order than
+    `opening_alpha`'s, which changes no merge's weight of the first that reaches the share."""
     last = float(index.spectrum()[-1])
-    if len(index.simplices(2)) == 0:
+    triangle_enter = index.intervals(2)[:, 0]
+    if len(triangle_enter) == 0:
         return last
-    edge_first = first_cofaces(index.face_ids(2), index.intervals(2)[:, 0],
-                               len(index.simplices(1)))
-    return min(opening_alpha(n_points, index.simplices(1), edge_first), last)
+    if not bool(np.all(triangle_enter[1:] >= triangle_enter[:-1])):
+        edge_first = first_cofaces(index.face_ids(2), triangle_enter, len(index.simplices(1)))
+        return min(opening_alpha(n_points, index.simplices(1), edge_first), last)
+    return min(reaching_alpha(n_points, *triangle_forest(index, n_points)), last)
