@@ -61,15 +61,20 @@ def ordered_forest(n_nodes: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
 def rank_forest(rank: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """(f,) int64 ascending ranks at which an edge (u, v) first joins two components when
     each edge arrives with the later of its two nodes: node x arrives at rank[x] (1..n,
-    distinct). Pairs must be distinct. Laid out in rank space with the later node as row,
-    scipy's Kruskal gets its weights already in order (no random-order sort)."""
+    distinct). Pairs must be distinct."""
     ru, rv = rank[u].astype(np.int64) - 1, rank[v].astype(np.int64) - 1
-    later, earlier = np.maximum(ru, rv), np.minimum(ru, rv)
-    del ru, rv
-    n = len(rank)
-    graph = coo_matrix(((later + 1).astype(np.float64), (later, earlier)), shape=(n, n))
+    return later_forest(len(rank), np.maximum(ru, rv), np.minimum(ru, rv)) + 1
+
+
+def later_forest(n_nodes: int, later: np.ndarray, earlier: np.ndarray) -> np.ndarray:
+    """(f,) int64 ascending `later` values of the edges (later, earlier), later > earlier,
+    that first join two components when each edge arrives with its later node (nodes in
+    index order). Laid out with the later node as row, scipy's Kruskal gets its weights
+    already in order (no random-order sort)."""
+    graph = coo_matrix(((later + 1).astype(np.float64), (later, earlier)),
+                       shape=(n_nodes, n_nodes))
     tree = minimum_spanning_tree(graph.tocsr(), overwrite=True)
-    return np.sort(tree.data.astype(np.int64))
+    return tree.data.astype(np.int64) - 1  # in row order: ascending
 
 
 def younger_roots(key: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:

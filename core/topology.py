@@ -18,8 +18,8 @@ import numpy as np
 from .alpha import radius
 from .arrays import owned_readonly
 from .cycles import inner_ridges, open_edges, ring_closers
-from .forest import ordered_forest, rank_forest
-from .parallel import searchsorted
+from .forest import later_forest, ordered_forest, rank_forest
+from .parallel import searchsorted, searchsorted_ascending
 
 
 @dataclass(frozen=True, eq=False)
@@ -42,22 +42,38 @@ class Topology:
     def betti_many(self, alphas: np.ndarray) -> np.ndarray:
         """(s, dim) int32 Betti numbers at every alpha of the (s,) array `alphas`."""
         alphas = np.asarray(alphas, dtype=np.float64)
-        n_in = [searchsorted(e, alphas, side="right") for e in self.enter_sorted]
-        b0 = n_in[0] - searchsorted(self.vertex_forest, alphas, side="right")
-        open_forest = len(self.dual_forest) - searchsorted(self.dual_forest, alphas, "right")
-        cavities = (self.n_cells - n_in[self.dim]) - open_forest
-        if self.dim == 2:
-            return np.stack([b0, cavities], axis=1).astype(np.int32)
-        chi = n_in[0] - n_in[1] + n_in[2] - n_in[3]
-        return np.stack([b0, b0 + cavities - chi, cavities], axis=1).astype(np.int32)
+        return self._betti(alphas, [searchsorted(e, alphas, "right") for e in self.enter_sorted],
+                           searchsorted)
 
     def solid_components(self, alphas: np.ndarray) -> np.ndarray:
         """(s,) int32 number of facet-connected groups of cells in the complex at each alpha."""
         alphas = np.asarray(alphas, dtype=np.float64)
         cells_in = searchsorted(self.enter_sorted[self.dim], alphas, side="right")
-        return (cells_in - searchsorted(self.solid_forest, alphas, side="right")).astype(
-            np.int32
-        )
+        return self._solids(alphas, cells_in, searchsorted)
+
+    def curves(self, alphas: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(betti_many, solid_components, cells in: (s,) intp) at every alpha of the ascending
+        (s,) `alphas`, all from one count of the simplices in per dimension."""
+        alphas = np.asarray(alphas, dtype=np.float64)
+        n_in = [searchsorted_ascending(e, alphas, "right") for e in self.enter_sorted]
+        return (self._betti(alphas, n_in, searchsorted_ascending),
+                self._solids(alphas, n_in[self.dim], searchsorted_ascending), n_in[self.dim])
+
+    def _betti(self, alphas: np.ndarray, n_in: list[np.ndarray], search) -> np.ndarray:
+        """Betti numbers from the (s,) numbers of k-simplices in at each alpha."""
+        out = np.empty((len(alphas), self.dim), dtype=np.int32)
+        b0 = n_in[0] - search(self.vertex_forest, alphas, "right")
+        open_forest = len(self.dual_forest) - search(self.dual_forest, alphas, "right")
+        out[:, -1] = cavities = (self.n_cells - n_in[self.dim]) - open_forest
+        out[:, 0] = b0
+        if self.dim == 3:
+            chi = n_in[0] - n_in[1] + n_in[2] - n_in[3]
+            out[:, 1] = b0 + cavities - chi
+        return out
+
+    def _solids(self, alphas: np.ndarray, cells_in: np.ndarray, search) -> np.ndarray:
+        """Solid components from the (s,) numbers of cells in at each alpha."""
+        return (cells_in - search(self.solid_forest, alphas, "right")).astype(np.int32)
 
 
 def build_topology(ac) -> Topology:
@@ -119,7 +135,7 @@ def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int,
     order = (ascending_order(facet_enter) if candidates is None else candidates)[::-1]
     sides = facet_cells[order]
     sides[sides < 0] = n_cells
-    u, v = sides.min(axis=1), sides.max(axis=1)
+    u, v = np.minimum(sides[:, 0], sides[:, 1]), np.maximum(sides[:, 0], sides[:, 1])
     del sides
     hull = np.flatnonzero(v == n_cells)
     first_hull = np.full(n_cells + 1, len(order), dtype=np.int64)
@@ -135,7 +151,10 @@ def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int,
 def solid_forest(facet_cells: np.ndarray, cell_enter: np.ndarray) -> np.ndarray:
     """(fs,) float64 ascending alphas at which an inner facet first joins two separate solids."""
     inner = facet_cells[(facet_cells[:, 0] >= 0) & (facet_cells[:, 1] >= 0)]
-    a, b = inner.min(axis=1), inner.max(axis=1)
+    a, b = np.minimum(inner[:, 0], inner[:, 1]), np.maximum(inner[:, 0], inner[:, 1])
+    del inner
+    if ascends(cell_enter):  # cell x arrives at rank x + 1
+        return cell_enter[later_forest(len(cell_enter), b, a)]
     order = ascending_order(cell_enter)
     rank = np.empty(len(cell_enter), dtype=np.int64)
     rank[order] = np.arange(1, len(cell_enter) + 1)
