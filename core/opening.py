@@ -100,7 +100,7 @@ def triangle_forest(index: TableIndex, n_points: int) -> tuple:
     ends = index.simplices(1)[triangles.ravel()[flat]]
     joined = ordered_forest(n_points, ends[:, 0], ends[:, 1])
     return (ends[joined, 0].astype(np.int64), ends[joined, 1].astype(np.int64),
-            index.intervals(2)[flat[joined] // triangles.shape[1], 0])
+            index.level(2).enter[flat[joined] // triangles.shape[1]])
 
 
 def opening_alpha_of(index: TableIndex, n_points: int) -> float:
@@ -110,7 +110,7 @@ def opening_alpha_of(index: TableIndex, n_points: int) -> float:
     Ties between edges of equal first-triangle enter may merge in another order than
     `opening_alpha`'s, which changes no merge's weight of the first that reaches the share."""
     last = float(index.spectrum()[-1])
-    triangle_enter = index.intervals(2)[:, 0]
+    triangle_enter = index.level(2).enter
     if len(triangle_enter) == 0:
         return last
     if not bool(np.all(triangle_enter[1:] >= triangle_enter[:-1])):

@@ -64,7 +64,7 @@ def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology
     `points`, from its `topology`."""
     dim = index.dim
     alphas = np.asarray(index.spectrum(), dtype=np.float64)
-    cell_enter = np.asarray(index.intervals(dim)[:, 0], dtype=np.float64)
+    cell_enter = np.asarray(index.level(dim).enter, dtype=np.float64)
     order = ascending_order(cell_enter)
     betti, solids, cells_in = topology.curves(alphas)
     measure = np.concatenate([[0.0], np.cumsum(np.asarray(index.cell_measures())[order])])

@@ -79,7 +79,8 @@ class Topology:
 def build_topology(ac) -> Topology:
     """The Topology of an AlphaComplex, from its public table; O(n log n)."""
     dim = ac.dim
-    enter = [np.asarray(ac.intervals(k)[:, 0], dtype=np.float64) for k in range(dim + 1)]
+    enter = [np.asarray(ac.index.level(k).enter, dtype=np.float64)
+             for k in range(dim + 1)]  # the table's own columns: no stacked (n_k, 3) copy
     facet_cells = np.asarray(ac.facet_cells())
     edges = np.asarray(ac.simplices(1))
     vertex_forest = vertex_spanning_forest(len(enter[0]), edges, enter[1], open_edges(
