@@ -6,6 +6,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -24,6 +25,7 @@ from core.errors import Cancelled, FileFormatError
 from core.obtain import obtain
 
 ROOT = Path(__file__).resolve().parents[1]
+LIVENESS_BOUND_S = 120  # generous: the child is killed within a poll (0.1 s) of Cancel
 
 
 @pytest.fixture(autouse=True)
@@ -99,16 +101,43 @@ def test_a_cache_entry_gone_meanwhile_is_not_rewritten_from_the_temporary_copy(t
     assert not parts.entry_saved and not gone.exists() and my_scratch() == []
 
 
-def test_cancel_kills_the_child_and_leaves_nothing():
-    ac = obtain(blobs(2000, 3, seed=8)).complex
+def test_cancel_kills_the_child_while_it_works_and_leaves_nothing():
+    """The child says it computes the signatures (about a second at 30k points): it is alive
+    when Cancel is pressed, and gone soon after, killed (SIGKILL), not finished; the cache
+    entry it would have rewritten is untouched and no scratch folder is left."""
+    points = blobs(30_000, 3, seed=8)
+    obtained = obtain(points)  # cached without its topology: the child would rewrite it
+    entry, before = obtained.entry, obtained.entry.read_bytes()
+    cache_files = sorted(entry.parent.iterdir())
     cancel = threading.Event()
+    working: list[multiprocessing.Process] = []
+    alive_at_cancel: list[bool] = []
 
-    def progress(_fraction: float, _stage: str) -> None:
-        cancel.set()  # at the child's first report: it is running
+    def progress(_fraction: float, stage: str) -> None:
+        if stage == "topology: signatures" and not working:  # sent by the child
+            working.extend(multiprocessing.active_children())  # this thread owns the child
+            alive_at_cancel.extend(child.is_alive() for child in working)
+            cancel.set()
 
-    with pytest.raises(Cancelled):
-        topology_process.topology_parts(ac, None, progress, cancel)
+    outcome: list[BaseException] = []
+
+    def run() -> None:
+        try:
+            topology_process.topology_parts(obtained.complex, entry, progress, cancel)
+        except BaseException as error:  # recorded for the assertion below
+            outcome.append(error)
+
+    thread = threading.Thread(target=run)
+    thread.start()
+    thread.join(LIVENESS_BOUND_S)
+    assert not thread.is_alive()
+    assert len(working) == 1 and working[0].name == "alphascoop-topology"
+    assert alive_at_cancel == [True]
+    assert len(outcome) == 1 and isinstance(outcome[0], Cancelled)
+    assert working[0].exitcode == -signal.SIGKILL  # killed mid-work: it did not finish
     assert multiprocessing.active_children() == [] and my_scratch() == []
+    assert entry.read_bytes() == before and sorted(entry.parent.iterdir()) == cache_files
+    assert not load_cached(points).has_signatures
 
 
 def test_a_topology_file_of_another_table_is_refused(tmp_path):
@@ -120,19 +149,60 @@ def test_a_topology_file_of_another_table_is_refused(tmp_path):
         read_topology(tmp_path / "t.npz", other)
 
 
-def test_a_topology_file_with_forests_too_long_for_the_table_is_refused(tmp_path):
+def damaged_copies(arrays: dict[str, np.ndarray], ac: AlphaComplex):
+    """(name, bad array) pairs a topology file of ac must be refused for: forests of the wrong
+    length or out of range, and signatures that disagree with the forests or the cells."""
+    n_cells = len(ac.intervals(3))
+    betti = arrays["sig_betti"].copy()
+    betti[-1, 0] += 1  # the last row: the checks sample spread rows, first and last included
+    measure = arrays["sig_measure"].copy()
+    measure[-1] *= 1.5
+    return (("topo_dual_edges", np.full((len(arrays["topo_dual_edges"]), 2), n_cells + 1)),
+            ("topo_vertex_forest", np.zeros(len(ac.points))),
+            ("topo_dual_forest", np.zeros(len(arrays["topo_dual_forest"]) + 1)),
+            ("topo_solid_forest", arrays["topo_solid_forest"][::-1].copy()),
+            ("sig_betti", betti), ("sig_measure", measure),
+            ("sig_alphas", ac.spectrum()[:-1]))
+
+
+def test_a_damaged_topology_file_is_refused_with_the_saved_tables_checks(tmp_path):
     ac = AlphaComplex.from_points(blobs(400, 3, seed=9))
     write_topology(tmp_path / "t.npz", ac, entry_saved=False)
     with np.load(tmp_path / "t.npz", allow_pickle=False) as archive:
         arrays = {name: archive[name] for name in archive.files}
-    n_cells = len(ac.intervals(3))
-    for name, bad in (("topo_dual_edges", np.full((len(arrays["topo_dual_edges"]), 2),
-                                                  n_cells + 1)),
-                      ("topo_vertex_forest", np.zeros(len(ac.points))),
-                      ("topo_dual_forest", np.zeros(len(arrays["topo_dual_forest"]) + 1))):
+    for name, bad in damaged_copies(arrays, ac):
         np.savez(tmp_path / "bad.npz", **{**arrays, name: bad})
-        with pytest.raises(FileFormatError, match="forest sizes"):
+        with pytest.raises(FileFormatError, match=f"not this table's topology .*{name}"):
             read_topology(tmp_path / "bad.npz", ac)
+    del arrays["pers_cavities"]
+    np.savez(tmp_path / "bad.npz", **arrays)
+    with pytest.raises(FileFormatError, match=r"topology \(missing 'pers_cavities'"):
+        read_topology(tmp_path / "bad.npz", ac)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_topology_file_written_before_sig_alphas_still_loads(dim):
+    """tests/data/topology_file: files main's write_topology wrote (commit ed1dc8b, no
+    sig_alphas) for the points beside them."""
+    folder = ROOT / "tests" / "data" / "topology_file"
+    with np.load(folder / f"topology_{dim}d.npz", allow_pickle=False) as archive:
+        assert "sig_alphas" not in archive.files
+    here = AlphaComplex.from_points(np.load(folder / f"points_{dim}d.npy"), backend="qhull")
+    parts = read_topology(folder / f"topology_{dim}d.npz",
+                          AlphaComplex.from_points(here.points, backend="qhull"))
+    assert_same_topology(parts, here)
+    assert parts.entry_saved
+
+
+def own_name(_progress) -> str:
+    """A child's work: the command name ps shows for it."""
+    return Path("/proc/self/comm").read_text(encoding="utf-8").strip()
+
+
+def test_a_child_shows_its_name_in_ps():
+    name = child_process.run_in_child(own_name, (), never, threading.Event(),
+                                      "alphascoop-topology")
+    assert name == "alphascoop-topology"[:15]
 
 
 def test_orphaned_scratch_folders_are_removed_only_when_their_owner_is_dead(tmp_path):
