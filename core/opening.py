@@ -34,15 +34,15 @@ def first_cofaces(face_ids: np.ndarray, coface_enter: np.ndarray, n_faces: int) 
     return first
 
 
-def joined_share(n_points: int, a: np.ndarray, b: np.ndarray) -> float:
-    """Share of n_points in the largest component of the graph with edges (a, b)."""
-    return float(np.bincount(_components(n_points, a, b)).max()) / n_points
-
-
-def _components(n_nodes: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(n_nodes,) int32 component label of every node of the graph with edges (a, b)."""
-    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(n_nodes, n_nodes))
-    return connected_components(graph, directed=False)[1]
+def joined_share(n_points: int, a: np.ndarray, b: np.ndarray,
+                 sizes: np.ndarray | None = None) -> float:
+    """Share of n_points in the largest component of the graph with edges (a, b); with
+    `sizes`, node i stands for sizes[i] points (a contracted graph) and n_points is their sum."""
+    nodes = n_points if sizes is None else len(sizes)
+    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(nodes, nodes))
+    _, labels = connected_components(graph, directed=False)
+    held = np.bincount(labels) if sizes is None else np.bincount(labels, weights=sizes)
+    return float(held.max()) / n_points
 
 
 def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndarray,
@@ -63,24 +63,39 @@ def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndar
 
 def reaching_alpha(n_points: int, a: np.ndarray, b: np.ndarray, weights: np.ndarray,
                    share: float = OPENING_SHARE) -> float:
-    """The weight of the first merge (a[j], b[j]) of a forest, merges in ascending (f,)
-    `weights`, after which one component holds >= share of the n_points; inf if none does.
-
-    A binary search over the merges that contracts the ones it has passed: each step labels
-    the components of only the merges still in question, on the components found so far."""
+    """The weight of the first merge (a[j], b[j]) of a spanning forest, merges in ascending
+    (f,) `weights`, after which one component holds >= share of the n_points; inf if none."""
     if n_points == 0 or joined_share(n_points, a, b) < share:
         return float("inf")
-    sizes = np.ones(n_points)  # points in each current node
-    low, high = 0, len(weights)  # the first `high` merges reach the share; `low` do not
-    while high - low > 1:
-        half = (high - low) // 2
-        labels = _components(len(sizes), a[:half], b[:half])
-        merged = np.bincount(labels, sizes)
-        if float(merged.max()) / n_points >= share:
-            high, a, b = low + half, a[:half], b[:half]
-        else:
-            low, sizes, a, b = low + half, merged, labels[a[half:]], labels[b[half:]]
+    high = _first_reaching(n_points, a, b, share)
     return float(weights[high - 1]) if high > 0 else 0.0
+
+
+def _first_reaching(n_points: int, a: np.ndarray, b: np.ndarray, share: float) -> int:
+    """The fewest first merges (a, b) of a spanning forest, in order, whose largest
+    component holds >= share of the n_points (all of them do; 0 is never tested).
+
+    After m merges the largest of the n - m components holds at most m + 1 points, so fewer
+    than ceil(share * n) - 1 merges never reach the share: the search starts there, on the
+    graph contracted by those merges (one node per component, weighted by its size), which
+    has n - m nodes, a few percent of the points, instead of all of them at every step."""
+    low, high = max(int(np.ceil(share * n_points)) - 2, 0), len(a)
+    if high - low <= 1:
+        return high
+    _, labels = connected_components(
+        coo_matrix((np.ones(low, dtype=np.int8), (a[:low], b[:low])),
+                   shape=(n_points, n_points)), directed=False)
+    sizes = np.bincount(labels).astype(np.float64)
+    a, b = labels[a[low:]], labels[b[low:]]  # merge low + i is (a[i], b[i]) from here on
+    offset, high = low, high - low
+    low = 0
+    while high - low > 1:
+        middle = (low + high) // 2
+        if joined_share(n_points, a[:middle], b[:middle], sizes) >= share:
+            high = middle
+        else:
+            low = middle
+    return offset + high
 
 
 def triangle_forest(index: TableIndex, n_points: int) -> tuple:
