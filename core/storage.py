@@ -95,6 +95,12 @@ class Saved:
 
 
 def _arrays(ac: Saveable) -> dict[str, np.ndarray]:
+    """Every array `save` writes (the topology and signatures too once computed)."""
+    return {**_header_arrays(ac), **derived_arrays(ac), **_level_arrays(ac.index.table)}
+
+
+def _header_arrays(ac: Saveable) -> dict[str, np.ndarray]:
+    """The table's arrays other than its levels: points, facets, frame, weights, mode, build."""
     table = ac.index.table
     out = {"format": np.array(FORMAT), "version": np.array(VERSION), "dim": np.array(ac.dim),
            "ambient_dim": np.array(ac.ambient_dim), "points": ac.points,
@@ -111,7 +117,12 @@ def _arrays(ac: Saveable) -> dict[str, np.ndarray]:
                    mode_anisotropy=np.array(ac.mode.anisotropy),
                    mode_normals=np.array(ac.mode.normals))
     out.update(ac.build_info.to_arrays())
-    out.update(_derived_arrays(ac))
+    return out
+
+
+def _level_arrays(table: Table) -> dict[str, np.ndarray]:
+    """Each level's simplices, intervals and face ids."""
+    out = {}
     for k, level in enumerate(table.levels):
         out[f"simplices_{k}"] = level.simplices
         out[f"enter_{k}"], out[f"regular_{k}"] = level.enter, level.regular
@@ -121,7 +132,7 @@ def _arrays(ac: Saveable) -> dict[str, np.ndarray]:
     return out
 
 
-def _derived_arrays(ac: Saveable) -> dict[str, np.ndarray]:
+def derived_arrays(ac: Saveable) -> dict[str, np.ndarray]:
     """Signatures and topology forests, if `ac` has computed them (never computed here)."""
     if not ac.has_signatures:
         return {}
@@ -131,6 +142,22 @@ def _derived_arrays(ac: Saveable) -> dict[str, np.ndarray]:
             "sig_opening": np.array(sig.opening_alpha),
             "topo_vertex_forest": topo.vertex_forest, "topo_dual_forest": topo.dual_forest,
             "topo_dual_edges": topo.dual_edges, "topo_solid_forest": topo.solid_forest}
+
+
+def read_derived(ac: Saveable, a: dict[str, np.ndarray], check: Checker
+                 ) -> tuple[Topology, Signatures]:
+    """The topology and signatures in `a` (derived_arrays kept apart from the table, as the
+    topology process hands them over) checked against ac's table exactly as `load` checks
+    saved ones; `sig_alphas` may be absent (it is ac's spectrum). FileFormatError otherwise."""
+    spectrum = ac.index.spectrum()
+    check.that("sig_alphas" not in a or np.array_equal(a["sig_alphas"], spectrum), "sig_alphas")
+    table = {**_header_arrays(ac), **_level_arrays(ac.index.table), "sig_alphas": spectrum}
+    merged = {**a, **table}  # the table's own arrays win over any of the same name in `a`
+    try:
+        check_signature_arrays(check, merged, ac.dim)
+        return _derived(ac.index, len(ac.points), merged, check)
+    except KeyError as exc:
+        raise check.error(f"missing {exc}") from None
 
 
 def _derived(index: TableIndex, n_points: int, a: dict[str, np.ndarray], check: Checker
@@ -216,4 +243,4 @@ def load(path: str | os.PathLike) -> Saved:
                      _mode(a, path), a.get("weights"), _build_info(a, path), topology,
                      signatures)
     except KeyError as exc:
-        raise FileFormatError(f"{path}: not a valid Alpha Scoop table (missing {exc})") from None
+        raise check.error(f"missing {exc}") from None

@@ -28,15 +28,20 @@ def spread(n: int, count: int) -> np.ndarray:
 
 
 class Checker:
-    """Raises FileFormatError naming the file and the first array that is wrong."""
+    """Raises FileFormatError naming the file and the first array that is wrong; `subject`
+    says what the file failed to be ("{path}: not {subject} ({what})")."""
 
-    def __init__(self, path: Path) -> None:
-        self.path = path
+    def __init__(self, path: Path, subject: str = "a valid Alpha Scoop table") -> None:
+        self.path, self.subject = path, subject
 
     def that(self, condition: object, what: str) -> None:
         """Fail with `what` unless condition holds."""
         if not bool(condition):
-            raise FileFormatError(f"{self.path}: not a valid Alpha Scoop table ({what})")
+            raise self.error(what)
+
+    def error(self, what: str) -> FileFormatError:
+        """The error for this file failing with `what`."""
+        return FileFormatError(f"{self.path}: not {self.subject} ({what})")
 
     def array(self, arr: np.ndarray, name: str, dtype: type, shape: tuple) -> np.ndarray:
         """arr has exactly `dtype` and `shape` (None in shape: any length)."""

@@ -120,19 +120,49 @@ def test_a_topology_file_of_another_table_is_refused(tmp_path):
         read_topology(tmp_path / "t.npz", other)
 
 
-def test_a_topology_file_with_forests_too_long_for_the_table_is_refused(tmp_path):
+def damaged_copies(arrays: dict[str, np.ndarray], ac: AlphaComplex):
+    """(name, bad array) pairs a topology file of ac must be refused for: forests of the wrong
+    length or out of range, and signatures that disagree with the forests or the cells."""
+    n_cells = len(ac.intervals(3))
+    betti = arrays["sig_betti"].copy()
+    betti[-1, 0] += 1  # the last row: the checks sample spread rows, first and last included
+    measure = arrays["sig_measure"].copy()
+    measure[-1] *= 1.5
+    return (("topo_dual_edges", np.full((len(arrays["topo_dual_edges"]), 2), n_cells + 1)),
+            ("topo_vertex_forest", np.zeros(len(ac.points))),
+            ("topo_dual_forest", np.zeros(len(arrays["topo_dual_forest"]) + 1)),
+            ("topo_solid_forest", arrays["topo_solid_forest"][::-1].copy()),
+            ("sig_betti", betti), ("sig_measure", measure),
+            ("sig_alphas", ac.spectrum()[:-1]))
+
+
+def test_a_damaged_topology_file_is_refused_with_the_saved_tables_checks(tmp_path):
     ac = AlphaComplex.from_points(blobs(400, 3, seed=9))
     write_topology(tmp_path / "t.npz", ac, entry_saved=False)
     with np.load(tmp_path / "t.npz", allow_pickle=False) as archive:
         arrays = {name: archive[name] for name in archive.files}
-    n_cells = len(ac.intervals(3))
-    for name, bad in (("topo_dual_edges", np.full((len(arrays["topo_dual_edges"]), 2),
-                                                  n_cells + 1)),
-                      ("topo_vertex_forest", np.zeros(len(ac.points))),
-                      ("topo_dual_forest", np.zeros(len(arrays["topo_dual_forest"]) + 1))):
+    for name, bad in damaged_copies(arrays, ac):
         np.savez(tmp_path / "bad.npz", **{**arrays, name: bad})
-        with pytest.raises(FileFormatError, match="forest sizes"):
+        with pytest.raises(FileFormatError, match=f"not this table's topology .*{name}"):
             read_topology(tmp_path / "bad.npz", ac)
+    del arrays["pers_cavities"]
+    np.savez(tmp_path / "bad.npz", **arrays)
+    with pytest.raises(FileFormatError, match=r"topology \(missing 'pers_cavities'"):
+        read_topology(tmp_path / "bad.npz", ac)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_topology_file_written_before_sig_alphas_still_loads(dim):
+    """tests/data/topology_file: files main's write_topology wrote (commit ed1dc8b, no
+    sig_alphas) for the points beside them."""
+    folder = ROOT / "tests" / "data" / "topology_file"
+    with np.load(folder / f"topology_{dim}d.npz", allow_pickle=False) as archive:
+        assert "sig_alphas" not in archive.files
+    here = AlphaComplex.from_points(np.load(folder / f"points_{dim}d.npy"), backend="qhull")
+    parts = read_topology(folder / f"topology_{dim}d.npz",
+                          AlphaComplex.from_points(here.points, backend="qhull"))
+    assert_same_topology(parts, here)
+    assert parts.entry_saved
 
 
 def test_orphaned_scratch_folders_are_removed_only_when_their_owner_is_dead(tmp_path):
