@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
-from app.dataset import N_SUGGESTIONS, Dataset, suggestions_of
+from app.dataset import Dataset, suggestions_of
 from app.model import ExplorerModel
 from app.palette import CLASS_COLOURS
 from app.persistence_plot import DrawnPairs, PersistenceArtists, infinity_level, nearest_pair
@@ -32,9 +32,7 @@ from app.signature_figure import (
     set_alpha_scale,
     symlog_threshold,
 )
-from core.complex import AlphaComplex
 from core.persistence import Persistence
-from core.suggest import AlphaRange
 
 MIN_PLOT_HEIGHT = 160  # pixels: tick labels, titles and a readable plot area
 BETTI_COLOURS = ("#4c9be8", "#e4572e", "#59b86a")
@@ -52,19 +50,16 @@ class Marker:
     text: str
 
 
-def markers_of(ac: AlphaComplex, optimal: float | None = None,
-               suggestions: tuple[AlphaRange, ...] | None = None) -> tuple[Marker, list[Marker]]:
-    """The optimal alpha and the suggested alphas of a complex, as markers (ac's own unless
-    given: the dataset knows them)."""
-    optimal = float(ac.optimal_alpha() if optimal is None else optimal)
-    if suggestions is None:
-        suggestions = ac.suggest_alphas(N_SUGGESTIONS)
+def markers_of(dataset: Dataset) -> tuple[Marker, list[Marker]]:
+    """The optimal alpha and the suggested alphas (app.dataset.suggestions_of) of a dataset
+    that has its topology, as markers."""
     suggested = [
         Marker(r.alpha, f"suggestion {i}: Betti numbers {r.betti} for alpha in "
                         f"[{r.low:.4g}, {r.high:.4g})")
-        for i, r in enumerate(suggestions, start=1)
+        for i, r in enumerate(suggestions_of(dataset), start=1)
     ]
-    return Marker(optimal, "optimal alpha (CGAL): every point in one solid"), suggested
+    return (Marker(float(dataset.optimal_alpha),
+                   "optimal alpha (CGAL): every point in one solid"), suggested)
 
 
 def persistence_of(dataset: Dataset) -> Persistence:
@@ -201,8 +196,7 @@ class SignaturesPanel(QWidget):
 
     def _show_markers(self, dataset: Dataset) -> None:
         """Put the optimal (★) and suggested (▼) alphas of dataset on the marker lines."""
-        optimal, suggested = markers_of(dataset.ac, dataset.optimal_alpha,
-                                        suggestions_of(dataset))
+        optimal, suggested = markers_of(dataset)
         for i, (line, markers) in enumerate(self.marker_lines):
             markers[:] = suggested if i % 2 == 0 else [optimal]
             line.set_data(self.plot_x(np.array([m.alpha for m in markers])),

@@ -4,7 +4,7 @@
 open is: file -> slider live (the model has the dataset: the slider moves shapes) -> topology
 done (signatures and optimal alpha; the same moment when the window waits for them), with the
 longest GUI-thread stall in between (a 10 ms QTimer probe) and the build and topology
-processes' own peaks (sampled VmHWM). With
+processes' own peaks (sampled VmHWM, benchmarks/child_peaks.py). With
 `soak`, the same window then opens and cancels the file 10 times and opens the two files
 alternately 10 times; the process RSS is read after each outcome.
 """
@@ -17,6 +17,7 @@ import sys
 import tempfile
 import time
 
+from child_peaks import ChildPeaks, passes
 from isolate import MIB, peak_rss_mib, rss_mib
 
 TIMEOUT_MS = 3_600_000
@@ -24,7 +25,6 @@ CANCELS, REOPENS = 10, 10
 CANCEL_AFTER_S = 2.0  # cancel once the build has run this long (the child is started)
 PROBE_MS = 10  # the stall probe's tick
 DRAG_STEPS = 200  # critical values a probe's drag walks over
-SAMPLE_S = 0.1  # how often the children's peak memory is read
 ARRIVAL_MS = 2000  # the probe runs on this long after the topology arrived: the docks' and
 # the view's deferred redraws (matplotlib's draw_idle, the render at the opening alpha) count
 
@@ -121,46 +121,6 @@ class StallProbe:
     def longest(self, until: float = float("inf")) -> float:
         """The longest stall (seconds) among the gaps that ended by `until` (perf_counter)."""
         return max((gap for end, gap in self.gaps if end <= until), default=0.0)
-
-
-class ChildPeaks:
-    """Samples the window's child processes (build, topology) every SAMPLE_S: each one's own
-    peak resident set (VmHWM, which starts afresh at exec, unlike ru_maxrss), by name."""
-
-    def __init__(self) -> None:
-        import threading
-
-        self.peaks: dict[str, float] = {}
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, daemon=True)
-        self._thread.start()
-
-    def _run(self) -> None:
-        import multiprocessing
-
-        while not self._stop.wait(SAMPLE_S):
-            for child in multiprocessing.active_children():
-                peak = _vm_hwm_mib(child.pid)
-                if peak:
-                    self.peaks[child.name] = max(self.peaks.get(child.name, 0.0), peak)
-
-    def stop(self) -> dict[str, float]:
-        """Stop sampling; {child process name: peak MiB}."""
-        self._stop.set()
-        self._thread.join()
-        return dict(self.peaks)
-
-
-def _vm_hwm_mib(pid: int | None) -> float:
-    """A process's peak resident set in MiB (0 when it is gone)."""
-    try:
-        with open(f"/proc/{pid}/status", encoding="ascii") as handle:
-            for line in handle:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) / 1024.0
-    except (OSError, ValueError):
-        pass
-    return 0.0
 
 
 def _cpu_seconds() -> float:
@@ -269,7 +229,6 @@ def _soak(win, first: str, second: str, cancel: str, cancels: int = CANCELS,
     build process), then `reopens` alternate opens (second first); RSS in MiB
     after each, the seconds of each re-open, and the old datasets still alive at the end."""
     import gc
-    import multiprocessing
     import weakref
 
     cancelled, reopened, seconds, alive = [], [], [], []
@@ -281,7 +240,7 @@ def _soak(win, first: str, second: str, cancel: str, cancels: int = CANCELS,
             _spin(50)
         _spin(200)
         cancelled.append(rss_mib())
-    left = len(multiprocessing.active_children())
+    left = len(passes())  # read from /proc: nothing is reaped under the loader's join
     for i in range(reopens):
         start = time.perf_counter()
         win.open_path(second if i % 2 == 0 else first)

@@ -3,6 +3,7 @@ clickable optimal/suggested markers, and a persistence diagram with the current 
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -104,7 +105,7 @@ def test_markers_are_the_optimal_and_suggested_alphas(panels, dataset) -> None:
     """Each signature plot carries one optimal marker and the core's suggestions."""
     panel, _ = panels
     ac = dataset.ac
-    optimal, suggested = markers_of(ac)
+    optimal, suggested = markers_of(dataset)
     assert optimal.alpha == ac.optimal_alpha()
     assert [m.alpha for m in suggested] == [r.alpha for r in ac.suggest_alphas(5)]
     assert len(suggested) >= 2
@@ -112,11 +113,29 @@ def test_markers_are_the_optimal_and_suggested_alphas(panels, dataset) -> None:
     assert drawn == sorted([optimal.alpha, *[m.alpha for m in suggested]] * 3)
 
 
+def test_markers_are_the_datasets_own_alphas(qtbot, dataset) -> None:
+    """The markers are the optimal and suggested alphas the dataset holds (found with its
+    topology off the GUI thread), not the complex's recomputed; without them, the complex's."""
+    own = dataset.ac.suggest_alphas(5)
+    given = replace(dataset, suggestions=own[::-2], optimal_alpha=own[0].alpha)
+    optimal, suggested = markers_of(given)
+    assert optimal.alpha == own[0].alpha
+    assert [m.alpha for m in suggested] == [r.alpha for r in own[::-2]]
+    assert "suggestion 1: Betti numbers" in suggested[0].text
+    panel = SignaturesPanel(ExplorerModel())
+    qtbot.addWidget(panel)
+    panel.model.set_dataset(given)
+    drawn = sorted(a for line, _ in panel.marker_lines for a in line.get_xdata())
+    assert drawn == sorted([own[0].alpha, *[r.alpha for r in own[::-2]]] * 3)
+    assert [m.alpha for m in markers_of(replace(dataset, suggestions=None))[1]] == [
+        r.alpha for r in own]
+
+
 @pytest.mark.parametrize("which", ["optimal", 0, 1])
 def test_clicking_a_marker_moves_the_slider(panels, dataset, qtbot, which) -> None:
     """A left click on a marker moves the model and the slider to that alpha's shape."""
     panel, alpha_panel = panels
-    optimal, suggested = markers_of(dataset.ac)
+    optimal, suggested = markers_of(dataset)
     target = optimal if which == "optimal" else suggested[which]
     panel.model.set_index(0)
     before = alpha_panel.slider.value()

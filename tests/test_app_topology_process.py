@@ -165,6 +165,17 @@ def test_a_topology_file_written_before_sig_alphas_still_loads(dim):
     assert parts.entry_saved
 
 
+def own_name(_progress) -> str:
+    """A child's work: the command name ps shows for it."""
+    return Path("/proc/self/comm").read_text(encoding="utf-8").strip()
+
+
+def test_a_child_shows_its_name_in_ps():
+    name = child_process.run_in_child(own_name, (), never, threading.Event(),
+                                      "alphascoop-topology")
+    assert name == "alphascoop-topology"[:15]
+
+
 def test_orphaned_scratch_folders_are_removed_only_when_their_owner_is_dead(tmp_path):
     dead = subprocess.Popen([sys.executable, "-c", "pass"])
     dead.wait()
