@@ -3,7 +3,9 @@
 ChildRunner is the window's runner for core.obtain. The child builds the table (and its
 signatures when asked), writes it to the cache entry (or to a temporary file when the cache
 cannot be written or is not used) and says where; the caller loads that file, which takes
-a few percent of the build. Cancel kills the child at once, so a newer open or closing the
+a few percent of the build. Without the signatures, the child finds the table's quick opening
+alpha (core.opening) in a thread while it writes the file, so the window need not: the
+runner keeps it (`opening_alpha`). Cancel kills the child at once, so a newer open or closing the
 window never waits for a Delaunay triangulation to finish. Small sets build in the caller's
 thread: under IN_THREAD_BELOW points a build takes a few seconds at most, and a process would
 add about one (its start and the table's trip through a file).
@@ -11,15 +13,19 @@ add about one (its start and the table's trip through a file).
 
 from __future__ import annotations
 
+import json
 import threading
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
 from app.child_process import run_in_child, scratch
+from core.cache import save_entry
 from core.complex import AlphaComplex
 from core.modes import Mode, make_mode
-from core.obtain import BuildRequest, run_here
+from core.obtain import SAVE_START, BuildRequest, run_here
+from core.opening import opening_alpha_of
 from core.progress import Progress
 
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
@@ -34,6 +40,9 @@ class ChildRunner:
     def __init__(self, cancel: threading.Event) -> None:
         """cancel: set it (from any thread) to stop the build; Cancelled is then raised."""
         self.cancel = cancel
+        #: The quick opening alpha (core.opening.opening_alpha_of) of the table this runner
+        #: last built in its child; None when it was built here or with its signatures.
+        self.opening_alpha: float | None = None
 
     def __call__(self, request: BuildRequest, progress: Progress | None = None) -> AlphaComplex:
         """The complex of request, saved to request.save_to when that can be written.
@@ -54,15 +63,18 @@ class ChildRunner:
             job = {"mode": request.mode.to_dict(), "signatures": request.signatures,
                    "save_to": None if request.save_to is None else str(request.save_to),
                    "backend": request.backend}
-            written = run_in_child(build_in_child, (str(source), str(target), job), report,
-                                   self.cancel, "alphascoop-build")
+            answer = json.loads(run_in_child(build_in_child, (str(source), str(target), job),
+                                             report, self.cancel, "alphascoop-build"))
             report(1.0, "loading the table")
-            return AlphaComplex.load(written)
+            ac = AlphaComplex.load(answer["table"])
+            self.opening_alpha = answer["opening_alpha"]
+            return ac
 
 
 def build_in_child(source: str, target: str, job: dict, progress: Progress) -> str:
     """Body of the build process: build (and the signatures if asked), save to the cache entry
-    or else to `target`; the path written.
+    or else to `target`; JSON {"table": the path written, "opening_alpha": the quick opening
+    alpha, or None when the signatures hold it}.
 
     `job` holds "mode" (Mode.to_dict()), "signatures" (bool), "save_to" (the cache entry
     or None) and "backend" (str or None); weights.npy and normals.npy beside the points
@@ -75,11 +87,21 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress) -> s
     request = BuildRequest(points, weights, mode, normals, bool(job["signatures"]),
                            None if job["save_to"] is None else Path(job["save_to"]),
                            job["backend"])
-    ac, written = request.run(progress)
+    ac, _ = replace(request, save_to=None).run(progress)
+    opening: list[float] = []
+    finder = threading.Thread(  # numpy's sorts and the file's writes leave the GIL
+        target=lambda: opening.append(opening_alpha_of(ac.index, len(ac.points))))
+    if not request.signatures:
+        finder.start()
+    progress(SAVE_START, "saving the table")
+    written = None if request.save_to is None else save_entry(ac, request.save_to)
     if written is None:
         ac.save(target)
         written = Path(target)
-    return str(written)
+    if finder.is_alive():
+        finder.join()
+    return json.dumps({"table": str(written),
+                       "opening_alpha": float(opening[0]) if opening else None})
 
 
 def _optional(path: Path) -> np.ndarray | None:

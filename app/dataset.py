@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from app.build_process import ChildRunner
 from app.camera import Z_UP, ViewFrame, frame_for
 from app.topology_file import TopologyParts, attach
 from core import AlphaComplex
@@ -148,8 +149,9 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     molecule, numbers = _molecule(ac, pointset)
     complete = ac.has_signatures
     # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
+    known = runner.opening_alpha if isinstance(runner, ChildRunner) else None
     alpha = 0.0 if molecule is not None else (
-        float(ac.default_alpha()) if complete else quick_alpha(ac))
+        float(ac.default_alpha()) if complete else quick_alpha(ac) if known is None else known)
     progress(INDEX_START, "indexing for the slider")
     cursor = ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
@@ -190,24 +192,29 @@ def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> 
     for stage in (ac.default_alpha, ac.persistence):  # default_alpha: the optimal one too
         check()
         stage()
-    default = dataset.default_alpha if dataset.molecule is not None else ac.default_alpha()
-    ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
-    return replace(dataset, signatures=ac.signatures(), optimal_alpha=float(ac.optimal_alpha()),
-                   default_alpha=float(default), entry=obtained.entry,
-                   persistence=ac.persistence(), suggestions=ac.suggest_alphas(N_SUGGESTIONS),
-                   topology_seconds=0.0 if came else time.perf_counter() - started)
+    return _completed(dataset, ac, ac.optimal_alpha(), ac.default_alpha(), ac.persistence(),
+                      entry=obtained.entry,
+                      seconds=0.0 if came else time.perf_counter() - started)
 
 
 def with_parts(dataset: Dataset, parts: TopologyParts, seconds: float) -> Dataset:
     """The dataset completed with the topology a topology process computed for its table
     (app.topology_process): its complex is the same table with that topology attached."""
     ac = attach(dataset.ac, parts)
-    default = dataset.default_alpha if dataset.molecule is not None else parts.default_alpha
+    return _completed(dataset, ac, parts.optimal_alpha, parts.default_alpha, parts.persistence,
+                      entry=dataset.entry if parts.entry_saved else None, seconds=seconds)
+
+
+def _completed(dataset: Dataset, ac: AlphaComplex, optimal: float, default: float,
+               persistence: Persistence, *, entry: Path | None, seconds: float) -> Dataset:
+    """The dataset with ac (its table with the topology), the optimal and opening alphas (a
+    molecule keeps its own, alpha² = 0), persistence and suggestions: the tail with_topology
+    and with_parts share."""
+    default = dataset.default_alpha if dataset.molecule is not None else default
     ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
-    return replace(dataset, ac=ac, signatures=ac.signatures(), optimal_alpha=parts.optimal_alpha,
-                   default_alpha=float(default), persistence=parts.persistence,
-                   suggestions=ac.suggest_alphas(N_SUGGESTIONS),
-                   entry=dataset.entry if parts.entry_saved else None,
+    return replace(dataset, ac=ac, signatures=ac.signatures(), optimal_alpha=float(optimal),
+                   default_alpha=float(default), persistence=persistence,
+                   suggestions=ac.suggest_alphas(N_SUGGESTIONS), entry=entry,
                    topology_seconds=seconds)
 
 

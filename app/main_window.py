@@ -167,7 +167,8 @@ class MainWindow(QMainWindow):
         dataset = self.model.dataset
         if dataset is None:
             return
-        self.fallback = ReopenFallback(dataset.path, dataset.ac.mode, self.last_options)
+        self.fallback = ReopenFallback(dataset.path, dataset.ac.mode, self.last_options,
+                                       self.model.alpha if self.model.touched else None)
         self.topology.cancel()  # its job holds the dataset: stop it now
         self.model.release()
         self.status.setText(f"{self.loader.title}: {dataset.path.name} was closed to make room "
@@ -175,7 +176,8 @@ class MainWindow(QMainWindow):
 
     def _reopen_fallback(self, why: str) -> bool:
         """After a cancelled or failed load: re-open the file released for it (its table comes
-        from the cache); False when none was (a still shown one keeps its mode)."""
+        from the cache) at the alpha the user had; False when none was (a still shown one
+        keeps its mode)."""
         fallback, self.fallback = self.fallback, None
         if fallback is None:
             if self.model.dataset is not None:  # the shown table's mode stays the current one
@@ -185,6 +187,7 @@ class MainWindow(QMainWindow):
         self.mode_panel.set_mode(fallback.mode)
         self.progress.start(f"re-opening {fallback.path.name}")
         self.last_options = fallback.options
+        self.start_alpha = fallback.alpha  # where the user was (None: its opening alpha)
         self.loader.start(load_job(fallback.path, fallback.mode, fallback.options))
         self.status.setText(f"{why}; re-opening {fallback.path.name}")
         return True

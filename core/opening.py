@@ -34,11 +34,15 @@ def first_cofaces(face_ids: np.ndarray, coface_enter: np.ndarray, n_faces: int) 
     return first
 
 
-def joined_share(n_points: int, a: np.ndarray, b: np.ndarray) -> float:
-    """Share of n_points in the largest component of the graph with edges (a, b)."""
-    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(n_points, n_points))
+def joined_share(n_points: int, a: np.ndarray, b: np.ndarray,
+                 sizes: np.ndarray | None = None) -> float:
+    """Share of n_points in the largest component of the graph with edges (a, b); with
+    `sizes`, node i stands for sizes[i] points (a contracted graph) and n_points is their sum."""
+    nodes = n_points if sizes is None else len(sizes)
+    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(nodes, nodes))
     _, labels = connected_components(graph, directed=False)
-    return float(np.bincount(labels).max()) / n_points
+    held = np.bincount(labels) if sizes is None else np.bincount(labels, weights=sizes)
+    return float(held.max()) / n_points
 
 
 def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndarray,
@@ -55,16 +59,37 @@ def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndar
     joined = ordered_forest(n_points, edges[:, 0], edges[:, 1])  # in order of arrival
     a, b = edges[joined, 0], edges[joined, 1]
     weights = values[order[joined]]
-    low, high = 0, len(weights)  # the first `high` merges reach the share; `low` do not
     if n_points == 0 or joined_share(n_points, a, b) < share:
         return float("inf")
+    high = _first_reaching(n_points, a, b, share)
+    return float(weights[high - 1]) if high > 0 else 0.0
+
+
+def _first_reaching(n_points: int, a: np.ndarray, b: np.ndarray, share: float) -> int:
+    """The fewest first merges (a, b) of a spanning forest, in order, whose largest
+    component holds >= share of the n_points (all of them do; 0 is never tested).
+
+    After m merges the largest of the n - m components holds at most m + 1 points, so fewer
+    than ceil(share * n) - 1 merges never reach the share: the search starts there, on the
+    graph contracted by those merges (one node per component, weighted by its size), which
+    has n - m nodes, a few percent of the points, instead of all of them at every step."""
+    low, high = max(int(np.ceil(share * n_points)) - 2, 0), len(a)
+    if high - low <= 1:
+        return high
+    _, labels = connected_components(
+        coo_matrix((np.ones(low, dtype=np.int8), (a[:low], b[:low])),
+                   shape=(n_points, n_points)), directed=False)
+    sizes = np.bincount(labels).astype(np.float64)
+    a, b = labels[a[low:]], labels[b[low:]]  # merge low + i is (a[i], b[i]) from here on
+    offset, high = low, high - low
+    low = 0
     while high - low > 1:
         middle = (low + high) // 2
-        if joined_share(n_points, a[:middle], b[:middle]) >= share:
+        if joined_share(n_points, a[:middle], b[:middle], sizes) >= share:
             high = middle
         else:
             low = middle
-    return float(weights[high - 1]) if high > 0 else 0.0
+    return offset + high
 
 
 def opening_alpha_of(index: TableIndex, n_points: int) -> float:
@@ -73,6 +98,6 @@ def opening_alpha_of(index: TableIndex, n_points: int) -> float:
     last = float(index.spectrum()[-1])
     if len(index.simplices(2)) == 0:
         return last
-    edge_first = first_cofaces(index.face_ids(2), index.intervals(2)[:, 0],
+    edge_first = first_cofaces(index.face_ids(2), index.level(2).enter,
                                len(index.simplices(1)))
     return min(opening_alpha(n_points, index.simplices(1), edge_first), last)

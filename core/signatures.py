@@ -33,7 +33,9 @@ class Signatures:
     measure: np.ndarray  # (s,) float64
     boundary_measure: np.ndarray  # (s,) float64
     opening_alpha: float  # smallest alpha whose triangles join nearly all points (core.opening)
-    intervals: tuple = field(repr=False)  # per k: the table's (n_k, 3) intervals
+    #: per k: the table's own (enter, regular, interior) (n_k,) columns (index.level(k): no
+    #: stacked copy of the table)
+    intervals: tuple = field(repr=False)
     _sorted: dict = field(default_factory=dict, repr=False)  # k -> sorted thresholds, lazily
 
     def index(self, alpha: float) -> int:
@@ -52,11 +54,18 @@ class Signatures:
     def _thresholds(self, k: int) -> tuple[np.ndarray, ...]:
         """Ascending (enter, regular, interior) of k-simplices, sorted on first use."""
         if k not in self._sorted:
-            iv = self.intervals[k]
-            enter = ascending(iv[:, 0])
-            rest = (enter, enter) if k == self.dim else (ascending(iv[:, 1]), ascending(iv[:, 2]))
+            enter, regular, interior = self.intervals[k]
+            enter = ascending(enter)
+            rest = (enter, enter) if k == self.dim else (ascending(regular), ascending(interior))
             self._sorted[k] = (enter, *rest)
         return self._sorted[k]
+
+
+def level_columns(index: TableIndex) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], ...]:
+    """Per k, the (enter, regular, interior) columns the table `index` holds: what Signatures
+    sorts its class thresholds from, shared with the table rather than stacked anew."""
+    return tuple((level.enter, level.regular, level.interior)
+                 for level in (index.level(k) for k in range(index.dim + 1)))
 
 
 def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology) -> Signatures:
@@ -78,7 +87,7 @@ def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology
         measure=readonly(measure[cells_in]),
         boundary_measure=readonly(boundary[cells_in]),
         opening_alpha=opening_alpha_of(index, len(points)),
-        intervals=tuple(index.intervals(k) for k in range(dim + 1)),
+        intervals=level_columns(index),
     )
 
 

@@ -43,7 +43,7 @@ from .modes import Mode, make_mode
 from .npz import read_npz
 from .opening import opening_alpha_of
 from .points import Frame
-from .signatures import Signatures
+from .signatures import Signatures, level_columns
 from .table import Level, Table
 from .table_checks import (
     Checker,
@@ -180,7 +180,7 @@ def _derived(index: TableIndex, n_points: int, a: dict[str, np.ndarray], check: 
                             solid_components=readonly(a["sig_solid"]),
                             measure=readonly(a["sig_measure"]),
                             boundary_measure=readonly(a["sig_boundary"]), opening_alpha=opening,
-                            intervals=tuple(index.intervals(k) for k in range(dim + 1)))
+                            intervals=level_columns(index))
     return topology, signatures
 
 

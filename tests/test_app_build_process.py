@@ -14,6 +14,7 @@ from core import AlphaComplex
 from core.cache import entry_path
 from core.errors import AlphaScoopError, Cancelled, InputError
 from core.obtain import obtain
+from core.opening import opening_alpha_of
 
 LIVENESS_BOUND_S = 120  # generous: the child is killed within a poll (0.1 s) of Cancel
 
@@ -124,3 +125,15 @@ def test_a_cached_table_without_signatures_is_upgraded_in_place(in_process):
     obtained = child_obtain(points)
     assert obtained.source == "cache" and obtained.complex.has_signatures
     assert load_cached(points).has_signatures
+
+
+def test_the_child_finds_the_quick_opening_alpha_while_it_saves(in_process):
+    points = np.random.default_rng(5).random((3000, 3))
+    runner = build_process.ChildRunner(threading.Event())
+    ac = obtain(points, runner=runner).complex
+    assert not ac.has_signatures
+    assert runner.opening_alpha == opening_alpha_of(ac.index, len(points))
+    assert runner.opening_alpha == AlphaComplex.from_points(points).default_alpha()
+    with_signatures = build_process.ChildRunner(threading.Event())
+    obtain(points + 1.0, signatures=True, runner=with_signatures)
+    assert with_signatures.opening_alpha is None  # the signatures hold it

@@ -136,3 +136,23 @@ def test_the_topology_process_fills_the_docks(window, qtbot, files, monkeypatch)
     window.model.set_index(index + 1)
     np.testing.assert_array_equal(window.model.shape.cells,
                                   here.shape(window.model.alpha).cells)
+
+
+def test_a_cancelled_load_brings_the_released_file_back_at_the_users_alpha(
+        window, qtbot, files, held):
+    held.set()
+    open_and_wait(qtbot, window, files["shown"])
+    window.topology.wait()
+    qtbot.waitUntil(lambda: window.model.dataset.has_topology, timeout=BUILD_TIMEOUT_MS)
+    opening = window.model.index
+    window.model.set_index(opening - 7)  # the user drags away from the opening alpha
+    chosen = window.model.alpha
+    held.clear()
+    with qtbot.waitSignal(window.model.datasetReleased, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["next"])
+    held.set()
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.loader.cancel()
+    qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    assert window.model.dataset.path == files["shown"]
+    assert window.model.index == opening - 7 and window.model.alpha == chosen

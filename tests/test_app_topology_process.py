@@ -6,6 +6,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -24,6 +25,7 @@ from core.errors import Cancelled, FileFormatError
 from core.obtain import obtain
 
 ROOT = Path(__file__).resolve().parents[1]
+LIVENESS_BOUND_S = 120  # generous: the child is killed within a poll (0.1 s) of Cancel
 
 
 @pytest.fixture(autouse=True)
@@ -99,16 +101,43 @@ def test_a_cache_entry_gone_meanwhile_is_not_rewritten_from_the_temporary_copy(t
     assert not parts.entry_saved and not gone.exists() and my_scratch() == []
 
 
-def test_cancel_kills_the_child_and_leaves_nothing():
-    ac = obtain(blobs(2000, 3, seed=8)).complex
+def test_cancel_kills_the_child_while_it_works_and_leaves_nothing():
+    """The child says it computes the signatures (about a second at 30k points): it is alive
+    when Cancel is pressed, and gone soon after, killed (SIGKILL), not finished; the cache
+    entry it would have rewritten is untouched and no scratch folder is left."""
+    points = blobs(30_000, 3, seed=8)
+    obtained = obtain(points)  # cached without its topology: the child would rewrite it
+    entry, before = obtained.entry, obtained.entry.read_bytes()
+    cache_files = sorted(entry.parent.iterdir())
     cancel = threading.Event()
+    working: list[multiprocessing.Process] = []
+    alive_at_cancel: list[bool] = []
 
-    def progress(_fraction: float, _stage: str) -> None:
-        cancel.set()  # at the child's first report: it is running
+    def progress(_fraction: float, stage: str) -> None:
+        if stage == "topology: signatures" and not working:  # sent by the child
+            working.extend(multiprocessing.active_children())  # this thread owns the child
+            alive_at_cancel.extend(child.is_alive() for child in working)
+            cancel.set()
 
-    with pytest.raises(Cancelled):
-        topology_process.topology_parts(ac, None, progress, cancel)
+    outcome: list[BaseException] = []
+
+    def run() -> None:
+        try:
+            topology_process.topology_parts(obtained.complex, entry, progress, cancel)
+        except BaseException as error:  # recorded for the assertion below
+            outcome.append(error)
+
+    thread = threading.Thread(target=run)
+    thread.start()
+    thread.join(LIVENESS_BOUND_S)
+    assert not thread.is_alive()
+    assert len(working) == 1 and working[0].name == "alphascoop-topology"
+    assert alive_at_cancel == [True]
+    assert len(outcome) == 1 and isinstance(outcome[0], Cancelled)
+    assert working[0].exitcode == -signal.SIGKILL  # killed mid-work: it did not finish
     assert multiprocessing.active_children() == [] and my_scratch() == []
+    assert entry.read_bytes() == before and sorted(entry.parent.iterdir()) == cache_files
+    assert not load_cached(points).has_signatures
 
 
 def test_a_topology_file_of_another_table_is_refused(tmp_path):
