@@ -228,7 +228,8 @@ def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper,
     table = build_table(coords / scale, tri.cells, tri.neighbors, step.part(0.6, share),
                         exact=exact, spheres=spheres,
                         weights=None if w is None else w / scale**2,
-                        sort=not mode.active, radii=not mode.active or mode.classic_radii)
+                        sort=not mode.active, radii=not mode.active or mode.classic_radii,
+                        mirror=tri.mirror)
     for level in table.levels:
         for arr in (level.enter, level.regular, level.interior):
             arr *= scale

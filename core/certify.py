@@ -35,13 +35,17 @@ class Certified:
     scale: float = 1.0  # the points were divided by this (core.build: a power of two)
 
 
-def _interior_facets(cells: np.ndarray, nbs: np.ndarray) -> tuple[np.ndarray, ...]:
+def _interior_facets(cells: np.ndarray, nbs: np.ndarray, mirror: np.ndarray | None = None
+                     ) -> tuple[np.ndarray, ...]:
     """Every interior facet once, (t, i, u, j): cell t's facet opposite its vertex i is cell
-    u's opposite its vertex j (t < u; t ascending)."""
+    u's opposite its vertex j (t < u; t ascending). j is read from `mirror` (the
+    neighbours' columns that point back, Triangulation.mirror) where given."""
     width = nbs.shape[1]
     slots = np.flatnonzero(nbs > np.arange(len(cells))[:, None])
     t, i = np.divmod(slots, width)
     u = np.take(nbs, slots)
+    if mirror is not None:
+        return t, i, u, np.take(mirror, slots).astype(np.int64)
     around = np.take(nbs, u, axis=0)
     j = np.zeros(len(t), dtype=np.int64)
     for c in range(width - 1, 0, -1):  # one compare per column, not a (n, w) argmax
@@ -68,7 +72,8 @@ class _Mesh:
         self.cells = tri.cells.astype(np.int64)
         self.nbs = tri.neighbors.astype(np.int64)
         self.alive = np.ones(len(self.cells), dtype=bool)
-        self.first = _interior_facets(self.cells, self.nbs)  # the first round's facets
+        self.mirror = tri.mirror  # valid until the first flip (peeling only cuts links)
+        self.first = _interior_facets(self.cells, self.nbs, self.mirror)  # first round's
         t, _, u, j = self.first
         shared = first_pass(points, self.cells, t, self.cells[u, j])
         self.spheres = shared.spheres
@@ -98,7 +103,7 @@ class _Mesh:
             self.touched[cut.any(axis=1)] = True
             self.nbs[cut] = -1
             self.alive[ids] = False
-            self.first = _interior_facets(self.cells, self.nbs)
+            self.first = _interior_facets(self.cells, self.nbs, self.mirror)
             self.side = None  # the facets changed
             self.bad = self.alive & ((self.signs == 0)
                                      | _folded(len(self.cells), self.signs, *self.first))
@@ -399,7 +404,7 @@ def _compact(mesh: _Mesh, tri: Triangulation) -> Triangulation:
     nbs = np.ascontiguousarray(np.where(nbs >= 0, new_id[np.maximum(nbs, 0)], -1),
                                dtype=np.int32)
     sort_rows(cells, nbs)
-    return replace(tri, cells=cells, neighbors=nbs)
+    return replace(tri, cells=cells, neighbors=nbs, mirror=None)
 
 
 def tie_weights(m: int) -> np.ndarray:

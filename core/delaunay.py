@@ -23,6 +23,9 @@ class Triangulation:
     neighbors: np.ndarray  # (t, d+1) int32, neighbour opposite each vertex; -1 = hull
     vertex_of_point: np.ndarray  # (m,) int64: vertex row for every input row (-1 = hidden)
     kept: np.ndarray  # (v,) int64: input rows that are vertices, ascending
+    # (t, d+1) int8: the column of each neighbour's row that holds the cell (-1 = hull), where
+    # the backend found it while matching facets (core.backends.facets.paired); else None
+    mirror: np.ndarray | None = None
 
 
 def sort_rows(cells: np.ndarray, neighbors: np.ndarray) -> None:

@@ -212,7 +212,7 @@ def _assemble(tri: Triangulation, wrap: _Wrap, kept: np.ndarray,
         nbs[pairs[:, 0], pairs[:, 1]] = pairs[:, 2]
     cells, nbs = cells.astype(np.int32), nbs.astype(np.int32)
     sort_rows(cells, nbs)
-    return replace(tri, cells=cells, neighbors=nbs)
+    return replace(tri, cells=cells, neighbors=nbs, mirror=None)
 
 
 def grow(cells: np.ndarray, region: np.ndarray) -> np.ndarray:

@@ -29,7 +29,7 @@ from .geometry import (
     edge_vectors,
     facet_radii2,
 )
-from .parallel import in_chunks, reduce_segments, slot_of, sort, take
+from .parallel import in_chunks, reduce_segments, slot_of, sort, take, together
 from .power import (
     any_point_below,
     cell_orthospheres,
@@ -119,6 +119,14 @@ def _order(enter: np.ndarray, sort: bool) -> np.ndarray | None:
     return argsort_radii(enter) if sort else None
 
 
+def _order_beside(enter: np.ndarray, sort: bool) -> Callable[[], np.ndarray | None]:
+    """_order started in a helper thread (core.parallel.together), for the caller to do
+    the level's other work meanwhile; returns the function that waits for it."""
+    if not sort:
+        return lambda: None
+    return together(lambda: argsort_radii(enter))
+
+
 def _delay_flat(enter: np.ndarray, flat: np.ndarray, neighbors: np.ndarray) -> None:
     """Let flat cells (zero volume, from cospherical points) enter with their last neighbour.
 
@@ -192,11 +200,13 @@ def _folded(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, det: n
 
 def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
            weights: np.ndarray | None = None, exact: list[int] | None = None,
-           spheres: CellSpheres | None = None, sort: bool = True):
+           spheres: CellSpheres | None = None, sort: bool = True,
+           mirror: np.ndarray | None = None):
     """Level d sorted by enter, its neighbours (renumbered), signed d!-measures (0 for flat
-    cells), attach bits (bit i: vertex i attaches the facet opposite it) and volumes/areas.
-    Counts of exactly decided predicates are appended to `exact`. `spheres`: the cells'
-    core.geometry.cell_spheres when already computed (core.cell_pass), used in place."""
+    cells), attach bits (bit i: vertex i attaches the facet opposite it), volumes/areas and
+    the neighbours' mirror columns (None where not given). Counts of exactly decided
+    predicates are appended to `exact`. `spheres`: the cells' core.geometry.cell_spheres
+    when already computed (core.cell_pass), used in place."""
     if weights is None:
         r2, det, flat, bits = (cell_spheres(points, cells) if spheres is None else
                                (spheres.r2, spheres.det, spheres.flat, spheres.bits))
@@ -216,10 +226,10 @@ def _cells(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     order = _order(enter, sort)
     if order is None:  # as built; three arrays, as _permute leaves them
         level.regular, level.interior = enter.copy(), enter.copy()
-        return level, neighbors, det, bits, measure
+        return level, neighbors, det, bits, measure, mirror
     inverse = _permute(level, order)
     return (level, _remap(take(neighbors, order), inverse), take(det, order), take(bits, order),
-            take(measure, order))
+            take(measure, order), None if mirror is None else take(mirror, order))
 
 
 def _faces_centre(points: np.ndarray, facets: np.ndarray) -> np.ndarray:
@@ -295,11 +305,13 @@ def _facet_enter(points: np.ndarray, cells: Level, det: np.ndarray, simplices: n
 
 def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.ndarray,
             bits: np.ndarray, weights: np.ndarray | None = None,
-            exact: list[int] | None = None, sort: bool = True, radii: bool = True):
+            exact: list[int] | None = None, sort: bool = True, radii: bool = True,
+            mirror: np.ndarray | None = None):
     """Level d-1 from the cells' neighbour table: each shared facet taken once. Every
     per-cell value is gathered once per side (the second side's gathers are random) on
     two threads (core.parallel.take). radii=False: the facets' own radii and attachment are
-    not computed (enter = regular)."""
+    not computed (enter = regular). `mirror`: the neighbours' columns that point back, if
+    known (else found from their rows)."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
     slot0 = np.flatnonzero(keep)  # cell-major, as np.nonzero lists them
@@ -309,7 +321,10 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     simplices = _drop_vertex(cells.simplices, t0, i0)
     has1 = np.flatnonzero(t1 >= 0)
     t1h = take(t1, has1)
-    j1 = slot_of(neighbors, t1h, take(t0, has1))
+    if mirror is None:
+        j1 = slot_of(neighbors, t1h, take(t0, has1))
+    else:
+        j1 = take(take(mirror.ravel(), slot0), has1).astype(np.int64)
 
     e0, e1h = take(cells.enter, t0), take(cells.enter, t1h)
     e1 = np.full(len(t0), np.inf)
@@ -327,6 +342,7 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     else:  # a mode supplies its own values: only the cofacets' are taken
         enter = regular.copy()
     del e0, e1, e1h
+    order = _order_beside(enter, sort)  # while the facets' orientation and ids are found
 
     flip = (i0 % 2 == 1) ^ (det0 < 0)
     better = np.abs(det1) > np.abs(take(det0, has1))
@@ -344,7 +360,7 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     facet_cells = np.empty((len(t0), 2), dtype=np.int32)
     facet_cells[:, 0], facet_cells[:, 1] = t0, t1
     del t0, t1, i0, has1
-    order = _order(enter, sort)
+    order = order()
     if order is None:
         cells.face_ids = cell_faces
         return level, facet_cells, flip, near_flat, obtuse
@@ -509,7 +525,8 @@ def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
 def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
                 progress: Progress | None = None, weights: np.ndarray | None = None,
                 exact: bool = True, spheres: CellSpheres | None = None, *,
-                sort: bool = True, radii: bool = True) -> Table:
+                sort: bool = True, radii: bool = True, mirror: np.ndarray | None = None
+                ) -> Table:
     """The interval table of the Delaunay cells of `points` ((m, d) float64, well scaled).
 
     With (m,) `weights` (squared radii >= 0, same scale), the cells are the regular
@@ -522,7 +539,9 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     sort=False keeps every level in the order it was built (ids consistent; no
     facet_interior_order), and radii=False (with sort=False) skips the faces' own radii and
     attachment: a face's enter is then the least enter of its cofacets, a placeholder for
-    the mode's (the cells' values and every interior stay the classic ones)."""
+    the mode's (the cells' values and every interior stay the classic ones). `mirror`:
+    (t, d+1) int8, each neighbour's column that holds the cell (core.delaunay.Triangulation),
+    when known: saves finding it by a random gather of the neighbours' rows."""
     if sort and not radii:
         raise ValueError("radii=False is for an unsorted table (sort=False)")
     def step(fraction: float, stage: str) -> None:
@@ -532,12 +551,13 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
     d = points.shape[1]
     step(0.0, "circumspheres of cells")
     exact_counts: list[int] | None = [] if exact else None
-    top, neighbors, det, bits, measure = _cells(points, cells, neighbors, weights,
-                                                exact_counts, spheres, sort)
+    top, neighbors, det, bits, measure, mirror = _cells(points, cells, neighbors, weights,
+                                                        exact_counts, spheres, sort, mirror)
     step(0.2, "facets")
     facets, facet_cells, flip, near_flat, obtuse = _facets(points, top, neighbors, det, bits,
-                                                           weights, exact_counts, sort, radii)
-    del neighbors
+                                                           weights, exact_counts, sort, radii,
+                                                           mirror)
+    del neighbors, mirror
     levels = [facets, top]
     if d == 3:
         step(0.55, "edges")

@@ -53,14 +53,14 @@ def _by_gmsh(points: np.ndarray) -> Triangulation | str:
     cells = gmsh_backend.gmsh_cells(points)
     if not len(cells):
         return "gmsh found no cell (too few points?)"
-    cells, nbrs, manifold = restored(points, cells)
+    cells, nbrs, mirror, manifold = restored(points, cells)
     if not manifold:
         return "a facet is in three cells"
-    reason = why_not_delaunay(points, cells, nbrs)
+    reason = why_not_delaunay(points, cells, nbrs, mirror=mirror)
     if reason:
         return reason
     vertex_of_point = np.arange(len(points), dtype=np.int64)
-    return Triangulation(cells, nbrs, vertex_of_point, vertex_of_point.copy())
+    return Triangulation(cells, nbrs, vertex_of_point, vertex_of_point.copy(), mirror)
 
 
 def delaunay(points: np.ndarray, backend: str | None = None) -> tuple[Triangulation, Choice]:

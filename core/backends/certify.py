@@ -120,15 +120,17 @@ def in_sphere(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
     return out
 
 
-def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None
-                 ) -> tuple[np.ndarray, ...]:
+def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None,
+                 mirror: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
     """Each inner facet once (of a cell in the (t,) bool mask `near`, when given): cell t,
     its vertex i opposite the facet, the cell u across and u's vertex j opposite it
-    (neighbour tables are symmetric by construction)."""
+    (neighbour tables are symmetric by construction; j read from `mirror` where given)."""
     if near is None:
         slots = np.flatnonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
         t, i = np.divmod(slots, neighbors.shape[1])
         u = np.take(neighbors, slots)
+        if mirror is not None:
+            return t, i, u, np.take(mirror, slots)
     else:  # the facets of the near cells; a facet between two of them once
         rows = np.flatnonzero(near)
         row, i = np.nonzero(neighbors[rows] >= 0)
@@ -162,7 +164,7 @@ def _outer_facets_are_hull(points: np.ndarray, cells: np.ndarray,
 
 def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, *,
                      weights: np.ndarray | None = None, hidden: np.ndarray | None = None,
-                     near: np.ndarray | None = None) -> str:
+                     near: np.ndarray | None = None, mirror: np.ndarray | None = None) -> str:
     """"" when (t, d+1) ascending `cells` with their neighbour table are certainly the unique
     Delaunay triangulation of all (m, d) `points` (regular triangulation, with (m,)
     `weights`); else the first reason found.
@@ -171,6 +173,7 @@ def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarra
     orientation and local Delaunay-ness only on the facets of these cells, and trust the
     others as Qhull made them (the halves of core.backends.split): the answer is then "the
     same cells as one Qhull call, given Qhull's own facets", not a proof for those facets.
+    `mirror`: the neighbours' columns that point back (core.backends.facets.paired), if known.
     """
     used = np.zeros(len(points), dtype=bool)
     used[cells.ravel()] = True
@@ -180,7 +183,7 @@ def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarra
         used |= hidden
     if not used.all():
         return f"{int(np.count_nonzero(~used))} points are in no cell"
-    t, i, u, j = _inner_pairs(neighbors, near)
+    t, i, u, j = _inner_pairs(neighbors, near, mirror)
     sign = np.zeros(len(cells), dtype=np.int8)
     some = slice(None) if near is None else np.unique(np.concatenate((t, u, np.flatnonzero(
         near))))

@@ -16,7 +16,7 @@ import numpy as np
 from scipy.spatial import Delaunay, QhullError
 
 from ..delaunay import sort_rows
-from .facets import neighbours
+from .facets import paired
 
 
 def _row_of(rows: np.ndarray, table: np.ndarray) -> np.ndarray:
@@ -91,30 +91,39 @@ def outside(points: np.ndarray, cells: np.ndarray, outer: np.ndarray, behind: np
     return simplices[reached]
 
 
-def joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray,
-           extra: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
-    """`cells` + `extra` and their neighbours: only the cells that can share a facet with
-    an extra cell (d vertices among the extra cells' vertices) are matched again."""
+def joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray, extra: np.ndarray,
+           mirror: np.ndarray | None = None
+           ) -> tuple[np.ndarray, np.ndarray, bool, np.ndarray | None]:
+    """`cells` + `extra`, their neighbours, whether no facet is in three cells, and their
+    mirror (facets.paired; None without `mirror` for `cells`): only the cells that can
+    share a facet with an extra cell (d vertices among the extra cells' vertices) are
+    matched again."""
     d = cells.shape[1] - 1
     touched = np.zeros(len(points), dtype=bool)
     touched[extra] = True
     near = np.flatnonzero(np.count_nonzero(touched[cells], axis=1) >= d)
-    local, manifold = neighbours(np.concatenate((cells[near], extra)), len(points))
+    local, back, manifold = paired(np.concatenate((cells[near], extra)), len(points))
     ids = np.concatenate((near, len(cells) + np.arange(len(extra)))).astype(np.int32)
     local = np.where(local >= 0, ids[np.maximum(local, 0)], -1)
     table = np.concatenate((nbrs, local[len(near):]))
-    table[near] = np.where(local[:len(near)] >= 0, local[:len(near)], nbrs[near])
-    return np.concatenate((cells, extra)), table.astype(np.int32), manifold
+    matched = local[:len(near)] >= 0
+    table[near] = np.where(matched, local[:len(near)], nbrs[near])
+    if mirror is not None:
+        mirror = np.concatenate((mirror, back[len(near):]))
+        mirror[near] = np.where(matched, back[:len(near)], mirror[near])
+    return np.concatenate((cells, extra)), table.astype(np.int32), manifold, mirror
 
 
-def restored(points: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+def restored(points: np.ndarray, cells: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
     """gmsh's (t, d+1) ascending `cells` plus the Delaunay cells it dropped near the hull,
-    their neighbour table ((t', d+1) int32, -1 = none), and whether every facet is in at
-    most two cells."""
-    nbrs, manifold = neighbours(cells, len(points))
+    their neighbour table ((t', d+1) int32, -1 = none), its mirror (facets.paired) and
+    whether every facet is in at most two cells."""
+    nbrs, mirror, manifold = paired(cells, len(points))
     if not manifold:
-        return cells, nbrs, False
+        return cells, nbrs, mirror, False
     extra = _missing(points, cells, *boundary_facets(cells, nbrs))
     if not len(extra):
-        return cells, nbrs, True
-    return joined(points, cells, nbrs, extra)
+        return cells, nbrs, mirror, True
+    cells, nbrs, manifold, mirror = joined(points, cells, nbrs, extra, mirror)
+    return cells, nbrs, mirror, manifold

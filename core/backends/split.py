@@ -25,7 +25,7 @@ from scipy.spatial import cKDTree
 
 from ..delaunay import Triangulation, compacted, delaunay_cells, regular_cells
 from ..errors import InputError
-from ..geometry import CACHE_CHUNK, circumspheres
+from ..geometry import CACHE_CHUNK, centre_terms, circumspheres, edge_vectors
 from ..power import orthospheres
 from ..tolerances import ILL_CONDITIONED_RTOL, SPLIT_EMPTY_RTOL
 from .certify import why_not_delaunay
@@ -68,35 +68,20 @@ def _cells(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray
     return ids[cells].astype(np.int32), nbrs  # ids ascending: rows stay ascending
 
 
-def _solved(cols: list[np.ndarray], weights: np.ndarray | None, part: np.ndarray
-            ) -> tuple[list[np.ndarray], np.ndarray, np.ndarray]:
-    """Centre offsets from the first vertex (d columns), powers and shapes (|det| over the
-    product of the edge lengths: 0 flat .. 1) of (n, d+1) cells, by Cramer's rule on the
-    coordinate columns (the centre c solves 2 e_i . c = |e_i|² - (w_i - w_0))."""
-    base = [np.take(col, part[:, 0]) for col in cols]
-    vec = [[np.take(col, part[:, k]) - b for col, b in zip(cols, base, strict=True)]
-           for k in range(1, part.shape[1])]
-    sq = [sum(x * x for x in v) for v in vec]
-    rhs, w0 = sq, 0.0
+def _solved(points: np.ndarray, weights: np.ndarray | None, part: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Centres (n, d), powers (radii² without weights) and shapes (|det| over the product of
+    the edge lengths: 0 flat .. 1) of (n, d+1) cells, by Cramer's rule
+    (core.geometry.centre_terms: the centre c solves 2 e_i . c = |e_i|² - (w_i - w_0))."""
+    vec = edge_vectors(points, part)
+    rhs, w0 = None, 0.0
     if weights is not None:
         w0 = np.take(weights, part[:, 0])
-        rhs = [s - (np.take(weights, part[:, k + 1]) - w0) for k, s in enumerate(sq)]
-    if len(cols) == 3:
-        (ax, ay, az), (bx, by, bz), (cx, cy, cz) = vec
-        duals = ((by * cz - bz * cy, bz * cx - bx * cz, bx * cy - by * cx),
-                 (cy * az - cz * ay, cz * ax - cx * az, cx * ay - cy * ax),
-                 (ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx))
-        det = ax * duals[0][0] + ay * duals[0][1] + az * duals[0][2]
-        num = [sum(r * dual[k] for r, dual in zip(rhs, duals, strict=True)) for k in range(3)]
-    else:
-        (ax, ay), (bx, by) = vec
-        det = ax * by - ay * bx
-        num = [by * rhs[0] - ay * rhs[1], ax * rhs[1] - bx * rhs[0]]
-    scale = np.sqrt(np.prod(sq, axis=0))
-    shape = np.abs(det) / np.where(scale > 0, scale, 1.0)
-    half = 0.5 / np.where(det != 0, det, 1.0)
-    c0 = [n * half for n in num]
-    return [b + c for b, c in zip(base, c0, strict=True)], sum(c * c for c in c0) - w0, shape
+        rhs = np.einsum("nid,nid->ni", vec, vec) - (np.take(weights, part[:, 1:]) - w0[:, None])
+    terms = centre_terms(vec, rhs)
+    c0 = terms.num * (0.5 / np.where(terms.det != 0, terms.det, 1.0))[:, None]
+    shape = np.abs(terms.det) / np.where(terms.scale > 0, terms.scale, 1.0)
+    return np.take(points, part[:, 0], axis=0) + c0, np.einsum("nd,nd->n", c0, c0) - w0, shape
 
 
 def _spheres(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray
@@ -104,15 +89,12 @@ def _spheres(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray
     """Centres (t, d), radii² (weighted: powers, |c - p|² - w_p of a vertex) and (t,) bool
     flags of the cells whose sphere is well defined: the plain solve on well-shaped cells,
     core.geometry's / core.power's careful one (extended precision) on the others."""
-    cols = [np.ascontiguousarray(points[:, k]) for k in range(points.shape[1])]
-    centres = np.empty((len(cells), len(cols)))
+    centres = np.empty((len(cells), points.shape[1]))
     size = np.empty(len(cells))
     poor = np.empty(len(cells), dtype=bool)
     for lo in range(0, len(cells), CACHE_CHUNK):
         hi = min(lo + CACHE_CHUNK, len(cells))
-        columns, size[lo:hi], shape = _solved(cols, weights, cells[lo:hi])
-        for k, col in enumerate(columns):
-            centres[lo:hi, k] = col
+        centres[lo:hi], size[lo:hi], shape = _solved(points, weights, cells[lo:hi])
         poor[lo:hi] = shape <= ILL_CONDITIONED_RTOL
     ok = ~poor
     rows = np.flatnonzero(poor)
@@ -237,7 +219,7 @@ def split_triangulation(points: np.ndarray, weights: np.ndarray | None = None
         extra = _band(points, weights, cells, nbrs, hidden)
     except InputError as exc:
         return str(exc)
-    cells, nbrs, manifold = joined(points, cells, nbrs, extra)
+    cells, nbrs, manifold, _ = joined(points, cells, nbrs, extra)
     if not manifold:
         return "a facet is in three cells after the band was restored"
     near = np.concatenate((near, np.ones(len(extra), dtype=bool)))
