@@ -231,7 +231,7 @@ class AlphaComplex:
         a signed radius for weighted complexes (see optimal_alpha2)."""
         if self._cover_alpha is None:
             self._cover_alpha = cover_alpha(self.simplices(self.dim),
-                                            self.intervals(self.dim)[:, 0], len(self.points))
+                                            self.index.level(self.dim).enter, len(self.points))
         return optimal_alpha(self.signatures(), self._cover_alpha, n_components)
 
     def default_alpha(self) -> float:

@@ -10,7 +10,7 @@ arrival order, one `connected_components` call per halving level: O(m log m) in 
 from __future__ import annotations
 
 import numpy as np
-from scipy.sparse import coo_matrix
+from scipy.sparse import coo_matrix, csr_matrix
 from scipy.sparse.csgraph import connected_components, minimum_spanning_tree
 
 
@@ -34,40 +34,47 @@ def ordered_forest(n_nodes: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     1, 2, 3, ...). Any pairs allowed, self-loops and repeats included.
 
     scipy's Kruskal argsorts its weights, the slow part on millions of edges in random
-    order. Here edge i becomes a node n + i hung from u[i] (weight 1, always joining) and
-    tied to v[i] (weight i + 2): laid out by row (all u rows first, then n + i ascending)
-    the weights already ascend, so that sort is one linear pass and Kruskal meets the
-    edges in their order; edge i joins exactly when u[i] and v[i] are still apart.
+    order. Here edge i becomes a node n + i whose row holds its two ends: the lower one with
+    weight 2i + 1 (always joining: the node is new) and the higher with weight 2i + 2 (joining
+    exactly when the ends are still apart). Row by row the weights already ascend, so the
+    graph needs no conversion and that sort is one linear pass.
     """
-    k = len(u)
+    u, v = np.asarray(u), np.asarray(v)
+    live = np.flatnonzero(u != v)  # a self-loop never joins
+    k = len(live)
     if k == 0:
         return np.zeros(0, dtype=np.int64)
     size = n_nodes + k
-    index = np.int32 if size < 2**31 else np.int64
-    ids = np.arange(n_nodes, size, dtype=index)
-    rows = np.concatenate((np.asarray(u, dtype=index), ids))
-    cols = np.concatenate((ids, np.asarray(v, dtype=index)))
-    del ids
-    data = np.concatenate((np.ones(k), np.arange(2.0, k + 2.0)))  # i + 2 for edge i
-    graph = coo_matrix((data, (rows, cols)), shape=(size, size)).tocsr()
-    del rows, cols, data
-    tree = minimum_spanning_tree(graph, overwrite=True).tocoo()
-    joined = tree.row[tree.row >= n_nodes].astype(np.int64) - n_nodes
-    return np.sort(joined)
+    index = np.int32 if 2 * k + 1 < 2**31 and size < 2**31 else np.int64
+    ends = np.empty((k, 2), dtype=index)
+    np.minimum(u[live], v[live], out=ends[:, 0], casting="unsafe")
+    np.maximum(u[live], v[live], out=ends[:, 1], casting="unsafe")
+    indptr = np.zeros(size + 1, dtype=index)
+    indptr[n_nodes + 1:] = np.arange(2, 2 * k + 1, 2, dtype=index)
+    graph = csr_matrix((np.arange(1.0, 2.0 * k + 1.0), ends.ravel(), indptr), shape=(size, size))
+    del ends, indptr
+    weights = minimum_spanning_tree(graph, overwrite=True).data  # in row order: edge order
+    closing = weights[weights % 2.0 == 0.0]
+    return live[(closing * 0.5).astype(np.int64) - 1]
 
 
 def rank_forest(rank: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """(f,) int64 ascending ranks at which an edge (u, v) first joins two components when
     each edge arrives with the later of its two nodes: node x arrives at rank[x] (1..n,
-    distinct). Pairs must be distinct. Laid out in rank space with the later node as row,
-    scipy's Kruskal gets its weights already in order (no random-order sort)."""
+    distinct). Pairs must be distinct."""
     ru, rv = rank[u].astype(np.int64) - 1, rank[v].astype(np.int64) - 1
-    later, earlier = np.maximum(ru, rv), np.minimum(ru, rv)
-    del ru, rv
-    n = len(rank)
-    graph = coo_matrix(((later + 1).astype(np.float64), (later, earlier)), shape=(n, n))
+    return later_forest(len(rank), np.maximum(ru, rv), np.minimum(ru, rv)) + 1
+
+
+def later_forest(n_nodes: int, later: np.ndarray, earlier: np.ndarray) -> np.ndarray:
+    """(f,) int64 ascending `later` values of the edges (later, earlier), later > earlier,
+    that first join two components when each edge arrives with its later node (nodes in
+    index order). Laid out with the later node as row, scipy's Kruskal gets its weights
+    already in order (no random-order sort)."""
+    graph = coo_matrix(((later + 1).astype(np.float64), (later, earlier)),
+                       shape=(n_nodes, n_nodes))
     tree = minimum_spanning_tree(graph.tocsr(), overwrite=True)
-    return np.sort(tree.data.astype(np.int64))
+    return tree.data.astype(np.int64) - 1  # in row order: ascending
 
 
 def younger_roots(key: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:

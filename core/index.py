@@ -15,6 +15,7 @@ from functools import cached_property
 import numpy as np
 
 from .arrays import readonly
+from .cycles import first_cofaces
 from .table import Level, Table
 
 
@@ -55,6 +56,7 @@ class TableIndex:
     weighted: bool = False
     known_spectrum: np.ndarray | None = field(default=None, repr=False)
     _intervals: dict = field(default_factory=dict, init=False, repr=False)
+    _first_cofaces: dict = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:
         for level in self.table.levels:
@@ -94,6 +96,14 @@ class TableIndex:
         if k < 1:
             raise ValueError("vertices have no faces: k must be >= 1")
         return self.level(k).face_ids
+
+    def first_cofaces(self, k: int) -> np.ndarray:
+        """(n_{k-1},) int32 lowest row of simplices(k) that has each (k-1)-simplex as a face
+        (n_k: none); shared by the topology's forests and the opening alpha, kept."""
+        if k not in self._first_cofaces:
+            self._first_cofaces[k] = readonly(first_cofaces(self.face_ids(k),
+                                                            len(self.level(k - 1).enter)))
+        return self._first_cofaces[k]
 
     def facet_cells(self) -> np.ndarray:
         """(n_{dim-1}, 2) int32 the cells on both sides of each facet, -1 = outside."""

@@ -57,8 +57,14 @@ def opening_alpha(n_points: int, edges: np.ndarray, edge_first_triangle: np.ndar
     order = finite[argsort_radii(values[finite])]
     edges = np.asarray(edges, dtype=np.int64)[order]
     joined = ordered_forest(n_points, edges[:, 0], edges[:, 1])  # in order of arrival
-    a, b = edges[joined, 0], edges[joined, 1]
-    weights = values[order[joined]]
+    return reaching_alpha(n_points, edges[joined, 0], edges[joined, 1],
+                          values[order[joined]], share)
+
+
+def reaching_alpha(n_points: int, a: np.ndarray, b: np.ndarray, weights: np.ndarray,
+                   share: float = OPENING_SHARE) -> float:
+    """The weight of the first merge (a[j], b[j]) of a spanning forest, merges in ascending
+    (f,) `weights`, after which one component holds >= share of the n_points; inf if none."""
     if n_points == 0 or joined_share(n_points, a, b) < share:
         return float("inf")
     high = _first_reaching(n_points, a, b, share)
@@ -92,12 +98,37 @@ def _first_reaching(n_points: int, a: np.ndarray, b: np.ndarray, share: float) -
     return offset + high
 
 
+def triangle_forest(index: TableIndex, n_points: int) -> tuple:
+    """(a, b, weights): the merges of the points' spanning forest when every edge arrives
+    with its first triangle, triangles in row order (the table's, by enter); (f,) int64
+    vertex rows and (f,) float64 ascending enter of the triangle that brings each merge.
+
+    A triangle's last new edge always closes a cycle (its ends are joined by the triangle's
+    other two edges, already there), so only the others are candidates: a few edges instead
+    of all of them, in order with no sort.
+    """
+    triangles = index.face_ids(2)
+    first = index.first_cofaces(2)
+    new = first[triangles] == np.arange(len(triangles), dtype=np.int32)[:, None]
+    not_last = np.cumsum(new, axis=1) < new.sum(axis=1, keepdims=True)
+    flat = np.flatnonzero(new & not_last)
+    ends = index.simplices(1)[triangles.ravel()[flat]]
+    joined = ordered_forest(n_points, ends[:, 0], ends[:, 1])
+    return (ends[joined, 0].astype(np.int64), ends[joined, 1].astype(np.int64),
+            index.level(2).enter[flat[joined] // triangles.shape[1]])
+
+
 def opening_alpha_of(index: TableIndex, n_points: int) -> float:
     """`opening_alpha` of the table `index` of a complex with `n_points` points; the largest
-    critical alpha (the whole triangulation) when no alpha reaches the share."""
+    critical alpha (the whole triangulation) when no alpha reaches the share.
+
+    Ties between edges of equal first-triangle enter may merge in another order than
+    `opening_alpha`'s, which changes no merge's weight of the first that reaches the share."""
     last = float(index.spectrum()[-1])
-    if len(index.simplices(2)) == 0:
+    triangle_enter = index.level(2).enter
+    if len(triangle_enter) == 0:
         return last
-    edge_first = first_cofaces(index.face_ids(2), index.level(2).enter,
-                               len(index.simplices(1)))
-    return min(opening_alpha(n_points, index.simplices(1), edge_first), last)
+    if not bool(np.all(triangle_enter[1:] >= triangle_enter[:-1])):
+        edge_first = first_cofaces(index.face_ids(2), triangle_enter, len(index.simplices(1)))
+        return min(opening_alpha(n_points, index.simplices(1), edge_first), last)
+    return min(reaching_alpha(n_points, *triangle_forest(index, n_points)), last)

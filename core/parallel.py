@@ -98,6 +98,23 @@ def searchsorted(ascending: np.ndarray, values: np.ndarray, side: str = "left") 
     return out
 
 
+def searchsorted_ascending(ascending: np.ndarray, values: np.ndarray, side: str = "left",
+                           chunk: int = 1 << 12) -> np.ndarray:
+    """np.searchsorted(ascending, values, side) as (n,) intp for ascending `values` too:
+    chunk by chunk, each searched only in the stretch of `ascending` its two ends bound (a
+    binary search that stays in cache), alternate chunks in a helper thread."""
+    out = np.empty(len(values), dtype=np.intp)
+
+    def part(start: int, stop: int) -> None:
+        piece = values[start:stop]
+        first = int(np.searchsorted(ascending, piece[0], side))
+        last = int(np.searchsorted(ascending, piece[-1], side))
+        np.add(np.searchsorted(ascending[first:last], piece, side), first, out=out[start:stop])
+
+    in_chunks(part, len(values), chunk)
+    return out
+
+
 def sort(values: np.ndarray) -> None:
     """values.sort() in place: long arrays as two halves at once, then one merge pass
     (numpy's stable sort merges two sorted runs in linear time)."""

@@ -51,10 +51,10 @@ def compute_persistence(ac, topology: Topology) -> Persistence:
             [np.zeros(n_vertices), np.concatenate([deaths, np.full(essential, np.inf)])], axis=1
         )
     else:
-        components = component_pairs(np.asarray(ac.intervals(0)[:, 0], dtype=np.float64),
+        components = component_pairs(np.asarray(ac.index.level(0).enter, dtype=np.float64),
                                       np.asarray(ac.simplices(1), dtype=np.int64),
-                                      np.asarray(ac.intervals(1)[:, 0], dtype=np.float64))
-    cell_enter = np.asarray(ac.intervals(ac.dim)[:, 0], dtype=np.float64)
+                                      np.asarray(ac.index.level(1).enter, dtype=np.float64))
+    cell_enter = np.asarray(ac.index.level(ac.dim).enter, dtype=np.float64)
     return Persistence(
         dim=ac.dim,
         components=_by_lifetime(components),

@@ -73,17 +73,17 @@ def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology
     `points`, from its `topology`."""
     dim = index.dim
     alphas = np.asarray(index.spectrum(), dtype=np.float64)
-    cell_enter = np.asarray(index.intervals(dim)[:, 0], dtype=np.float64)
+    cell_enter = np.asarray(index.level(dim).enter, dtype=np.float64)
     order = ascending_order(cell_enter)
-    cells_in = np.searchsorted(cell_enter[order], alphas, side="right")
+    betti, solids, cells_in = topology.curves(alphas)
     measure = np.concatenate([[0.0], np.cumsum(np.asarray(index.cell_measures())[order])])
     boundary = boundary_sums(index.facet_cells(), order,
                              facet_measures(points, index.simplices(dim - 1)))
     return Signatures(
         dim=dim,
         alphas=readonly(alphas),
-        betti=readonly(topology.betti_many(alphas)),
-        solid_components=readonly(topology.solid_components(alphas)),
+        betti=readonly(betti),
+        solid_components=readonly(solids),
         measure=readonly(measure[cells_in]),
         boundary_measure=readonly(boundary[cells_in]),
         opening_alpha=opening_alpha_of(index, len(points)),

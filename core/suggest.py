@@ -6,8 +6,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .cycles import first_cofaces
 from .errors import InputError
 from .signatures import Signatures
+from .topology import ascends
 
 
 @dataclass(frozen=True)
@@ -45,9 +47,14 @@ def cover_alpha(cells: np.ndarray, cell_enter: np.ndarray, n_points: int) -> flo
     cells: (c, dim + 1) int simplices; cell_enter: (c,) float64. Points in no cell at all (Qhull
     may leave some out of degenerate input) cannot satisfy the rule and are ignored.
     """
+    cell_enter = np.asarray(cell_enter, dtype=np.float64)
+    if ascends(cell_enter):  # the first cell of a point is its lowest row: no float scatter
+        first_row = first_cofaces(np.asarray(cells), n_points)
+        held = first_row[first_row < len(cells)]
+        return float(cell_enter[held.max()]) if len(held) else 0.0
     first = np.full(n_points, np.inf)
     np.minimum.at(first, np.asarray(cells, dtype=np.int64).ravel(),
-                  np.repeat(np.asarray(cell_enter, dtype=np.float64), cells.shape[1]))
+                  np.repeat(cell_enter, cells.shape[1]))
     finite = first[np.isfinite(first)]
     return float(finite.max()) if len(finite) else 0.0
 
