@@ -200,7 +200,8 @@ def scaled_table(table: Table, points: np.ndarray, mode: Mode, local: LocalGeome
     """The mode's interval table from the classic one of `points` ((m, d) float64, the
     coordinates the table's radii are in) and their `local` geometry. The classic table may
     be unsorted and, unless mode.classic_radii, without its faces' radii (build_table's
-    sort=False, radii=False): only its structure and those radii are read."""
+    sort=False, radii=False): only its structure and those radii are read. It is consumed:
+    core.mode_filtration.resorted sorts it in place, array by array."""
     def step(fraction: float, stage: str) -> None:
         if progress is not None:
             progress(fraction, stage)
@@ -208,7 +209,9 @@ def scaled_table(table: Table, points: np.ndarray, mode: Mode, local: LocalGeome
     step(0.4, "scaled radii")
     own = _own_values(table, points, mode, local.spacing, local.normals)
     step(0.8, "filtration repair")
-    return resorted(table, repaired(table, own))
+    values = repaired(table, own)
+    del own  # its arrays are in `values` now, which resorted lets go level by level
+    return resorted(table, values)
 
 
 def file_normals(mode: Mode, attributes: dict, source: str) -> np.ndarray | None:
