@@ -60,6 +60,7 @@ class MainWindow(QMainWindow):
         self.last_options: ImportOptions | None = None  # how the last file was read
         self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
         self.fallback: ReopenFallback | None = None  # re-opened if the running load stops
+        self.reopen_alpha: tuple[int, float | None] | None = None  # (request, the user's alpha)
         self.model = ExplorerModel()
         self.loader = Runner(self)  # loads and rebuilds: a newer one supersedes the older
         self.topology = Runner(self)  # the topology after a load (a newer one supersedes it)
@@ -187,8 +188,9 @@ class MainWindow(QMainWindow):
         self.mode_panel.set_mode(fallback.mode)
         self.progress.start(f"re-opening {fallback.path.name}")
         self.last_options = fallback.options
-        self.start_alpha = fallback.alpha  # where the user was (None: its opening alpha)
-        self.loader.start(load_job(fallback.path, fallback.mode, fallback.options))
+        self.start_alpha = None  # the re-open has its own: where the user was (None: opening)
+        request = self.loader.start(load_job(fallback.path, fallback.mode, fallback.options))
+        self.reopen_alpha = (request, fallback.alpha)
         self.status.setText(f"{why}; re-opening {fallback.path.name}")
         return True
 
@@ -214,8 +216,9 @@ class MainWindow(QMainWindow):
             self._release()
         self.progress.update_progress(fraction, stage)
 
-    def _on_loaded(self, _request: int, dataset) -> None:
-        """Adopt the dataset of the current request (the runner drops stale ones)."""
+    def _on_loaded(self, request: int, dataset) -> None:
+        """Adopt the dataset of the current request (the runner drops stale ones); a re-open
+        after a cancelled load goes to the alpha the user had (only that request's)."""
         self.progress.stop()
         self.fallback = None
         self.prefs.add_recent(dataset.path)
@@ -224,9 +227,11 @@ class MainWindow(QMainWindow):
         self.topology.cancel()  # an older dataset's pass: stops at its next stage
         if not dataset.has_topology:
             self.topology.start(topology_job(dataset))
-        if self.start_alpha is not None:
-            self.model.set_alpha(self.start_alpha)
-            self.start_alpha = None
+        reopened, self.reopen_alpha = self.reopen_alpha, None
+        alpha = reopened[1] if reopened is not None and reopened[0] == request else self.start_alpha
+        self.start_alpha = None
+        if alpha is not None:
+            self.model.set_alpha(alpha)
         elif self.start_optimal and dataset.has_topology:
             self.model.set_index(self.model.optimal_index())
         self.start_optimal = self.start_optimal and not dataset.has_topology

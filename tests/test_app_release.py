@@ -38,10 +38,11 @@ def blobs(n: int, seed: int) -> np.ndarray:
 
 @pytest.fixture
 def files(tmp_path):
-    """A shown file, a second one and a file of collinear points (no complex)."""
-    paths = {name: tmp_path / f"{name}.npy" for name in ("shown", "next", "line")}
+    """A shown file, a second and a third one and a file of collinear points (no complex)."""
+    paths = {name: tmp_path / f"{name}.npy" for name in ("shown", "next", "third", "line")}
     np.save(paths["shown"], blobs(900, seed=1))
     np.save(paths["next"], blobs(700, seed=2))
+    np.save(paths["third"], blobs(800, seed=3))
     line = np.arange(50.0)
     np.save(paths["line"], np.column_stack([line, 2 * line, 3 * line]))
     return paths
@@ -156,3 +157,40 @@ def test_a_cancelled_load_brings_the_released_file_back_at_the_users_alpha(
     qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
     assert window.model.dataset.path == files["shown"]
     assert window.model.index == opening - 7 and window.model.alpha == chosen
+
+
+def _drag_then_cancel_an_open(window, qtbot, files, held) -> None:
+    """Show `shown`, drag away from its opening alpha, start opening `next` and cancel it:
+    the re-open of `shown` (held) is then running."""
+    held.set()
+    open_and_wait(qtbot, window, files["shown"])
+    window.model.set_index(window.model.index - 7)
+    held.clear()
+    with qtbot.waitSignal(window.model.datasetReleased, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["next"])
+    window.loader.cancel()
+    qtbot.waitUntil(lambda: window.reopen_alpha is not None, timeout=BUILD_TIMEOUT_MS)
+
+
+def test_a_file_opened_during_the_reopen_opens_at_its_own_alpha(window, qtbot, files, held):
+    _drag_then_cancel_an_open(window, qtbot, files, held)
+    window.open_path(files["third"])  # supersedes the re-open of "shown"
+    held.set()
+    qtbot.waitUntil(lambda: window.model.dataset is not None
+                    and window.model.dataset.path == files["third"], timeout=BUILD_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    assert not window.model.touched, "the third file opened at the first one's alpha"
+    assert window.model.index == window.model.default_index()
+
+
+def test_a_file_opened_after_a_cancelled_reopen_opens_at_its_own_alpha(
+        window, qtbot, files, held):
+    _drag_then_cancel_an_open(window, qtbot, files, held)
+    with qtbot.waitSignal(window.loader.cancelled, timeout=BUILD_TIMEOUT_MS):
+        window.loader.cancel()  # the user cancels the re-open too
+    held.set()
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["third"])
+    qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    assert not window.model.touched, "the third file opened at the first one's alpha"
+    assert window.model.index == window.model.default_index()
