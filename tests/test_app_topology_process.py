@@ -102,10 +102,10 @@ def test_a_cache_entry_gone_meanwhile_is_not_rewritten_from_the_temporary_copy(t
 
 
 def test_cancel_kills_the_child_while_it_works_and_leaves_nothing():
-    """The child says it computes the signatures (about a second at 30k points): it is alive
+    """The child says it computes the signatures (about a second of work left at 60k points): alive
     when Cancel is pressed, and gone soon after, killed (SIGKILL), not finished; the cache
     entry it would have rewritten is untouched and no scratch folder is left."""
-    points = blobs(30_000, 3, seed=8)
+    points = blobs(60_000, 3, seed=8)
     obtained = obtain(points)  # cached without its topology: the child would rewrite it
     entry, before = obtained.entry, obtained.entry.read_bytes()
     cache_files = sorted(entry.parent.iterdir())
