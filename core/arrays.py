@@ -5,6 +5,11 @@ from __future__ import annotations
 import numpy as np
 
 
+def ascends(values: np.ndarray) -> bool:
+    """Whether the (n,) values are already in ascending order."""
+    return len(values) < 2 or bool(np.all(values[1:] >= values[:-1]))
+
+
 def readonly(arr: np.ndarray) -> np.ndarray:
     """`arr` with its writeable flag cleared (a widget must not corrupt the table)."""
     arr.flags.writeable = False

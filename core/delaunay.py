@@ -27,6 +27,27 @@ class Triangulation:
     # the backend found it while matching facets (core.backends.facets.paired); else None
     mirror: np.ndarray | None = None
 
+    def __post_init__(self) -> None:
+        """A mirror must fit the neighbours (a `replace` of cells or neighbours that kept an
+        old one would make the facet passes wrong silently): checked on a sample of rows."""
+        if self.mirror is not None and not mirror_fits(self.neighbors, self.mirror):
+            raise ValueError("Triangulation.mirror does not fit its neighbours")
+
+
+def mirror_fits(neighbors: np.ndarray, mirror: np.ndarray, samples: int = 512) -> bool:
+    """On `samples` evenly spread rows: each neighbour's row holds the cell back in the
+    mirror's column, and the mirror is -1 exactly on the hull."""
+    if mirror.shape != neighbors.shape:
+        return False
+    rows = np.unique(np.linspace(0, len(neighbors) - 1, min(samples, len(neighbors)),
+                                 dtype=np.int64))
+    nbr, back = neighbors[rows].astype(np.int64), mirror[rows].astype(np.int64)
+    inner = nbr >= 0
+    if not np.array_equal(inner, back >= 0):
+        return False
+    cell = np.broadcast_to(rows[:, None], nbr.shape)
+    return bool(np.all(neighbors[nbr[inner], back[inner]] == cell[inner]))
+
 
 def sort_rows(cells: np.ndarray, neighbors: np.ndarray) -> None:
     """Sort every row of `cells` ascending in place, permuting `neighbors` alongside."""

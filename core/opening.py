@@ -14,6 +14,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
+from .arrays import ascends
 from .forest import ordered_forest
 from .index import TableIndex
 from .table import argsort_radii
@@ -23,7 +24,8 @@ from .table import argsort_radii
 OPENING_SHARE = 0.99
 
 
-def first_cofaces(face_ids: np.ndarray, coface_enter: np.ndarray, n_faces: int) -> np.ndarray:
+def lowest_enter_cofaces(face_ids: np.ndarray, coface_enter: np.ndarray,
+                         n_faces: int) -> np.ndarray:
     """(n_faces,) float64 smallest enter among each face's cofaces (inf: none).
 
     face_ids: (c, k + 1) int rows of the faces of c cofaces; coface_enter: (c,) float64.
@@ -98,7 +100,8 @@ def _first_reaching(n_points: int, a: np.ndarray, b: np.ndarray, share: float) -
     return offset + high
 
 
-def triangle_forest(index: TableIndex, n_points: int) -> tuple:
+def triangle_forest(index: TableIndex, n_points: int
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(a, b, weights): the merges of the points' spanning forest when every edge arrives
     with its first triangle, triangles in row order (the table's, by enter); (f,) int64
     vertex rows and (f,) float64 ascending enter of the triangle that brings each merge.
@@ -128,7 +131,8 @@ def opening_alpha_of(index: TableIndex, n_points: int) -> float:
     triangle_enter = index.level(2).enter
     if len(triangle_enter) == 0:
         return last
-    if not bool(np.all(triangle_enter[1:] >= triangle_enter[:-1])):
-        edge_first = first_cofaces(index.face_ids(2), triangle_enter, len(index.simplices(1)))
+    if not ascends(triangle_enter):
+        edge_first = lowest_enter_cofaces(index.face_ids(2), triangle_enter,
+                                          len(index.simplices(1)))
         return min(opening_alpha(n_points, index.simplices(1), edge_first), last)
     return min(reaching_alpha(n_points, *triangle_forest(index, n_points)), last)

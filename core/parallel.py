@@ -14,6 +14,8 @@ from typing import TypeVar
 
 import numpy as np
 
+from .arrays import ascends
+
 PARALLEL_ABOVE = 1 << 19  # elements: longer passes are split between two threads
 HELPER = "alphascoop-helper"
 PASSES = "passes"  # the helper role of the build's and the topology's passes
@@ -102,7 +104,10 @@ def searchsorted_ascending(ascending: np.ndarray, values: np.ndarray, side: str 
                            chunk: int = 1 << 12) -> np.ndarray:
     """np.searchsorted(ascending, values, side) as (n,) intp for ascending `values` too:
     chunk by chunk, each searched only in the stretch of `ascending` its two ends bound (a
-    binary search that stays in cache), alternate chunks in a helper thread."""
+    binary search that stays in cache), alternate chunks in a helper thread; values that
+    do not ascend are searched whole (`searchsorted`)."""
+    if not ascends(values):
+        return searchsorted(ascending, values, side)
     out = np.empty(len(values), dtype=np.intp)
 
     def part(start: int, stop: int) -> None:

@@ -6,10 +6,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .arrays import ascends
 from .cycles import first_cofaces
 from .errors import InputError
 from .signatures import Signatures
-from .topology import ascends
 
 
 @dataclass(frozen=True)

@@ -11,15 +11,19 @@ Built once per complex in O(n log n), then every alpha is a handful of `searchso
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from .alpha import radius
-from .arrays import owned_readonly
+from .arrays import ascends, owned_readonly
 from .cycles import inner_ridges, open_edges, ring_closers
 from .forest import later_forest, ordered_forest, rank_forest
+from .index import TableIndex
 from .parallel import searchsorted, searchsorted_ascending
+
+Search = Callable[[np.ndarray, np.ndarray, str], np.ndarray]  # np.searchsorted's signature
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,7 +63,7 @@ class Topology:
         return (self._betti(alphas, n_in, searchsorted_ascending),
                 self._solids(alphas, n_in[self.dim], searchsorted_ascending), n_in[self.dim])
 
-    def _betti(self, alphas: np.ndarray, n_in: list[np.ndarray], search) -> np.ndarray:
+    def _betti(self, alphas: np.ndarray, n_in: list[np.ndarray], search: Search) -> np.ndarray:
         """Betti numbers from the (s,) numbers of k-simplices in at each alpha."""
         out = np.empty((len(alphas), self.dim), dtype=np.int32)
         b0 = n_in[0] - search(self.vertex_forest, alphas, "right")
@@ -71,7 +75,7 @@ class Topology:
             out[:, 1] = b0 + cavities - chi
         return out
 
-    def _solids(self, alphas: np.ndarray, cells_in: np.ndarray, search) -> np.ndarray:
+    def _solids(self, alphas: np.ndarray, cells_in: np.ndarray, search: Search) -> np.ndarray:
         """Solid components from the (s,) numbers of cells in at each alpha."""
         return (cells_in - search(self.solid_forest, alphas, "right")).astype(np.int32)
 
@@ -98,7 +102,7 @@ def build_topology(ac) -> Topology:
     )
 
 
-def open_facets(index, facet_enter: np.ndarray) -> np.ndarray | None:
+def open_facets(index: TableIndex, facet_enter: np.ndarray) -> np.ndarray | None:
     """(c,) int64 ascending facet rows of the table `index` that no ridge ring closes in the
     dual forest (core/cycles.py); None (all) unless the facets arrive in row order."""
     if not ascends(facet_enter):
@@ -133,6 +137,8 @@ def dual_forest(facet_cells: np.ndarray, facet_enter: np.ndarray, n_cells: int,
     `candidates`: ascending facet rows that may join when facet_enter ascends (the others
     close a ring), None = all.
     """
+    if candidates is not None and not ascends(facet_enter):
+        candidates = None  # rings close by row order only when the rows ascend: take all
     order = (ascending_order(facet_enter) if candidates is None else candidates)[::-1]
     sides = facet_cells[order]
     sides[sides < 0] = n_cells
@@ -162,11 +168,6 @@ def solid_forest(facet_cells: np.ndarray, cell_enter: np.ndarray) -> np.ndarray:
     return cell_enter[order[rank_forest(rank, a, b) - 1]]
 
 
-def ascends(values: np.ndarray) -> bool:
-    """Whether the (n,) values are already in ascending order."""
-    return len(values) < 2 or bool(np.all(values[1:] >= values[:-1]))
-
-
 def ascending_order(values: np.ndarray) -> np.ndarray:
     """(n,) int64 stable ascending order; the identity (no sort) for already sorted values."""
     if ascends(values):
@@ -177,6 +178,6 @@ def ascending_order(values: np.ndarray) -> np.ndarray:
 def ascending(values: np.ndarray) -> np.ndarray:
     """(n,) float64 ascending, contiguous and read-only; no sort when already in order."""
     values = np.asarray(values, dtype=np.float64)
-    if len(values) > 1 and not bool(np.all(values[1:] >= values[:-1])):
+    if not ascends(values):
         values = np.sort(values)
     return owned_readonly(values)

@@ -247,3 +247,27 @@ def test_2d_real_data_builds_the_same_table_with_both_backends() -> None:
     by_gmsh = AlphaComplex.from_points(points, backend="gmsh")
     assert by_gmsh.build_info.backend == "gmsh"
     assert_same_table(by_gmsh, AlphaComplex.from_points(points, backend="qhull"))
+
+
+def test_a_mirror_that_does_not_fit_the_neighbours_is_refused():
+    """Triangulation checks a backend's mirror against its neighbours: one kept through a
+    `replace` that changed the neighbours must fail loudly, not make the facet passes wrong."""
+    from dataclasses import replace
+
+    from scipy.spatial import Delaunay
+
+    from core.backends.facets import paired
+    from core.delaunay import Triangulation, mirror_fits
+
+    points = np.random.default_rng(3).random((400, 3))
+    cells = np.sort(Delaunay(points).simplices, axis=1).astype(np.int32)
+    nbrs, mirror, manifold = paired(cells, len(points))
+    assert manifold and mirror_fits(nbrs, mirror, samples=len(cells))
+    tri = Triangulation(cells, nbrs, np.arange(400), np.arange(400), mirror)
+    order = np.random.default_rng(4).permutation(len(cells))
+    moved = np.argsort(order).astype(np.int32)
+    renumbered = np.where(nbrs[order] >= 0, moved[np.maximum(nbrs[order], 0)], -1)
+    with pytest.raises(ValueError, match="mirror"):
+        replace(tri, cells=cells[order], neighbors=renumbered)  # the old mirror kept
+    assert replace(tri, cells=cells[order], neighbors=renumbered, mirror=mirror[order]).mirror \
+        is not None

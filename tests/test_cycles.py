@@ -10,7 +10,7 @@ import pytest
 from core import AlphaComplex
 from core.cycles import open_edges
 from core.opening import (
-    first_cofaces,
+    lowest_enter_cofaces,
     opening_alpha,
     opening_alpha_of,
     reaching_alpha,
@@ -35,6 +35,10 @@ def complexes() -> list:
             [rng.normal(c, 0.03, (300, 3)) for c in rng.random((4, 3))]))),
         ("weighted", AlphaComplex.from_points(rng.random((1200, 3)),
                                               weights=rng.random(1200) * 0.003)),
+        ("weighted 2D", AlphaComplex.from_points(rng.random((1200, 2)),
+                                                 weights=rng.random(1200) * 0.003)),
+        ("density mode", AlphaComplex.from_points(rng.random((1500, 3)), density=8)),
+        ("anisotropic mode", AlphaComplex.from_points(rng.random((1500, 3)), anisotropy=0.5)),
     ]
 
 
@@ -66,13 +70,25 @@ def test_open_facets_give_the_dual_forest_of_all_facets(ac) -> None:
 
 def test_opening_from_the_triangle_forest_is_the_sorted_edges_one(ac) -> None:
     index, n = ac.index, len(ac.points)
-    edge_first = first_cofaces(index.face_ids(2), index.intervals(2)[:, 0],
+    edge_first = lowest_enter_cofaces(index.face_ids(2), index.intervals(2)[:, 0],
                                len(index.simplices(1)))
     want = min(opening_alpha(n, index.simplices(1), edge_first), float(index.spectrum()[-1]))
     assert opening_alpha_of(index, n) == want
     a, b, weights = triangle_forest(index, n)
-    assert len(a) == n - 1 or ac.weights is not None  # one piece (hidden points stay apart)
+    assert len(a) == n - 1  # one piece (hidden points are not in ac.points)
     assert np.all(np.diff(weights) >= 0)
     for share in (0.1, 0.5, 0.9, 1.0):
         assert reaching_alpha(n, a, b, weights, share) == opening_alpha(
             n, index.simplices(1), edge_first, share)
+
+
+def test_candidates_are_ignored_when_the_facets_do_not_ascend(ac) -> None:
+    """The ring shortcut holds only for facets in row order: shuffled enter values (the
+    caller's mistake) give the forest of all facets, not a wrong one."""
+    facet_enter = np.random.default_rng(0).permutation(ac.intervals(ac.dim - 1)[:, 0])
+    n_cells = len(ac.simplices(ac.dim))
+    every = np.arange(len(facet_enter))
+    full = dual_forest(ac.facet_cells(), facet_enter, n_cells)
+    short = dual_forest(ac.facet_cells(), facet_enter, n_cells, every[::2])
+    for got, want in zip(short, full, strict=True):
+        assert np.array_equal(got, want)

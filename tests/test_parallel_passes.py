@@ -97,3 +97,13 @@ def test_table_and_signatures_are_the_same_split_or_not(dim: int, kind: str) -> 
     for name, array in plain.items():
         assert array.dtype == split[name].dtype, name
         np.testing.assert_array_equal(array, split[name], err_msg=name)
+
+
+def test_searchsorted_ascending_searches_values_that_do_not_ascend_whole():
+    from core.parallel import searchsorted_ascending
+
+    ascending = np.arange(5.0)
+    values = np.array([3.0, 1.0, 2.0, 4.5, 0.0])
+    for side in ("left", "right"):
+        np.testing.assert_array_equal(searchsorted_ascending(ascending, values, side, chunk=2),
+                                      np.searchsorted(ascending, values, side))

@@ -93,9 +93,9 @@ def outside(points: np.ndarray, cells: np.ndarray, outer: np.ndarray, behind: np
 
 def joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray, extra: np.ndarray,
            mirror: np.ndarray | None = None
-           ) -> tuple[np.ndarray, np.ndarray, bool, np.ndarray | None]:
-    """`cells` + `extra`, their neighbours, whether no facet is in three cells, and their
-    mirror (facets.paired; None without `mirror` for `cells`): only the cells that can
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, bool]:
+    """`cells` + `extra`, their neighbours, their mirror (facets.paired; None without
+    `mirror` for `cells`) and whether no facet is in three cells: only the cells that can
     share a facet with an extra cell (d vertices among the extra cells' vertices) are
     matched again."""
     d = cells.shape[1] - 1
@@ -111,7 +111,7 @@ def joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray, extra: np.nd
     if mirror is not None:
         mirror = np.concatenate((mirror, back[len(near):]))
         mirror[near] = np.where(matched, back[:len(near)], mirror[near])
-    return np.concatenate((cells, extra)), table.astype(np.int32), manifold, mirror
+    return np.concatenate((cells, extra)), table.astype(np.int32), mirror, manifold
 
 
 def restored(points: np.ndarray, cells: np.ndarray
@@ -125,5 +125,4 @@ def restored(points: np.ndarray, cells: np.ndarray
     extra = _missing(points, cells, *boundary_facets(cells, nbrs))
     if not len(extra):
         return cells, nbrs, mirror, True
-    cells, nbrs, manifold, mirror = joined(points, cells, nbrs, extra, mirror)
-    return cells, nbrs, mirror, manifold
+    return joined(points, cells, nbrs, extra, mirror)

@@ -219,7 +219,7 @@ def split_triangulation(points: np.ndarray, weights: np.ndarray | None = None
         extra = _band(points, weights, cells, nbrs, hidden)
     except InputError as exc:
         return str(exc)
-    cells, nbrs, manifold, _ = joined(points, cells, nbrs, extra)
+    cells, nbrs, _, manifold = joined(points, cells, nbrs, extra)
     if not manifold:
         return "a facet is in three cells after the band was restored"
     near = np.concatenate((near, np.ones(len(extra), dtype=bool)))
