@@ -43,10 +43,13 @@ class TopologyParts:
 
 def write_topology(path: str | os.PathLike, ac: AlphaComplex, entry_saved: bool) -> None:
     """Write ac's topology, signatures, persistence and optimal/default alpha (computed here
-    if they are not yet) to path atomically."""
+    if they are not yet) to path atomically; not the spectrum (`sig_alphas`), which the
+    window's table has (94 MB at 1M points)."""
     ac.signatures()
     pers = ac.persistence()
-    arrays = {**derived_arrays(ac), "pers_components": pers.components,
+    derived = derived_arrays(ac)
+    del derived["sig_alphas"]
+    arrays = {**derived, "pers_components": pers.components,
               "pers_cavities": pers.cavities, "optimal_alpha": np.array(ac.optimal_alpha()),
               "default_alpha": np.array(ac.default_alpha()), "entry_saved": np.array(entry_saved)}
     atomic_write(path, lambda handle: np.savez(handle, **arrays))
