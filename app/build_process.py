@@ -23,6 +23,7 @@ import numpy as np
 from app.child_process import run_in_child, scratch
 from core.cache import save_entry
 from core.complex import AlphaComplex
+from core.errors import AlphaScoopError
 from core.modes import Mode, make_mode
 from core.obtain import SAVE_START, BuildRequest, run_here
 from core.opening import opening_alpha_of
@@ -90,7 +91,7 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress) -> s
     ac, _ = replace(request, save_to=None).run(progress)
     opening: list[float] = []
     finder = threading.Thread(  # numpy's sorts and the file's writes leave the GIL
-        target=lambda: opening.append(opening_alpha_of(ac.index, len(ac.points))))
+        target=_find_opening_alpha, args=(ac, opening), name="alphascoop-opening")
     if not request.signatures:
         finder.start()
     progress(SAVE_START, "saving the table")
@@ -102,6 +103,15 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress) -> s
         finder.join()
     return json.dumps({"table": str(written),
                        "opening_alpha": float(opening[0]) if opening else None})
+
+
+def _find_opening_alpha(ac: AlphaComplex, out: list[float]) -> None:
+    """Append ac's quick opening alpha to `out`; nothing when it cannot be found here (out
+    of memory beside the save, say): the window then finds it itself."""
+    try:
+        out.append(opening_alpha_of(ac.index, len(ac.points)))
+    except (MemoryError, ValueError, AlphaScoopError):
+        pass
 
 
 def _optional(path: Path) -> np.ndarray | None:

@@ -137,3 +137,24 @@ def test_the_child_finds_the_quick_opening_alpha_while_it_saves(in_process):
     with_signatures = build_process.ChildRunner(threading.Event())
     obtain(points + 1.0, signatures=True, runner=with_signatures)
     assert with_signatures.opening_alpha is None  # the signatures hold it
+
+
+
+@pytest.mark.filterwarnings("error::pytest.PytestUnhandledThreadExceptionWarning")
+def test_an_opening_alpha_the_child_cannot_find_is_left_to_the_window(tmp_path, monkeypatch):
+    """The child's body, run here: a failing search beside the save leaves the table
+    written and the opening alpha to the window (None), with no traceback."""
+    import json
+
+    def out_of_memory(*_args):
+        raise MemoryError("no room beside the save")
+
+    monkeypatch.setattr(build_process, "opening_alpha_of", out_of_memory)
+    points = np.random.default_rng(6).random((3000, 3))
+    np.save(tmp_path / "points.npy", points)
+    job = {"mode": None, "signatures": False, "save_to": None, "backend": None}
+    answer = json.loads(build_process.build_in_child(
+        str(tmp_path / "points.npy"), str(tmp_path / "table.npz"), job, never))
+    assert answer == {"table": str(tmp_path / "table.npz"), "opening_alpha": None}
+    assert len(AlphaComplex.load(answer["table"]).simplices(3)) == len(
+        AlphaComplex.from_points(points).simplices(3))
