@@ -8,6 +8,7 @@ import threading
 
 import numpy as np
 import pytest
+from child_cancel import cancel_at
 
 from app import build_process, child_process
 from core import AlphaComplex
@@ -15,8 +16,6 @@ from core.cache import entry_path
 from core.errors import AlphaScoopError, Cancelled, InputError
 from core.obtain import obtain
 from core.opening import opening_alpha_of
-
-LIVENESS_BOUND_S = 120  # generous: the child is killed within a poll (0.1 s) of Cancel
 
 
 @pytest.fixture
@@ -72,30 +71,11 @@ def test_cancel_during_the_triangulation_kills_the_child_while_it_works(in_proce
     """The child says it is triangulating (seconds of Qhull without a message): it is alive
     when Cancel is pressed, and gone soon after, killed (SIGKILL), not finished."""
     points = np.random.default_rng(2).random((150_000, 3))
-    cancel = threading.Event()
-    working: list[multiprocessing.Process] = []
-    alive_at_cancel: list[bool] = []
-
-    def progress(fraction: float, stage: str) -> None:
-        if stage == "Delaunay triangulation" and not working:  # sent by the child
-            working.extend(multiprocessing.active_children())  # this thread owns the child
-            alive_at_cancel.extend(child.is_alive() for child in working)
-            cancel.set()
-
-    outcome: list[BaseException] = []
-
-    def run() -> None:
-        try:
-            child_obtain(points, progress, cancel)
-        except BaseException as error:  # recorded for the assertion below
-            outcome.append(error)
-
-    thread = threading.Thread(target=run)
-    thread.start()
-    thread.join(LIVENESS_BOUND_S)
-    assert not thread.is_alive()
+    seen = cancel_at("Delaunay triangulation",
+                     lambda progress, cancel: child_obtain(points, progress, cancel))
+    working, outcome = seen.working, seen.outcome
     assert len(working) == 1 and working[0].name == "alphascoop-build"
-    assert alive_at_cancel == [True]
+    assert seen.alive_at_cancel == [True]
     assert len(outcome) == 1 and isinstance(outcome[0], Cancelled)
     assert working[0].exitcode == -signal.SIGKILL  # killed mid-work: it did not finish
     assert multiprocessing.active_children() == []

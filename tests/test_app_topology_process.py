@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from child_cancel import cancel_at
 
 from app import child_process, topology_process
 from app.topology_file import read_topology, write_topology
@@ -25,7 +26,6 @@ from core.errors import Cancelled, FileFormatError
 from core.obtain import obtain
 
 ROOT = Path(__file__).resolve().parents[1]
-LIVENESS_BOUND_S = 120  # generous: the child is killed within a poll (0.1 s) of Cancel
 
 
 @pytest.fixture(autouse=True)
@@ -109,30 +109,11 @@ def test_cancel_kills_the_child_while_it_works_and_leaves_nothing():
     obtained = obtain(points)  # cached without its topology: the child would rewrite it
     entry, before = obtained.entry, obtained.entry.read_bytes()
     cache_files = sorted(entry.parent.iterdir())
-    cancel = threading.Event()
-    working: list[multiprocessing.Process] = []
-    alive_at_cancel: list[bool] = []
-
-    def progress(_fraction: float, stage: str) -> None:
-        if stage == "topology: signatures" and not working:  # sent by the child
-            working.extend(multiprocessing.active_children())  # this thread owns the child
-            alive_at_cancel.extend(child.is_alive() for child in working)
-            cancel.set()
-
-    outcome: list[BaseException] = []
-
-    def run() -> None:
-        try:
-            topology_process.topology_parts(obtained.complex, entry, progress, cancel)
-        except BaseException as error:  # recorded for the assertion below
-            outcome.append(error)
-
-    thread = threading.Thread(target=run)
-    thread.start()
-    thread.join(LIVENESS_BOUND_S)
-    assert not thread.is_alive()
+    seen = cancel_at("topology: signatures", lambda progress, cancel: (
+        topology_process.topology_parts(obtained.complex, entry, progress, cancel)))
+    working, outcome = seen.working, seen.outcome
     assert len(working) == 1 and working[0].name == "alphascoop-topology"
-    assert alive_at_cancel == [True]
+    assert seen.alive_at_cancel == [True]
     assert len(outcome) == 1 and isinstance(outcome[0], Cancelled)
     assert working[0].exitcode == -signal.SIGKILL  # killed mid-work: it did not finish
     assert multiprocessing.active_children() == [] and my_scratch() == []
