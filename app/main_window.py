@@ -180,6 +180,7 @@ class MainWindow(QMainWindow):
         from the cache) at the alpha the user had; False when none was (a still shown one
         keeps its mode)."""
         fallback, self.fallback = self.fallback, None
+        self.start_alpha = None  # a `--alpha` start belonged to the load that stopped
         if fallback is None:
             if self.model.dataset is not None:  # the shown table's mode stays the current one
                 self.set_mode(self.model.dataset.ac.mode, rebuild=False)
@@ -188,7 +189,6 @@ class MainWindow(QMainWindow):
         self.mode_panel.set_mode(fallback.mode)
         self.progress.start(f"re-opening {fallback.path.name}")
         self.last_options = fallback.options
-        self.start_alpha = None  # the re-open has its own: where the user was (None: opening)
         request = self.loader.start(load_job(fallback.path, fallback.mode, fallback.options))
         self.reopen_alpha = (request, fallback.alpha)
         self.status.setText(f"{why}; re-opening {fallback.path.name}")

@@ -169,7 +169,7 @@ def _drag_then_cancel_an_open(window, qtbot, files, held) -> None:
     with qtbot.waitSignal(window.model.datasetReleased, timeout=BUILD_TIMEOUT_MS):
         window.open_path(files["next"])
     window.loader.cancel()
-    qtbot.waitUntil(lambda: window.reopen_alpha is not None, timeout=BUILD_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: "re-opening" in window.status.text(), timeout=BUILD_TIMEOUT_MS)
 
 
 def test_a_file_opened_during_the_reopen_opens_at_its_own_alpha(window, qtbot, files, held):
@@ -193,4 +193,18 @@ def test_a_file_opened_after_a_cancelled_reopen_opens_at_its_own_alpha(
         window.open_path(files["third"])
     qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
     assert not window.model.touched, "the third file opened at the first one's alpha"
+    assert window.model.index == window.model.default_index()
+
+
+def test_a_start_alpha_of_a_cancelled_first_open_is_not_kept_for_the_next(
+        window, qtbot, files, held):
+    window.start_alpha = 0.05  # as `alphascoop FILE --alpha 0.05` starts the window
+    with qtbot.waitSignal(window.loader.cancelled, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["next"])  # held: still building when cancelled
+        window.loader.cancel()
+    held.set()
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["third"])
+    qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    assert not window.model.touched, "the third file opened at the cancelled one's --alpha"
     assert window.model.index == window.model.default_index()
