@@ -172,6 +172,17 @@ def _drag_then_cancel_an_open(window, qtbot, files, held) -> None:
     qtbot.waitUntil(lambda: "re-opening" in window.status.text(), timeout=BUILD_TIMEOUT_MS)
 
 
+def _open_third_at_its_own_alpha(window, qtbot, files, held, instead: str) -> None:
+    """Let the builds go, open `third` and assert it opened at its own opening alpha, not
+    at `instead`."""
+    held.set()
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["third"])
+    qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    assert not window.model.touched, f"the third file opened at {instead}"
+    assert window.model.index == window.model.default_index()
+
+
 def test_a_file_opened_during_the_reopen_opens_at_its_own_alpha(window, qtbot, files, held):
     _drag_then_cancel_an_open(window, qtbot, files, held)
     window.open_path(files["third"])  # supersedes the re-open of "shown"
@@ -188,12 +199,7 @@ def test_a_file_opened_after_a_cancelled_reopen_opens_at_its_own_alpha(
     _drag_then_cancel_an_open(window, qtbot, files, held)
     with qtbot.waitSignal(window.loader.cancelled, timeout=BUILD_TIMEOUT_MS):
         window.loader.cancel()  # the user cancels the re-open too
-    held.set()
-    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
-        window.open_path(files["third"])
-    qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
-    assert not window.model.touched, "the third file opened at the first one's alpha"
-    assert window.model.index == window.model.default_index()
+    _open_third_at_its_own_alpha(window, qtbot, files, held, "the first one's alpha")
 
 
 def test_a_start_alpha_of_a_cancelled_first_open_is_not_kept_for_the_next(
@@ -202,9 +208,4 @@ def test_a_start_alpha_of_a_cancelled_first_open_is_not_kept_for_the_next(
     with qtbot.waitSignal(window.loader.cancelled, timeout=BUILD_TIMEOUT_MS):
         window.open_path(files["next"])  # held: still building when cancelled
         window.loader.cancel()
-    held.set()
-    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
-        window.open_path(files["third"])
-    qtbot.waitUntil(lambda: not window.loader.is_busy(), timeout=BUILD_TIMEOUT_MS)
-    assert not window.model.touched, "the third file opened at the cancelled one's --alpha"
-    assert window.model.index == window.model.default_index()
+    _open_third_at_its_own_alpha(window, qtbot, files, held, "the cancelled one's --alpha")
