@@ -18,7 +18,7 @@ from .alpha import table_value, threshold
 from .arrays import readonly
 from .errors import InputError
 from .index import TableIndex, facing_out
-from .parallel import halves, place, select, together
+from .parallel import halves, place, select, take, together
 from .shape import AlphaShape, Known
 from .table import argsort_radii
 
@@ -49,8 +49,8 @@ class IntervalSet:
         than candidates are ignored); `rows_by_lo`: (m, width) int32 rows of the candidates
         in `by_lo` order."""
         self._by_lo = by_lo.astype(np.int32)
-        self._lo_sorted = np.take(lo, by_lo)
-        self._hi_by_lo = np.take(hi, by_lo)
+        self._lo_sorted = take(lo, by_lo)  # random gathers: in halves (core.parallel)
+        self._hi_by_lo = take(hi, by_lo)
         self._rank = np.full(len(lo), NOT_A_CANDIDATE, dtype=np.int32)
         self._rank[by_lo] = np.arange(len(by_lo), dtype=np.int32)
         self._by_hi, self._hi_sorted = by_hi, hi_sorted
@@ -287,8 +287,8 @@ def _regular_order(index: TableIndex) -> np.ndarray:
     """(r,) int32 the REGULAR candidates (regular < interior) by ascending regular."""
     facets = index.level(index.dim - 1)
     by_regular = argsort_radii(facets.regular)
-    return by_regular[np.take(facets.interior, by_regular)
-                      > np.take(facets.regular, by_regular)].astype(np.int32)
+    return by_regular[take(facets.interior, by_regular)
+                      > take(facets.regular, by_regular)].astype(np.int32)
 
 
 def _singular_orders(index: TableIndex, k: int) -> tuple[np.ndarray, np.ndarray]:
@@ -315,7 +315,7 @@ def _singular_set(index: TableIndex, k: int, by_enter: np.ndarray,
     """The SINGULAR k-simplices: candidates ranked by enter, ended by regular."""
     level = index.level(k)
     return IntervalSet(level.enter, level.regular, by_enter, by_ended,
-                       np.take(level.regular, by_ended), np.take(level.simplices, by_enter, 0))
+                       take(level.regular, by_ended), take(level.simplices, by_enter))
 
 
 def _oriented_rows(index: TableIndex, ids: np.ndarray) -> np.ndarray:
@@ -324,7 +324,7 @@ def _oriented_rows(index: TableIndex, ids: np.ndarray) -> np.ndarray:
     In its REGULAR interval a facet bounds exactly one cell: the one entered first (cells
     are sorted by enter), which is cell 1 when that is real and lower.
     """
-    rows = np.take(index.simplices(index.dim - 1), ids, 0)
-    pairs = index.facet_cells()[ids]
+    rows = take(index.simplices(index.dim - 1), ids)
+    pairs = take(index.facet_cells(), ids)
     inside_second = (pairs[:, 1] >= 0) & (pairs[:, 1] < pairs[:, 0])
-    return facing_out(rows, np.take(index.table.facet_flip, ids), inside_second, rows)
+    return facing_out(rows, take(index.table.facet_flip, ids), inside_second, rows)
