@@ -8,10 +8,12 @@ handed over in a scratch file) and, without the signatures, the table's quick op
 (core.opening), sent when found. The caller loads the table it was handed (without
 re-checking the file its own child wrote a moment ago) and makes the cursor from those
 orders while the child still looks for the opening alpha; the runner keeps both
-(`handed_over`). Cancel kills the child at once, so a newer open or closing the window never
-waits for a Delaunay triangulation to finish. Small sets build in the caller's thread: under
-IN_THREAD_BELOW points a build takes a few seconds at most, and a process would add about
-one (its start and the table's trip through a file).
+(`handed_over`). `on_saved(entry, n_points)` is told as soon as the child has handed over a
+table without signatures written to its cache entry, before this process loads it (the
+window starts the topology process then: app.worker). Cancel kills the child at once, so a
+newer open or closing the window never waits for a Delaunay triangulation to finish. Small
+sets build in the caller's thread: under IN_THREAD_BELOW points a build takes a few seconds at
+most, and a process would add about one (its start and the table's trip through a file).
 """
 
 from __future__ import annotations
@@ -43,9 +45,13 @@ class ChildRunner:
     Sets under IN_THREAD_BELOW points are built in the calling thread instead.
     """
 
-    def __init__(self, cancel: threading.Event) -> None:
-        """cancel: set it (from any thread) to stop the build; Cancelled is then raised."""
+    def __init__(self, cancel: threading.Event,
+                 on_saved: Callable[[Path, int], None] | None = None) -> None:
+        """cancel: set it (from any thread) to stop the build; Cancelled is then raised.
+        on_saved(entry, n_points): called once the child wrote a table without signatures
+        to its cache entry, before it is loaded here."""
         self.cancel = cancel
+        self.on_saved = on_saved
         self._built: AlphaComplex | None = None  # the complex its child last handed over
         self._handed = HandOver()  # what the child found beside it
 
@@ -73,7 +79,8 @@ class ChildRunner:
             try:
                 answer = json.loads(run_in_child(
                     build_in_child, (str(source), str(target), job), report, self.cancel,
-                    "alphascoop-build", lambda text: taken.append(_take(text, report))))
+                    "alphascoop-build", lambda text: taken.append(self._take(text, request,
+                                                                             report))))
             except (AlphaScoopError, MemoryError) as error:
                 if not taken or isinstance(error, Cancelled):
                     raise
@@ -91,11 +98,20 @@ class ChildRunner:
         child's orders made, for the complex this runner built last; else HandOver()."""
         return self._handed if ac is self._built else HandOver()
 
+    def _take(self, text: str, request: BuildRequest, report: Progress
+              ) -> tuple[AlphaComplex, HandOver]:
+        """The table a child handed over (JSON {"table": its file, "orders": the cursor's
+        orders file or None}) and the cursor made from those orders; on_saved is told first
+        when that file is the cache entry of a table without signatures."""
+        answer = json.loads(text)
+        if (self.on_saved is not None and not request.signatures
+                and answer["table"] == str(request.save_to)):
+            self.on_saved(Path(answer["table"]), len(request.points))
+        return _load_handed(answer, report)
 
-def _take(text: str, report: Progress) -> tuple[AlphaComplex, HandOver]:
-    """The table a child handed over (JSON {"table": its file, "orders": the cursor's orders
-    file or None}) and the cursor made from those orders."""
-    answer = json.loads(text)
+
+def _load_handed(answer: dict, report: Progress) -> tuple[AlphaComplex, HandOver]:
+    """The table and cursor orders a child handed over, as a complex and its cursor."""
     report(1.0, "loading the table")
     ac = AlphaComplex.load(answer["table"], verify=False)  # our child wrote it just now
     if answer["orders"] is None:
