@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from app.build_process import ChildRunner
 from app.camera import Z_UP, ViewFrame, frame_for
+from app.topology_child import TopologyChild
 from app.topology_file import TopologyParts, attach
 from core import AlphaComplex
 from core.complex import at_value
@@ -67,6 +67,9 @@ class Dataset:
     #: The N_SUGGESTIONS suggested alphas, found with the topology off the GUI thread (None
     #: before, or for a dataset made elsewhere: suggestions_of computes them then).
     suggestions: tuple[AlphaRange, ...] | None = None
+    #: The topology process the window started for this table while it loaded it
+    #: (app.worker), until the topology job takes it over; None once the topology is known.
+    topology_child: TopologyChild | None = None
 
     @property
     def has_topology(self) -> bool:
@@ -149,11 +152,12 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     molecule, numbers = _molecule(ac, pointset)
     complete = ac.has_signatures
     # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
-    known = runner.opening_alpha if isinstance(runner, ChildRunner) else None
+    handed = runner.handed_over(ac)  # what a build process found beside the table
+    known = handed.opening_alpha
     alpha = 0.0 if molecule is not None else (
         float(ac.default_alpha()) if complete else quick_alpha(ac) if known is None else known)
     progress(INDEX_START, "indexing for the slider")
-    cursor = ac.cursor()
+    cursor = handed.cursor or ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     dataset = Dataset(
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=None, default_alpha=alpha,
@@ -215,7 +219,7 @@ def _completed(dataset: Dataset, ac: AlphaComplex, optimal: float, default: floa
     return replace(dataset, ac=ac, signatures=ac.signatures(), optimal_alpha=float(optimal),
                    default_alpha=float(default), persistence=persistence,
                    suggestions=ac.suggest_alphas(N_SUGGESTIONS), entry=entry,
-                   topology_seconds=seconds)
+                   topology_seconds=seconds, topology_child=None)
 
 
 def suggestions_of(dataset: Dataset) -> tuple[AlphaRange, ...]:
