@@ -9,6 +9,8 @@ from reference import data_dir, read_scan
 
 import core.backends as backends
 from benchmarks.datasets import noisy_torus
+from core import parallel
+from core.backends import facets
 from core.backends.certify import why_not_delaunay
 from core.backends.facets import neighbours
 from core.delaunay import triangulate
@@ -165,6 +167,25 @@ def test_neighbours_from_cells_equal_qhulls(d: int, n_points: int | None) -> Non
 def test_neighbours_report_a_facet_in_three_cells() -> None:
     cells = np.array([[0, 1, 2], [0, 1, 3], [0, 1, 4]], dtype=np.int32)
     assert not neighbours(cells, 5)[1]
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_neighbours_matched_on_two_threads_equal_qhulls(d: int, monkeypatch) -> None:
+    """The long-input path: keys packed in halves, split at a sampled median and sorted on
+    two threads (thresholds lowered so a small set takes it); a repeated cell is caught."""
+    monkeypatch.setattr(parallel, "PARALLEL_ABOVE", 64)
+    monkeypatch.setattr(facets, "PARALLEL_ABOVE", 64)
+    points = prepared(np.random.default_rng(d).uniform(size=(2000, d)))
+    ref = triangulate(points)
+    nbrs, mirror, manifold = facets.paired(ref.cells, len(points))
+    assert manifold and np.array_equal(nbrs, ref.neighbors)
+    inner = nbrs >= 0
+    rows = np.broadcast_to(np.arange(len(nbrs))[:, None], nbrs.shape)
+    assert np.array_equal(inner, mirror >= 0)
+    assert np.array_equal(nbrs[nbrs[inner], mirror[inner]], rows[inner])
+    inner_cell = int(np.flatnonzero(inner.all(axis=1))[0])
+    twice = np.concatenate((ref.cells, ref.cells[inner_cell:inner_cell + 1]))
+    assert not facets.paired(twice, len(points))[2]
 
 
 def test_certify_accepts_delaunay_and_rejects_the_rest() -> None:

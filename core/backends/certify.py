@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
+from ..delaunay import interior_facets
 from ..geometry import CACHE_CHUNK
 from ..parallel import halves, slot_of
 from ..tolerances import BACKEND_CERTAIN_RTOL
@@ -120,24 +121,15 @@ def in_sphere(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
     return out
 
 
-def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None,
-                 mirror: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
-    """Each inner facet once (of a cell in the (t,) bool mask `near`, when given): cell t,
-    its vertex i opposite the facet, the cell u across and u's vertex j opposite it
-    (neighbour tables are symmetric by construction; j read from `mirror` where given)."""
-    if near is None:
-        slots = np.flatnonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
-        t, i = np.divmod(slots, neighbors.shape[1])
-        u = np.take(neighbors, slots)
-        if mirror is not None:
-            return t, i, u, np.take(mirror, slots)
-    else:  # the facets of the near cells; a facet between two of them once
-        rows = np.flatnonzero(near)
-        row, i = np.nonzero(neighbors[rows] >= 0)
-        t = rows[row]
-        u = neighbors[t, i]
-        once = ~near[u] | (u > t)
-        t, i, u = t[once], i[once], u[once]
+def _near_pairs(neighbors: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Each inner facet of a cell in the (t,) bool mask `near` once (a facet between two
+    near cells once), as core.delaunay.interior_facets gives all: (t, i, u, j)."""
+    rows = np.flatnonzero(near)
+    row, i = np.nonzero(neighbors[rows] >= 0)
+    t = rows[row]
+    u = neighbors[t, i]
+    once = ~near[u] | (u > t)
+    t, i, u = t[once], i[once], u[once]
     return t, i, u, slot_of(neighbors, u, t)
 
 
@@ -183,7 +175,8 @@ def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarra
         used |= hidden
     if not used.all():
         return f"{int(np.count_nonzero(~used))} points are in no cell"
-    t, i, u, j = _inner_pairs(neighbors, near, mirror)
+    t, i, u, j = (interior_facets(neighbors, mirror) if near is None
+                  else _near_pairs(neighbors, near))
     sign = np.zeros(len(cells), dtype=np.int8)
     some = slice(None) if near is None else np.unique(np.concatenate((t, u, np.flatnonzero(
         near))))
