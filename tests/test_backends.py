@@ -188,6 +188,49 @@ def test_neighbours_matched_on_two_threads_equal_qhulls(d: int, monkeypatch) -> 
     assert not facets.paired(twice, len(points))[2]
 
 
+def _flipped(cells: np.ndarray, nbrs: np.ndarray, t: int) -> np.ndarray:
+    """2D cells with the edge between triangle t and its first neighbour flipped (the
+    quad's other diagonal), rows ascending."""
+    i = int(np.flatnonzero(nbrs[t] >= 0)[0])
+    u = int(nbrs[t, i])
+    p, q = cells[t, i], int(np.setdiff1d(cells[u], cells[t])[0])
+    x, y = np.delete(cells[t], i)
+    out = cells.copy()
+    out[t], out[u] = np.sort([p, q, x]), np.sort([p, q, y])
+    return out
+
+
+def _first_flipped(cells: np.ndarray, n_points: int) -> np.ndarray:
+    """2D cells with the edge of the first triangle that has a neighbour flipped."""
+    nbrs, _ = backends.facets.neighbours(cells, n_points)
+    return _flipped(cells, nbrs, int(np.flatnonzero((nbrs >= 0).any(axis=1))[0]))
+
+
+@pytest.mark.parametrize("where", ["gmsh's own cells", "restored cells"])
+def test_gmsh_check_covers_own_and_restored_cells(where: str, monkeypatch) -> None:
+    """gmsh's own cells are checked beside the restoration and the restored (and relinked)
+    ones after it: a wrong edge in either part is caught; hull cells gmsh left out come
+    back as Qhull's."""
+    points = prepared(np.random.default_rng(9).uniform(size=(400, 2)))
+    ref = triangulate(points)
+    h = int(np.flatnonzero((ref.neighbors < 0).any(axis=1))[0])
+    dropped = [h, int(ref.neighbors[h][ref.neighbors[h] >= 0][0])]  # two adjacent cells
+    own = np.delete(ref.cells, dropped, axis=0)
+    assert np.isin(np.arange(len(points)), own).all()  # every point still in a cell
+    monkeypatch.setattr(backends.gmsh_backend, "gmsh_cells", lambda _: own)
+    tri = backends._by_gmsh(points)
+    assert np.array_equal(cell_set(tri.cells), cell_set(ref.cells))
+    if where == "restored cells":  # the restoration brings one edge back flipped
+        missing = backends.restore._missing
+        monkeypatch.setattr(backends.restore, "_missing",
+                            lambda *args: _first_flipped(missing(*args), len(points)))
+    else:  # one edge flipped among gmsh's own cells, away from the dropped ones
+        inner = np.flatnonzero((ref.neighbors >= 0).all(axis=1))
+        far = inner[~np.isin(inner, np.unique(ref.neighbors[dropped]))][len(inner) // 2]
+        own = np.delete(_flipped(ref.cells, ref.neighbors, int(far)), dropped, axis=0)
+    assert isinstance(backends._by_gmsh(points), str)
+
+
 def test_certify_accepts_delaunay_and_rejects_the_rest() -> None:
     rng = np.random.default_rng(5)
     points = prepared(rng.uniform(size=(500, 3)))
