@@ -141,7 +141,7 @@ def _own_values(table: Table, points: np.ndarray, mode: Mode, spacing_: np.ndarr
     else:  # the classic radii: a face is attached exactly when enter == regular
         radii = [np.where((level.enter < level.regular) | (k == d), level.enter, np.inf)
                  for k, level in enumerate(table.levels[1:], start=1)]
-    out = [np.zeros(len(table.levels[0].enter))]
+    out = [np.zeros(len(table.levels[0].simplices))]
     for level, own in zip(table.levels[1:], radii, strict=True):
         if spacing_ is not None:  # cells and unattached faces (attached ones stay inf)
             ids = np.flatnonzero(np.isfinite(own))

@@ -48,7 +48,7 @@ class Level:
     """The simplices of one dimension k, sorted by enter, and their three alphas."""
 
     simplices: np.ndarray  # (n, k+1) int32, rows ascending
-    enter: np.ndarray  # (n,) float64, ascending
+    enter: np.ndarray  # (n,) float64, ascending; (0,) for faces built without values
     regular: np.ndarray  # (n,) float64
     interior: np.ndarray  # (n,) float64, inf = on the convex hull
     face_ids: np.ndarray | None = None  # (n, k+1) int32: row in level k-1 opposite each vertex
@@ -309,8 +309,8 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
             mirror: np.ndarray | None = None):
     """Level d-1 from the cells' neighbour table: each shared facet taken once. Every
     per-cell value is gathered once per side (the second side's gathers are random) on
-    two threads (core.parallel.take). radii=False: the facets' own radii and attachment are
-    not computed (enter = regular). `mirror`: the neighbours' columns that point back, if
+    two threads (core.parallel.take). radii=False: no values for the facets ((0,) arrays),
+    only their structure. `mirror`: the neighbours' columns that point back, if
     known (else found from their rows)."""
     n_cells, width = cells.simplices.shape
     keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
@@ -326,22 +326,22 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     else:
         j1 = take(take(mirror.ravel(), slot0), has1).astype(np.int64)
 
-    e0, e1h = take(cells.enter, t0), take(cells.enter, t1h)
-    e1 = np.full(len(t0), np.inf)
-    e1[has1] = e1h
     det0, det1 = take(det, t0), take(det, t1h)
     near_flat = det0 == 0
     near_flat[has1] |= det1 == 0
-    regular = np.minimum(e0, e1)
-    interior = np.maximum(e0, e1)
     obtuse = None
     if radii:
+        e0, e1h = take(cells.enter, t0), take(cells.enter, t1h)
+        e1 = np.full(len(t0), np.inf)
+        e1[has1] = e1h
+        regular = np.minimum(e0, e1)
+        interior = np.maximum(e0, e1)
         enter, obtuse = _facet_enter(points, cells, det, simplices, weights, exact,
                                      (t0, i0, e0), (has1, t1h, j1, e1h), near_flat, regular,
                                      bits)
-    else:  # a mode supplies its own values: only the cofacets' are taken
-        enter = regular.copy()
-    del e0, e1, e1h
+        del e0, e1, e1h
+    else:  # a mode supplies all its faces' values (core/modes.py)
+        enter = regular = interior = np.empty(0)  # (0,): no values
     order = _order_beside(enter, sort)  # while the facets' orientation and ids are found
 
     flip = (i0 % 2 == 1) ^ (det0 < 0)
@@ -408,11 +408,13 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
 
 
 def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
-                tris: np.ndarray, bits: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
+                tris: np.ndarray, bits: np.ndarray | None, m: int
+                ) -> tuple[np.ndarray | None, np.ndarray]:
     """For the sorted incidences (edge key, triangle id): (n,) bool attach bit of each
-    (the triangle's vertex opposite the edge is inside its diametral sphere) and the
-    (3 t,) int32 edge number of every triangle's three edges; in chunks on two threads."""
-    inside = np.empty(len(keys), dtype=bool)
+    (the triangle's vertex opposite the edge is inside its diametral sphere; None without
+    `bits`) and the (3 t,) int32 edge number of every triangle's three edges; in chunks on
+    two threads."""
+    inside = None if bits is None else np.empty(len(keys), dtype=bool)
     face_ids = np.empty(tris.size, dtype=np.int32)
     first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
     size = 4 * CACHE_CHUNK
@@ -423,7 +425,8 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
         t = tri_ids[lo:hi]
         a, b = np.divmod(keys[lo:hi], m)
         local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
-        inside[lo:hi] = (bits[t] >> local) & 1
+        if inside is not None:
+            inside[lo:hi] = (bits[t] >> local) & 1
         edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
         face_ids[3 * t.astype(np.int64) + local] = edge_of
 
@@ -463,7 +466,8 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
 
     `bits` (bit j: vertex j attaches the opposite edge) come from facet_radii2; edges of
     triangles next to flat cells (`near_flat`) get the global attachment test. bits=None:
-    the edges' own radii and attachment are not computed (enter = regular).
+    the edges get no values at all ((0,) arrays: a mode supplies them), only their
+    vertices and the triangles' face ids.
     """
     m = len(points)
     tris = triangles.simplices
@@ -473,10 +477,15 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     np.not_equal(keys[1:], keys[:-1], out=is_start[1:])
     starts = np.flatnonzero(is_start)
 
-    radii = bits is not None
-    inside, face_ids = _incidences(keys, tri_ids, is_start, tris,
-                                   bits if radii else np.zeros(len(tris), np.uint8), m)
-    del is_start, bits
+    inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m)
+    del is_start
+    edges = keys[starts]
+    a, b = np.divmod(edges, m)
+    simplices = np.stack((a, b), axis=1).astype(np.int32)
+    del edges, a, b
+    if bits is None:  # a mode supplies every value (core/modes.py)
+        triangles.face_ids = face_ids.reshape(-1, 3)
+        return Level(simplices, np.empty(0), np.empty(0), np.empty(0))
     n = len(keys)
     if ids_ascend and sort:  # triangles sorted by enter: each edge's first is its least
         regular = take(triangles.enter, take(tri_ids, starts))
@@ -485,17 +494,14 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
                                   np.float64)
     interior = reduce_segments(np.maximum, _gathered(triangles.interior, tri_ids), starts, n,
                                np.float64)
-    if radii:
-        attached = reduce_segments(np.logical_or, _gathered(inside, None), starts, n, bool)
-        # the edges of the (few) triangles next to flat cells, from their face ids: no
-        # gather over all incidences
-        check = np.unique(face_ids.reshape(-1, 3)[np.flatnonzero(near_flat)])
-    edge_keys = keys[starts]
+    attached = reduce_segments(np.logical_or, _gathered(inside, None), starts, n, bool)
+    # the edges of the (few) triangles next to flat cells, from their face ids: no gather
+    # over all incidences
+    check = np.unique(face_ids.reshape(-1, 3)[np.flatnonzero(near_flat)])
     del keys, tri_ids, inside
-    a, b = np.divmod(edge_keys, m)
-    enter = (_edge_enter(points, a, b, regular, attached, check, weights) if radii
-             else regular.copy())
-    level = Level(np.stack((a, b), axis=1).astype(np.int32), enter, regular, interior)
+    a, b = simplices[:, 0].astype(np.int64), simplices[:, 1].astype(np.int64)
+    enter = _edge_enter(points, a, b, regular, attached, check, weights)
+    level = Level(simplices, enter, regular, interior)
     inverse = _permute(level, _order(enter, sort))
     triangles.face_ids = (face_ids if inverse is None else take(inverse, face_ids)).reshape(-1, 3)
     return level
@@ -504,14 +510,17 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
 def _vertices(n_points: int, edges: Level, points: np.ndarray | None = None,
               weights: np.ndarray | None = None) -> Level:
     """Level 0: vertices enter at 0 (weighted: at -sqrt(w), or with their first edge when
-    a neighbour has negative power to their sphere); regular/interior over their edges."""
+    a neighbour has negative power to their sphere); regular/interior over their edges.
+    Edges without values (a mode's table) give vertices without values."""
+    edges.face_ids = edges.simplices[:, ::-1].copy()
+    simplices = np.arange(n_points, dtype=np.int32)[:, None]
+    if len(edges.enter) < len(edges.simplices):
+        return Level(simplices, np.empty(0), np.empty(0), np.empty(0))
     regular = np.full(n_points, np.inf)
     interior = np.full(n_points, -np.inf)
     for col in (0, 1):
         np.minimum.at(regular, edges.simplices[:, col], edges.enter)
         np.maximum.at(interior, edges.simplices[:, col], edges.interior)
-    edges.face_ids = edges.simplices[:, ::-1].copy()
-    simplices = np.arange(n_points, dtype=np.int32)[:, None]
     if weights is None:
         return Level(simplices, np.zeros(n_points), regular, interior)
     bits = edge_powers(points, weights, edges.simplices)[2]
@@ -537,9 +546,9 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
 
     For an alpha mode (core/modes.py), which supplies its own values and sorts once by them:
     sort=False keeps every level in the order it was built (ids consistent; no
-    facet_interior_order), and radii=False (with sort=False) skips the faces' own radii and
-    attachment: a face's enter is then the least enter of its cofacets, a placeholder for
-    the mode's (the cells' values and every interior stay the classic ones). `mirror`:
+    facet_interior_order), and radii=False (with sort=False) computes no values for the
+    faces (their enter, regular and interior are (0,) arrays: the mode computes its own
+    from the structure; the cells keep their classic values). `mirror`:
     (t, d+1) int8, each neighbour's column that holds the cell (core.delaunay.Triangulation),
     when known: saves finding it by a random gather of the neighbours' rows."""
     if sort and not radii:
