@@ -3,7 +3,9 @@
 Every facet is keyed at its slot cell * (d+1) + i (the facet opposite vertex i of a cell),
 so the matched slots give both the neighbour table and, free, each neighbour's column that
 points back (the `mirror`, which the certification and the table would otherwise find by a
-random gather of the neighbours' rows).
+random gather of the neighbours' rows). The argsort of the keys is most of the pass: long
+key arrays are split at a sampled median key (equal keys stay together) and the two parts
+sorted at once on two threads.
 """
 
 from __future__ import annotations
