@@ -5,16 +5,19 @@ signatures when asked), writes it to the cache entry (or to a temporary file whe
 cannot be written or is not used) and says where; the caller loads that file, which takes
 a few percent of the build. Without the signatures, the child finds the table's quick opening
 alpha (core.opening) in a thread while it writes the file, so the window need not: the
-runner keeps it (`opening_alpha`). Cancel kills the child at once, so a newer open or closing the
-window never waits for a Delaunay triangulation to finish. Small sets build in the caller's
-thread: under IN_THREAD_BELOW points a build takes a few seconds at most, and a process would
-add about one (its start and the table's trip through a file).
+runner keeps it (`opening_alpha`). `on_saved(entry, n_points)` is told as soon as the child
+has written a table without signatures to its cache entry, before this process loads it (the
+window starts the topology process then: app.worker). Cancel kills the child at once, so a
+newer open or closing the window never waits for a Delaunay triangulation to finish. Small
+sets build in the caller's thread: under IN_THREAD_BELOW points a build takes a few seconds at
+most, and a process would add about one (its start and the table's trip through a file).
 """
 
 from __future__ import annotations
 
 import json
 import threading
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
@@ -38,9 +41,13 @@ class ChildRunner:
     Sets under IN_THREAD_BELOW points are built in the calling thread instead.
     """
 
-    def __init__(self, cancel: threading.Event) -> None:
-        """cancel: set it (from any thread) to stop the build; Cancelled is then raised."""
+    def __init__(self, cancel: threading.Event,
+                 on_saved: Callable[[Path, int], None] | None = None) -> None:
+        """cancel: set it (from any thread) to stop the build; Cancelled is then raised.
+        on_saved(entry, n_points): called once the child wrote a table without signatures
+        to its cache entry, before it is loaded here."""
         self.cancel = cancel
+        self.on_saved = on_saved
         #: The quick opening alpha (core.opening.opening_alpha_of) of the table this runner
         #: last built in its child; None when it was built here or with its signatures.
         self.opening_alpha: float | None = None
@@ -66,6 +73,9 @@ class ChildRunner:
                    "backend": request.backend}
             answer = json.loads(run_in_child(build_in_child, (str(source), str(target), job),
                                              report, self.cancel, "alphascoop-build"))
+            if (self.on_saved is not None and not request.signatures
+                    and answer["table"] == str(request.save_to)):
+                self.on_saved(Path(answer["table"]), len(request.points))
             report(1.0, "loading the table")
             ac = AlphaComplex.load(answer["table"])
             self.opening_alpha = answer["opening_alpha"]

@@ -22,6 +22,7 @@ import time
 from collections.abc import Callable, Iterator
 from multiprocessing.connection import Connection
 from pathlib import Path
+from typing import Protocol
 
 from core import errors
 from core.progress import Progress
@@ -32,6 +33,12 @@ PREFIXES = ("alphascoop-build-", "alphascoop-topology-")
 
 
 LOCK_NAME = ".owner.lock"
+
+
+class CancelFlag(Protocol):
+    """What run_in_child watches: a threading.Event, or anything else that says is_set()."""
+
+    def is_set(self) -> bool: ...
 
 
 @contextlib.contextmanager
@@ -97,7 +104,7 @@ def _alive(pid: int) -> bool:
 
 
 def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
-                 cancel: threading.Event, name: str) -> str:
+                 cancel: CancelFlag, name: str) -> str:
     """Run work(*args, progress) in a spawned process; the text it returned. Its errors are
     raised here as the same core.errors class (MemoryError as MemoryError); Cancelled as
     soon as `cancel` is set (the child is killed)."""
@@ -116,7 +123,7 @@ def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
         receiver.close()
 
 
-def _follow(child, receiver: Connection, progress: Progress, cancel: threading.Event) -> str:
+def _follow(child, receiver: Connection, progress: Progress, cancel: CancelFlag) -> str:
     """Relay the child's messages until it is done; Cancelled as soon as cancel is set."""
     while True:
         if cancel.is_set():

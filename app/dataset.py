@@ -12,6 +12,7 @@ import numpy as np
 
 from app.build_process import ChildRunner
 from app.camera import Z_UP, ViewFrame, frame_for
+from app.topology_child import TopologyChild
 from app.topology_file import TopologyParts, attach
 from core import AlphaComplex
 from core.complex import at_value
@@ -67,6 +68,9 @@ class Dataset:
     #: The N_SUGGESTIONS suggested alphas, found with the topology off the GUI thread (None
     #: before, or for a dataset made elsewhere: suggestions_of computes them then).
     suggestions: tuple[AlphaRange, ...] | None = None
+    #: The topology process the window started for this table while it loaded it
+    #: (app.worker), until the topology job takes it over; None once the topology is known.
+    topology_child: TopologyChild | None = None
 
     @property
     def has_topology(self) -> bool:
@@ -215,7 +219,7 @@ def _completed(dataset: Dataset, ac: AlphaComplex, optimal: float, default: floa
     return replace(dataset, ac=ac, signatures=ac.signatures(), optimal_alpha=float(optimal),
                    default_alpha=float(default), persistence=persistence,
                    suggestions=ac.suggest_alphas(N_SUGGESTIONS), entry=entry,
-                   topology_seconds=seconds)
+                   topology_seconds=seconds, topology_child=None)
 
 
 def suggestions_of(dataset: Dataset) -> tuple[AlphaRange, ...]:

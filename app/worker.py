@@ -5,18 +5,24 @@ Big triangulations run in a child process (app.build_process) that Cancel kills 
 load job hands the dataset over as soon as the slider can use it (the table and its cursor);
 the topology job (signatures, optimal alpha, persistence) follows in a runner of its own (in
 a child process of its own for big sets: app.topology_process), so a newer open cancels it
-and drops its result like any stale request.
+and drops its result like any stale request. For a table the build process wrote to the
+cache, the load job starts that topology process as soon as the entry is written, so it runs
+while the window loads the table and makes its cursor; the dataset carries it
+(`Dataset.topology_child`) to the topology job. A load that is cancelled, superseded or fails
+stops it before it reports its outcome.
 """
 
 from __future__ import annotations
 
 import threading
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from app import build_process, topology_process
 from app.dataset import Dataset, ImportOptions, load_dataset, with_parts, with_topology
 from app.jobs import Job, Progress
+from app.topology_child import TopologyChild, start_topology
 from core.errors import AlphaScoopError, Cancelled
 from core.modes import Mode
 
@@ -29,28 +35,54 @@ def load_job(path: str | Path, mode: Mode | None = None,
     path, mode = Path(path), mode or Mode()
 
     def work(progress: Progress, cancel: threading.Event) -> Dataset:
-        return load_dataset(path, progress, build_process.ChildRunner(cancel), mode=mode,
-                            options=options, topology=False)
+        started: list[TopologyChild] = []
+
+        def start_topology(entry: Path, n_points: int) -> None:
+            if n_points >= topology_process.IN_THREAD_BELOW:
+                started.append(TopologyChild(entry, cancel))
+
+        runner = build_process.ChildRunner(cancel, on_saved=start_topology)
+        try:
+            dataset = load_dataset(path, progress, runner, mode=mode, options=options,
+                                   topology=False)
+        except BaseException:
+            for child in started:
+                child.stop()
+            raise
+        if not started:
+            return dataset
+        if dataset.has_topology or dataset.entry is None:  # not expected: stop it then
+            started[0].stop()
+            return dataset
+        return replace(dataset, topology_child=started[0])
 
     return Job(f"opening {path.name}", work, lambda error: load_failure(path, error))
 
 
 def topology_job(dataset: Dataset) -> Job:
     """A job that completes dataset's topology; its result is the completed Dataset. Big
-    datasets are completed in a topology process (app.topology_process) that Cancel kills;
-    small ones here (app.dataset.with_topology), stopped by Cancel between its stages."""
+    datasets are completed in a topology process (app.topology_child: the one the load
+    started, else a new one) that Cancel kills; small ones here (app.dataset.with_topology),
+    stopped by Cancel between its stages."""
     def work(progress: Progress, cancel: threading.Event) -> Dataset:
         def check() -> None:
             if cancel.is_set():
                 raise Cancelled("topology cancelled")
 
+        child = dataset.topology_child
+        if child is not None and not child.hand_to(cancel):
+            child.stop()  # stopped before this job took it (its load was superseded)
+            child = None
         progress(0.0, "topology")
         if dataset.has_topology or len(dataset.ac.points) < topology_process.IN_THREAD_BELOW:
+            if child is not None:
+                child.stop()
             return with_topology(dataset, check)
-        started = time.perf_counter()
-        parts = topology_process.topology_parts(dataset.ac, dataset.entry, progress, cancel)
+        if child is None:
+            child = start_topology(dataset.ac, dataset.entry, cancel)
+        parts = child.parts(dataset.ac, progress)
         check()
-        return with_parts(dataset, parts, time.perf_counter() - started)
+        return with_parts(dataset, parts, time.perf_counter() - child.started)
 
     return Job(f"topology of {dataset.path.name}", work,
                lambda error: f"topology of {dataset.path.name} failed: "

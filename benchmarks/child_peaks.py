@@ -44,6 +44,16 @@ def passes(names: tuple[str, ...] = NAMES, parent: int | None = None) -> dict[in
     return {pid: short[comm] for pid, comm in child_processes(parent).items() if comm in short}
 
 
+def cpu_seconds_of(pid: int) -> float:
+    """A process's CPU seconds so far (user + system, /proc/<pid>/stat); 0 when it is gone."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="utf-8", errors="replace") as handle:
+            fields = handle.read().rpartition(")")[2].split()  # state is field 3: index 0
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return 0.0
+
+
 def vm_hwm_mib(pid: int) -> float:
     """A process's peak resident set in MiB (VmHWM: it starts afresh at exec, unlike
     ru_maxrss); 0 when it is gone or has exited."""

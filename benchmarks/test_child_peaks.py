@@ -9,7 +9,7 @@ import sys
 import time
 from collections.abc import Callable
 
-from child_peaks import SAMPLE_S, ChildPeaks, child_processes, passes
+from child_peaks import SAMPLE_S, ChildPeaks, child_processes, cpu_seconds_of, passes
 
 LIVENESS_S = 60.0  # generous bound for a child to start, allocate or exit; never a timing
 BLOCK_MIB = 64
@@ -69,3 +69,19 @@ def test_an_exited_child_is_left_for_its_owner_to_wait_for():
     child.join(LIVENESS_S)
     assert child.exitcode == 0 and state(child.pid) is None
     peaks.stop()
+
+
+def test_a_running_childs_cpu_seconds_are_read_from_proc():
+    """The CPU a child spent so far, read while it runs (not yet in RUSAGE_CHILDREN): its
+    own figure (time.process_time in the child) within the clock's tick; 0 once it is gone."""
+    busy = ("import time\nend = time.process_time() + 0.3\nwhile time.process_time() < end:"
+            "\n    pass\nprint(time.process_time(), flush=True)\ninput()\n")
+    child = subprocess.Popen([sys.executable, "-c", busy], stdin=subprocess.PIPE,
+                             stdout=subprocess.PIPE, text=True)
+    try:
+        own = float(child.stdout.readline())
+        read = cpu_seconds_of(child.pid)
+        assert abs(read - own) <= 0.05 and read >= 0.3 - 0.02
+    finally:
+        child.communicate("\n")
+    assert cpu_seconds_of(child.pid) == 0.0

@@ -17,7 +17,7 @@ import sys
 import tempfile
 import time
 
-from child_peaks import ChildPeaks, passes
+from child_peaks import ChildPeaks, cpu_seconds_of, passes
 from isolate import MIB, peak_rss_mib, rss_mib
 
 TIMEOUT_MS = 3_600_000
@@ -124,10 +124,12 @@ class StallProbe:
 
 
 def _cpu_seconds() -> float:
-    """CPU seconds so far of this process (all threads) and of its waited-for children (the
-    build processes)."""
+    """CPU seconds so far of this process (all threads), of its waited-for children (the
+    build processes) and of its build and topology processes still running (the topology
+    process goes on rewriting the cache entry after it handed its topology over)."""
+    running = sum(cpu_seconds_of(pid) for pid in passes())  # read before any is reaped
     children = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return time.process_time() + children.ru_utime + children.ru_stime
+    return time.process_time() + children.ru_utime + children.ru_stime + running
 
 
 def _dragging(model):
@@ -209,7 +211,9 @@ def first_open(points_path: str, other_path: str, cancel_path: str, soak: int,
         base = rss_mib()
         children = ChildPeaks()
         result = _open_timed(win, points_path, drag)
-        win.topology.wait()  # the topology process has ended too
+        win.topology.wait()
+        while passes():  # the topology process has ended too (its rewrite of the entry)
+            _spin(100)
         _spin(200)  # the deferred give-back runs
         peaks = children.stop()
         result.update(base_rss_mib=base, rss_after_mib=rss_mib(), peak_mib=peak_rss_mib(),

@@ -1,5 +1,6 @@
 """The topology pass in a child process (issue 15): the same topology as the pass in this
-process, the cache entry upgraded, Cancel kills it, and nothing is left in the temp dir."""
+process, handed over before the cache entry is upgraded, Cancel kills it (before and during
+that rewrite, which leaves the old entry whole), and nothing is left in the temp dir."""
 
 from __future__ import annotations
 
@@ -19,6 +20,7 @@ import pytest
 from child_cancel import cancel_at
 
 from app import child_process, topology_process
+from app.topology_child import TopologyChild, start_topology
 from app.topology_file import read_topology, write_topology
 from core import AlphaComplex
 from core.cache import load_cached
@@ -75,10 +77,10 @@ def test_the_child_computes_the_same_topology_and_upgrades_the_entry(dim):
     obtained = obtain(points)  # the window's load: table cached without its topology
     assert obtained.entry is not None and not load_cached(points).has_signatures
     stages: list[str] = []
-    parts = topology_process.topology_parts(obtained.complex, obtained.entry,
-                                            lambda _f, stage: stages.append(stage),
-                                            threading.Event())
+    child = start_topology(obtained.complex, obtained.entry, threading.Event())
+    parts = child.parts(obtained.complex, lambda _f, stage: stages.append(stage))
     assert_same_topology(parts, AlphaComplex.from_points(points))
+    assert child.wait(60)  # the rewrite of the entry follows the hand-over
     assert parts.entry_saved and load_cached(points).has_signatures
     assert "topology: signatures" in stages
     assert multiprocessing.active_children() == [] and my_scratch() == []
@@ -87,17 +89,20 @@ def test_the_child_computes_the_same_topology_and_upgrades_the_entry(dim):
 def test_without_a_cache_entry_the_child_reads_a_temporary_copy():
     points = blobs(1500, 3, seed=7)
     ac = obtain(points, use_cache=False).complex
-    parts = topology_process.topology_parts(ac, None, never, threading.Event())
+    child = start_topology(ac, None, threading.Event())
+    parts = child.parts(ac, never)
     assert_same_topology(parts, AlphaComplex.from_points(points))
-    assert not parts.entry_saved and my_scratch() == []
+    assert child.wait(60) and not parts.entry_saved and my_scratch() == []
 
 
 def test_a_cache_entry_gone_meanwhile_is_not_rewritten_from_the_temporary_copy(tmp_path):
     points = blobs(1500, 3, seed=8)
     ac = obtain(points, use_cache=False).complex
     gone = tmp_path / "entry.npz"  # removed (cache cleared) before the topology ran
-    parts = topology_process.topology_parts(ac, gone, never, threading.Event())
+    child = start_topology(ac, gone, threading.Event())
+    parts = child.parts(ac, never)
     assert_same_topology(parts, AlphaComplex.from_points(points))
+    assert child.wait(60)
     assert not parts.entry_saved and not gone.exists() and my_scratch() == []
 
 
@@ -110,7 +115,7 @@ def test_cancel_kills_the_child_while_it_works_and_leaves_nothing():
     entry, before = obtained.entry, obtained.entry.read_bytes()
     cache_files = sorted(entry.parent.iterdir())
     seen = cancel_at("topology: signatures", lambda progress, cancel: (
-        topology_process.topology_parts(obtained.complex, entry, progress, cancel)))
+        TopologyChild(entry, cancel).parts(obtained.complex, progress)))
     working, outcome = seen.working, seen.outcome
     assert len(working) == 1 and working[0].name == "alphascoop-topology"
     assert seen.alive_at_cancel == [True]
@@ -119,6 +124,72 @@ def test_cancel_kills_the_child_while_it_works_and_leaves_nothing():
     assert multiprocessing.active_children() == [] and my_scratch() == []
     assert entry.read_bytes() == before and sorted(entry.parent.iterdir()) == cache_files
     assert not load_cached(points).has_signatures
+
+
+def test_the_child_hands_over_before_it_rewrites_the_entry(tmp_path):
+    """The child's body (run here): when it says HANDED_OVER its file is written and the
+    cache entry still is the table without signatures; the rewrite comes after."""
+    points = blobs(3000, 3, seed=11)
+    entry, target = obtain(points).entry, tmp_path / "topology.npz"
+    seen: list[tuple[str, bool, bool]] = []
+
+    def progress(_fraction: float, stage: str) -> None:
+        seen.append((stage, target.is_file(), load_cached(points).has_signatures))
+
+    topology_process.topology_in_child(str(entry), True, str(target), progress)
+    stages = [stage for stage, _, _ in seen]
+    handed, saving = stages.index(topology_process.HANDED_OVER), stages.index(
+        topology_process.SAVING)
+    assert handed < saving and seen[handed][1:] == (True, False)
+    assert load_cached(points).has_signatures
+
+
+def test_killing_the_child_while_it_rewrites_the_entry_leaves_a_whole_entry():
+    """Cancel right after the hand-over, while the child rewrites the entry (60k points):
+    the topology was handed over, the child is gone and the entry reads back whole, the
+    old table or the new one with its signatures (an atomic write), never a broken one."""
+    points = blobs(60_000, 3, seed=12)
+    obtained, cancel = obtain(points), threading.Event()
+    before = obtained.entry.read_bytes()
+    child = TopologyChild(obtained.entry, cancel)
+    parts = child.parts(obtained.complex, never)
+    cancel.set()
+    assert child.wait(60) and parts.entry_saved
+    assert multiprocessing.active_children() == [] and my_scratch() == []
+    cached = load_cached(points)
+    assert cached is not None and cached.input_index.shape == obtained.complex.input_index.shape
+    assert cached.has_signatures or obtained.entry.read_bytes() == before
+
+
+def test_a_child_stopped_with_its_load_is_not_taken_over():
+    """Until the topology job takes it over, the child stops with its load's cancel (a
+    cancelled or superseded open): then it cannot be taken over, and nothing is left."""
+    points = blobs(3000, 3, seed=13)
+    obtained, load = obtain(points), threading.Event()
+    before = obtained.entry.read_bytes()
+    child = TopologyChild(obtained.entry, load)
+    load.set()
+    assert not child.hand_to(threading.Event())
+    child.stop()
+    assert multiprocessing.active_children() == [] and my_scratch() == []
+    assert obtained.entry.read_bytes() == before
+
+
+def test_a_child_taken_over_no_longer_stops_with_its_load():
+    points = blobs(3000, 3, seed=14)
+    obtained, load, job = obtain(points), threading.Event(), threading.Event()
+    child = TopologyChild(obtained.entry, load)
+    assert child.hand_to(job)
+    load.set()  # the next open cancels the finished load's request: not this child any more
+    parts = child.parts(obtained.complex, never)
+    assert_same_topology(parts, AlphaComplex.from_points(points))
+    assert child.wait(60) and load_cached(points).has_signatures
+    assert multiprocessing.active_children() == [] and my_scratch() == []
+
+
+def test_a_child_reads_a_cache_entry_or_a_copy_not_both():
+    with pytest.raises(ValueError):
+        TopologyChild(None, threading.Event())
 
 
 def test_a_topology_file_of_another_table_is_refused(tmp_path):

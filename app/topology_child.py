@@ -1,0 +1,146 @@
+"""The window's side of a topology process (app.topology_process): start it, follow it in a
+thread of its own, hand its result over, and stop it.
+
+The window starts it as soon as the build process has written the table's cache entry, while
+the window itself still loads that table and makes the slider's cursor (app.worker.load_job);
+the topology job then takes it over (`hand_to`) and waits for its result (`parts`). Until taken
+over it stops with the load (the load's cancel: a cancelled or superseded open), after that
+with the topology job (a newer open, the window closed); `stop` ends it in any case. The
+result comes once the child has written its hand-over file: the child then goes on rewriting
+the cache entry with the signatures, followed by the same thread and stopped the same way,
+while the window already shows the topology. The scratch folder with the hand-over file is
+removed once the child has ended and its result was read (or is no longer wanted).
+"""
+
+from __future__ import annotations
+
+import queue
+import threading
+import time
+from pathlib import Path
+
+from app.child_process import POLL_SECONDS, CancelFlag, run_in_child, scratch
+from app.topology_file import TopologyParts, read_topology
+from app.topology_process import HANDED_OVER, NAME, topology_in_child
+from core.complex import AlphaComplex
+from core.errors import Cancelled
+from core.progress import Progress
+
+
+def start_topology(ac: AlphaComplex, entry: Path | None, cancel: CancelFlag) -> TopologyChild:
+    """A topology process of ac's table: from its cache `entry` when that file exists (then
+    rewritten with the signatures), else from a temporary copy of ac."""
+    if entry is not None and entry.is_file():
+        return TopologyChild(entry, cancel)
+    return TopologyChild(None, cancel, copy=ac)
+
+
+class TopologyChild:
+    """One topology process of a table and the thread that follows it (started at once).
+
+    The table is the cache entry `entry` (rewritten with the signatures after the hand-over),
+    or, given `copy` instead, a temporary copy of that complex (nothing is rewritten). It is
+    stopped soon after `cancel` is set (until `hand_to` another) or `stop` is called.
+    """
+
+    def __init__(self, entry: Path | None, cancel: CancelFlag,
+                 copy: AlphaComplex | None = None) -> None:
+        """Start the thread, which starts the process; exactly one of entry and copy."""
+        if (entry is None) == (copy is None):
+            raise ValueError("a topology process reads either a cache entry or a copy")
+        self.started = time.perf_counter()  # when the pass began (the topology's seconds)
+        self._lock = threading.Lock()
+        self._flags: list[CancelFlag] = [cancel]
+        self._stopped = False
+        self._handed = threading.Event()  # the hand-over file is written, or the child ended
+        self._consumed = threading.Event()  # parts() is done with the hand-over file
+        self._reading = threading.Lock()  # held while parts() reads the file
+        self._gone = False  # the scratch folder is (being) removed
+        self._stages: queue.SimpleQueue[tuple[float, str]] = queue.SimpleQueue()
+        self._target: Path | None = None
+        self._written: Path | None = None
+        self._error: BaseException | None = None
+        self._thread = threading.Thread(target=self._follow, args=(entry, copy),
+                                        name="alphascoop-topology-follower", daemon=True)
+        self._thread.start()
+
+    def is_set(self) -> bool:
+        """True once the process is to stop (the CancelFlag run_in_child watches)."""
+        with self._lock:
+            return self._stopped or any(flag.is_set() for flag in self._flags)
+
+    def hand_to(self, cancel: CancelFlag) -> bool:
+        """From now on stop with `cancel` only; False (nothing changed) when the process was
+        already told to stop."""
+        with self._lock:
+            if self._stopped or any(flag.is_set() for flag in self._flags):
+                return False
+            self._flags = [cancel]
+            return True
+
+    def stop(self) -> None:
+        """Kill the process (if it still runs) and wait until its thread and folder are gone."""
+        with self._lock:
+            self._stopped = True
+        self._thread.join()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        """Wait until the process ended (its cache rewrite included) and its folder is gone;
+        False on timeout. Its result must have been read, or the process stopped."""
+        self._thread.join(timeout)
+        return not self._thread.is_alive()
+
+    def parts(self, ac: AlphaComplex, progress: Progress) -> TopologyParts:
+        """The topology the process found for ac's table, as soon as its hand-over file is
+        written (app.topology_file, checked against ac's table); its stages are relayed to
+        progress meanwhile. Raises Cancelled when it was stopped, and its errors."""
+        try:
+            while not self._handed.wait(POLL_SECONDS):
+                self._relay(progress)
+            self._relay(progress)
+            with self._reading:
+                if self._written is None or self._gone or self.is_set():
+                    raise self._error or Cancelled("topology cancelled")
+                return read_topology(self._written, ac)
+        except BaseException:
+            self.stop()  # no process and no folder left behind a failed or cancelled pass
+            raise
+        finally:
+            self._consumed.set()
+
+    def _relay(self, progress: Progress) -> None:
+        """Pass the stages the child reported since the last call on to progress."""
+        while True:
+            try:
+                progress(*self._stages.get_nowait())
+            except queue.Empty:
+                return
+
+    def _note(self, fraction: float, stage: str) -> None:
+        """The child's progress (follower thread): queue it for parts(); at HANDED_OVER the
+        result is ready."""
+        self._stages.put((fraction, stage))
+        if stage == HANDED_OVER:
+            self._written = self._target
+            self._handed.set()
+
+    def _follow(self, entry: Path | None, copy: AlphaComplex | None) -> None:
+        """Thread body: run the process to its end (or until stopped), then keep its folder
+        until the result was read or is no longer wanted."""
+        with scratch(f"{NAME}-") as folder:
+            try:
+                table = entry
+                if copy is not None:
+                    table = Path(folder) / "table.npz"
+                    copy.save(table)
+                self._target = Path(folder) / "topology.npz"
+                run_in_child(topology_in_child, (str(table), copy is None, str(self._target)),
+                             self._note, self, NAME)
+            except BaseException as error:  # handed to parts(); a failed rewrite is dropped
+                self._error = error
+            finally:
+                self._handed.set()
+                while not self._consumed.wait(POLL_SECONDS) and not self.is_set():
+                    pass
+                with self._reading:
+                    self._gone = True
