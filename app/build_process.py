@@ -45,7 +45,7 @@ class ChildRunner:
                  on_saved: Callable[[Path, int], None] | None = None) -> None:
         """cancel: set it (from any thread) to stop the build; Cancelled is then raised.
         on_saved(entry, n_points): called once the child wrote a table without signatures
-        to its cache entry, before it is loaded here."""
+        to its cache entry, before it is loaded here (`opening_alpha` is set by then)."""
         self.cancel = cancel
         self.on_saved = on_saved
         #: The quick opening alpha (core.opening.opening_alpha_of) of the table this runner
@@ -73,12 +73,12 @@ class ChildRunner:
                    "backend": request.backend}
             answer = json.loads(run_in_child(build_in_child, (str(source), str(target), job),
                                              report, self.cancel, "alphascoop-build"))
+            self.opening_alpha = answer["opening_alpha"]
             if (self.on_saved is not None and not request.signatures
                     and answer["table"] == str(request.save_to)):
                 self.on_saved(Path(answer["table"]), len(request.points))
             report(1.0, "loading the table")
             ac = AlphaComplex.load(answer["table"])
-            self.opening_alpha = answer["opening_alpha"]
             return ac
 
 
