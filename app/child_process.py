@@ -1,11 +1,12 @@
 """Run a long pass in a spawned child process that Cancel kills at once and that never holds
 the window's GIL (the build: app.build_process; the topology: app.topology_process).
 
-The child runs `work(*args, progress)` and answers through a pipe: ("progress", fraction,
-stage), then ("done", text) or ("error", class name, message). Its files live in a temporary
-folder named after the window's pid (`scratch`), so a window that was killed leaves folders
-the next window can recognise and remove (`remove_orphans`); the child also exits by itself
-when its window is gone.
+The child runs `work(*args, progress)` (or `work(*args, progress, hand_over)`, see
+run_in_child) and answers through a pipe: ("progress", fraction, stage), ("handed", text)
+for each hand_over(text), then ("done", text) or ("error", class name, message). Its files
+live in a temporary folder named after the window's pid (`scratch`), so a window that was
+killed leaves folders the next window can recognise and remove (`remove_orphans`); the child
+also exits by itself when its window is gone.
 """
 
 from __future__ import annotations
@@ -104,18 +105,24 @@ def _alive(pid: int) -> bool:
 
 
 def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
-                 cancel: CancelFlag, name: str) -> str:
+                 cancel: CancelFlag, name: str,
+                 handed: Callable[[str], None] | None = None) -> str:
     """Run work(*args, progress) in a spawned process; the text it returned. Its errors are
     raised here as the same core.errors class (MemoryError as MemoryError); Cancelled as
-    soon as `cancel` is set (the child is killed)."""
+    soon as `cancel` is set (the child is killed).
+
+    With `handed`, work gets a third callable, hand_over(text), to pass a result before it
+    is done (a file it has finished writing, say): handed(text) runs here as soon as it
+    comes, while the child goes on; its errors stop the child too."""
     context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
     receiver, sender = context.Pipe(duplex=False)
-    child = context.Process(target=child_main, args=(work, args, sender, os.getpid()),
+    child = context.Process(target=child_main,
+                            args=(work, args, sender, os.getpid(), handed is not None),
                             name=name, daemon=True)
     child.start()
     sender.close()
     try:
-        return _follow(child, receiver, progress, cancel)
+        return _follow(child, receiver, progress, cancel, handed)
     finally:
         if child.is_alive():
             child.kill()
@@ -123,7 +130,8 @@ def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
         receiver.close()
 
 
-def _follow(child, receiver: Connection, progress: Progress, cancel: CancelFlag) -> str:
+def _follow(child, receiver: Connection, progress: Progress, cancel: CancelFlag,
+            handed: Callable[[str], None] | None = None) -> str:
     """Relay the child's messages until it is done; Cancelled as soon as cancel is set."""
     while True:
         if cancel.is_set():
@@ -137,6 +145,8 @@ def _follow(child, receiver: Connection, progress: Progress, cancel: CancelFlag)
         kind, *rest = message
         if kind == "progress":
             progress(*rest)
+        elif kind == "handed" and handed is not None:
+            handed(rest[0])
         elif kind == "done":
             return rest[0]
         elif kind == "error":
@@ -158,12 +168,17 @@ def _error(name: str, text: str) -> Exception:
     return errors.AlphaScoopError(text)
 
 
-def child_main(work: Callable[..., str], args: tuple, sender: Connection, parent: int) -> None:
-    """Body of a child process: run work, send its result or its error as one line."""
+def child_main(work: Callable[..., str], args: tuple, sender: Connection, parent: int,
+               hands_over: bool = False) -> None:
+    """Body of a child process: run work (given hand_over too when `hands_over`), send its
+    result or its error as one line."""
     _show_name(multiprocessing.current_process().name)
     threading.Thread(target=_exit_with_parent, args=(parent,), daemon=True).start()
+    callbacks: list[Callable] = [lambda f, s: sender.send(("progress", f, s))]
+    if hands_over:
+        callbacks.append(lambda text: sender.send(("handed", text)))
     try:
-        sender.send(("done", work(*args, lambda f, s: sender.send(("progress", f, s)))))
+        sender.send(("done", work(*args, *callbacks)))
     except errors.AlphaScoopError as error:
         sender.send(("error", type(error).__name__, str(error)))
     except MemoryError:

@@ -10,7 +10,6 @@ from pathlib import Path
 
 import numpy as np
 
-from app.build_process import ChildRunner
 from app.camera import Z_UP, ViewFrame, frame_for
 from app.topology_child import TopologyChild
 from app.topology_file import TopologyParts, attach
@@ -153,11 +152,12 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     molecule, numbers = _molecule(ac, pointset)
     complete = ac.has_signatures
     # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
-    known = runner.opening_alpha if isinstance(runner, ChildRunner) else None
+    handed = runner.handed_over(ac)  # what a build process found beside the table
+    known = handed.opening_alpha
     alpha = 0.0 if molecule is not None else (
         float(ac.default_alpha()) if complete else quick_alpha(ac) if known is None else known)
     progress(INDEX_START, "indexing for the slider")
-    cursor = ac.cursor()
+    cursor = handed.cursor or ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     dataset = Dataset(
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=None, default_alpha=alpha,

@@ -44,9 +44,8 @@ class TopologyChild:
     """
 
     def __init__(self, entry: Path | None, cancel: CancelFlag,
-                 copy: AlphaComplex | None = None, opening: float | None = None) -> None:
-        """Start the thread, which starts the process; exactly one of entry and copy.
-        `opening`: the table's opening alpha when known (the build process found it)."""
+                 copy: AlphaComplex | None = None) -> None:
+        """Start the thread, which starts the process; exactly one of entry and copy."""
         if (entry is None) == (copy is None):
             raise ValueError("a topology process reads either a cache entry or a copy")
         self.started = time.perf_counter()  # when the pass began (the topology's seconds)
@@ -61,7 +60,7 @@ class TopologyChild:
         self._target: Path | None = None
         self._written: Path | None = None
         self._error: BaseException | None = None
-        self._thread = threading.Thread(target=self._follow, args=(entry, copy, opening),
+        self._thread = threading.Thread(target=self._follow, args=(entry, copy),
                                         name="alphascoop-topology-follower", daemon=True)
         self._thread.start()
 
@@ -125,8 +124,7 @@ class TopologyChild:
             self._written = self._target
             self._handed.set()
 
-    def _follow(self, entry: Path | None, copy: AlphaComplex | None,
-                opening: float | None) -> None:
+    def _follow(self, entry: Path | None, copy: AlphaComplex | None) -> None:
         """Thread body: run the process to its end (or until stopped), then keep its folder
         until the result was read or is no longer wanted."""
         with scratch(f"{NAME}-") as folder:
@@ -136,8 +134,7 @@ class TopologyChild:
                     table = Path(folder) / "table.npz"
                     copy.save(table)
                 self._target = Path(folder) / "topology.npz"
-                run_in_child(topology_in_child,
-                             (str(table), copy is None, str(self._target), opening),
+                run_in_child(topology_in_child, (str(table), copy is None, str(self._target)),
                              self._note, self, NAME)
             except BaseException as error:  # handed to parts(); a failed rewrite is dropped
                 self._error = error

@@ -12,9 +12,7 @@ atomic (core.atomic), so a child killed in the middle of it (a newer open, the w
 leaves the old entry as it was. (Chosen over a file of the topology beside the entry,
 which the cache's reads, pruning and checks of which table it belongs to would have to treat
 as one with the entry.) The window's side (starting it early, following it, Cancel):
-app.topology_child. The table's opening alpha, which the build process already found
-(app.build_process), is handed in and not searched again (the same function of the same
-table: the same value).
+app.topology_child.
 """
 
 from __future__ import annotations
@@ -25,7 +23,6 @@ from app.topology_file import write_topology
 from core.cache import save_entry
 from core.complex import AlphaComplex
 from core.progress import Progress
-from core.signatures import compute_signatures
 
 IN_THREAD_BELOW = 20_000  # points: below this the pass takes well under a second in a thread
 NAME = "alphascoop-topology"  # the process's name (ps, top)
@@ -33,18 +30,14 @@ HANDED_OVER = "topology: handed over"  # the stage the child reports once its fi
 SAVING = "topology: saving the signatures to the cache"  # after HANDED_OVER, when it rewrites
 
 
-def topology_in_child(table: str, rewrite: bool, target: str, opening: float | None,
-                      progress: Progress) -> str:
-    """Body of the topology process: load the table, compute its topology (with the table's
-    `opening` alpha when known), write it to target and report HANDED_OVER; then, when
-    `rewrite`, rewrite the cache entry `table` with the signatures. Returns target."""
+def topology_in_child(table: str, rewrite: bool, target: str, progress: Progress) -> str:
+    """Body of the topology process: load the table, compute its topology, write it to
+    target and report HANDED_OVER; then, when `rewrite`, rewrite the cache entry `table` with
+    the signatures. Returns target."""
     progress(0.0, "topology: loading the table")
     ac = AlphaComplex.load(table)
     progress(0.2, "topology: signatures")
-    if opening is None:
-        ac.signatures()
-    else:
-        ac = _with_signatures(ac, opening)
+    ac.signatures()
     progress(0.8, "topology: persistence")
     write_topology(target, ac, rewrite)
     progress(0.9, HANDED_OVER)
@@ -52,13 +45,3 @@ def topology_in_child(table: str, rewrite: bool, target: str, opening: float | N
         progress(0.95, SAVING)
         save_entry(ac, Path(table))
     return target
-
-
-def _with_signatures(ac: AlphaComplex, opening: float) -> AlphaComplex:
-    """ac's table with its topology and its signatures computed with the known opening alpha
-    of this table (core.opening.opening_alpha_of)."""
-    topology = ac.topology()
-    signatures = compute_signatures(ac.index, ac.points, topology, opening_alpha=opening)
-    return AlphaComplex(ac.points, ac.input_index, ac.index, ac.frame, ac.ambient_dim, ac.mode,
-                        ac.weights, build_info=ac.build_info, topology=topology,
-                        signatures=signatures)

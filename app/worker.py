@@ -39,7 +39,7 @@ def load_job(path: str | Path, mode: Mode | None = None,
 
         def start_topology(entry: Path, n_points: int) -> None:
             if n_points >= topology_process.IN_THREAD_BELOW:
-                started.append(TopologyChild(entry, cancel, opening=runner.opening_alpha))
+                started.append(TopologyChild(entry, cancel))
 
         runner = build_process.ChildRunner(cancel, on_saved=start_topology)
         try:

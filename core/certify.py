@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .cell_pass import CellSpheres, first_pass
-from .delaunay import Triangulation, regular_triangulate, sort_rows
+from .delaunay import Triangulation, interior_facets, regular_triangulate, sort_rows
 from .errors import InputError
 from .predicates import in_sphere, orientations
 from .rewrap import grow, rewrap, sound
@@ -33,24 +33,6 @@ class Certified:
     uncertified: int  # facets left unchecked or unrepaired (flat cells, stuck 3D flips)
     spheres: CellSpheres | None = None  # the table's cell spheres, when no cell changed
     scale: float = 1.0  # the points were divided by this (core.build: a power of two)
-
-
-def _interior_facets(cells: np.ndarray, nbs: np.ndarray, mirror: np.ndarray | None = None
-                     ) -> tuple[np.ndarray, ...]:
-    """Every interior facet once, (t, i, u, j): cell t's facet opposite its vertex i is cell
-    u's opposite its vertex j (t < u; t ascending). j is read from `mirror` (the
-    neighbours' columns that point back, Triangulation.mirror) where given."""
-    width = nbs.shape[1]
-    slots = np.flatnonzero(nbs > np.arange(len(cells))[:, None])
-    t, i = np.divmod(slots, width)
-    u = np.take(nbs, slots)
-    if mirror is not None:
-        return t, i, u, np.take(mirror, slots).astype(np.int64)
-    around = np.take(nbs, u, axis=0)
-    j = np.zeros(len(t), dtype=np.int64)
-    for c in range(width - 1, 0, -1):  # one compare per column, not a (n, w) argmax
-        j[around[:, c] == t] = c
-    return t, i, u, j
 
 
 def _folded(n: int, signs: np.ndarray, t, i, u, j) -> np.ndarray:
@@ -73,7 +55,7 @@ class _Mesh:
         self.nbs = tri.neighbors.astype(np.int64)
         self.alive = np.ones(len(self.cells), dtype=bool)
         self.mirror = tri.mirror  # valid until the first flip (peeling only cuts links)
-        self.first = _interior_facets(self.cells, self.nbs, self.mirror)  # first round's
+        self.first = interior_facets(self.nbs, self.mirror)  # first round's
         t, _, u, j = self.first
         shared = first_pass(points, self.cells, t, self.cells[u, j])
         self.spheres = shared.spheres
@@ -103,7 +85,7 @@ class _Mesh:
             self.touched[cut.any(axis=1)] = True
             self.nbs[cut] = -1
             self.alive[ids] = False
-            self.first = _interior_facets(self.cells, self.nbs, self.mirror)
+            self.first = interior_facets(self.nbs, self.mirror)
             self.side = None  # the facets changed
             self.bad = self.alive & ((self.signs == 0)
                                      | _folded(len(self.cells), self.signs, *self.first))

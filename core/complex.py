@@ -16,7 +16,7 @@ from .alpha import at_value, table_value, threshold
 from .arrays import readonly
 from .build import BuildInfo, build_complex
 from .classes import EXTERIOR, INTERIOR, REGULAR, SINGULAR
-from .cursor import ShapeCursor
+from .cursor import CursorOrders, ShapeCursor
 from .errors import InputError
 from .index import TableIndex
 from .locate import Locator, contains
@@ -161,10 +161,11 @@ class AlphaComplex:
         return AlphaShape(self.index, self.points, table_value(alpha, alpha2),
                           None if alpha2 is None else float(alpha2))
 
-    def cursor(self) -> ShapeCursor:
+    def cursor(self, orders: CursorOrders | None = None) -> ShapeCursor:
         """A ShapeCursor: shapes at one alpha after another, each step costing what changed
-        (the explorer's slider); building it sorts the table once more."""
-        return ShapeCursor(self.index, self.points)
+        (the explorer's slider); building it sorts the table once more, unless the
+        `orders` (core.cursor.cursor_orders of this table) were found already."""
+        return ShapeCursor(self.index, self.points, orders)
 
     def to_ambient(self, coords: np.ndarray) -> np.ndarray:
         """Map (k, dim) complex coordinates to the input space ((k, ambient_dim))."""
@@ -183,9 +184,10 @@ class AlphaComplex:
         storage.save(self, path)
 
     @classmethod
-    def load(cls, path: str | os.PathLike) -> AlphaComplex:
-        """Read a table written by `save`; FileFormatError if it is not one."""
-        saved = storage.load(path)
+    def load(cls, path: str | os.PathLike, *, verify: bool = True) -> AlphaComplex:
+        """Read a table written by `save`; FileFormatError if it is not one. verify=False
+        skips most checks: only for a file this program has just written (core.storage)."""
+        saved = storage.load(path, verify=verify)
         return cls(saved.points, saved.input_index, saved.index, saved.frame, saved.ambient_dim,
                    saved.mode, saved.weights, build_info=saved.build_info,
                    topology=saved.topology, signatures=saved.signatures)

@@ -9,14 +9,16 @@ gathers of answer rows), and a far jump is one sequential filter of a prefix.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 
 import numpy as np
 
 from .alpha import table_value, threshold
 from .arrays import readonly
+from .errors import InputError
 from .index import TableIndex, facing_out
-from .parallel import halves, place, select, together
+from .parallel import halves, place, select, take, together
 from .shape import AlphaShape, Known
 from .table import argsort_radii
 
@@ -47,8 +49,8 @@ class IntervalSet:
         than candidates are ignored); `rows_by_lo`: (m, width) int32 rows of the candidates
         in `by_lo` order."""
         self._by_lo = by_lo.astype(np.int32)
-        self._lo_sorted = np.take(lo, by_lo)
-        self._hi_by_lo = np.take(hi, by_lo)
+        self._lo_sorted = take(lo, by_lo)  # random gathers: in halves (core.parallel)
+        self._hi_by_lo = take(hi, by_lo)
         self._rank = np.full(len(lo), NOT_A_CANDIDATE, dtype=np.int32)
         self._rank[by_lo] = np.arange(len(by_lo), dtype=np.int32)
         self._by_hi, self._hi_sorted = by_hi, hi_sorted
@@ -193,15 +195,24 @@ class ShapeCursor:
     simplices joined their class, not by id.
     """
 
-    def __init__(self, index: TableIndex, points: np.ndarray) -> None:
+    def __init__(self, index: TableIndex, points: np.ndarray,
+                 orders: CursorOrders | None = None) -> None:
         """Over the table `index` of a complex with (m, dim) `points`: rank the REGULAR
         facets by (regular, interior) and every SINGULAR level by (enter, regular); the two
-        jobs run in two threads."""
+        jobs run in two threads. `orders`: those ranks already found for this table
+        (cursor_orders, by a build process beside its save), so only gathers remain."""
         self._index = index
         self._points = points
         index.facets_by_interior  # noqa: B018 (a cached property: made here, not in a thread)
-        singular = together(lambda: {k: _singular_set(index, k) for k in range(index.dim)})
-        self.regular = _regular_set(index)
+        if orders is None:
+            singular = together(lambda: {k: _singular_set(index, k, *_singular_orders(index, k))
+                                         for k in range(index.dim)})
+            self.regular = _regular_set(index, _regular_order(index))
+        else:
+            orders.check(index)
+            singular = together(lambda: {k: _singular_set(index, k, *orders.singular[k])
+                                         for k in range(index.dim)})
+            self.regular = _regular_set(index, orders.regular)
         self.singular: dict[int, IntervalSet] = singular()
         self.alpha: float | None = None
 
@@ -225,26 +236,86 @@ class ShapeCursor:
                           None if alpha2 is None else float(alpha2), known)
 
 
-def _regular_set(index: TableIndex) -> IntervalSet:
-    """The REGULAR facets: candidates ranked by regular, ended by interior."""
+@dataclass(frozen=True, eq=False)
+class CursorOrders:
+    """The sorts a ShapeCursor is built on (most of its set-up), apart from the cursor so a
+    build process can find them beside its save and hand them over with the table.
+
+    `regular`: (r,) int32 the REGULAR candidates (facets with regular < interior) by
+    ascending regular, ties by id; `singular[k]`: ((s_k,) int32 the SINGULAR candidates
+    (enter < regular) of level k by ascending enter, the same ids by ascending regular).
+    """
+
+    regular: np.ndarray
+    singular: tuple[tuple[np.ndarray, np.ndarray], ...]
+
+    def to_arrays(self) -> dict[str, np.ndarray]:
+        """The orders by name, for np.savez ('regular', 'enter_k', 'ended_k')."""
+        out = {"regular": self.regular}
+        for k, (by_enter, by_ended) in enumerate(self.singular):
+            out[f"enter_{k}"], out[f"ended_{k}"] = by_enter, by_ended
+        return out
+
+    @classmethod
+    def from_arrays(cls, arrays: Mapping[str, np.ndarray], dim: int) -> CursorOrders:
+        """The orders to_arrays gave, for a table of dimension dim (KeyError if one lacks)."""
+        return cls(arrays["regular"], tuple((arrays[f"enter_{k}"], arrays[f"ended_{k}"])
+                                            for k in range(dim)))
+
+    def check(self, index: TableIndex) -> None:
+        """InputError unless these are int32 id arrays of the right levels and lengths
+        (cheap: the ids' values are trusted, as orders this program found for the table)."""
+        facets = index.level(index.dim - 1)
+        wanted = [(self.regular, int(np.count_nonzero(facets.regular < facets.interior)))]
+        for k, pair in enumerate(self.singular):
+            level = index.level(k)
+            wanted += [(order, int(np.count_nonzero(level.enter < level.regular)))
+                       for order in pair]
+        if len(self.singular) != index.dim or not all(
+                isinstance(order, np.ndarray) and order.dtype == np.int32
+                and order.shape == (length,) for order, length in wanted):
+            raise InputError("cursor orders of another table")
+
+
+def cursor_orders(index: TableIndex) -> CursorOrders:
+    """The CursorOrders of the table `index`: what ShapeCursor would sort itself."""
+    return CursorOrders(_regular_order(index),
+                        tuple(_singular_orders(index, k) for k in range(index.dim)))
+
+
+def _regular_order(index: TableIndex) -> np.ndarray:
+    """(r,) int32 the REGULAR candidates (regular < interior) by ascending regular."""
     facets = index.level(index.dim - 1)
     by_regular = argsort_radii(facets.regular)
-    by_regular = by_regular[np.take(facets.interior, by_regular)
-                            > np.take(facets.regular, by_regular)]
-    return IntervalSet(facets.regular, facets.interior, by_regular,
-                       index.table.facet_interior_order, index.facets_by_interior[0],
-                       _oriented_rows(index, by_regular))
+    return by_regular[take(facets.interior, by_regular)
+                      > take(facets.regular, by_regular)].astype(np.int32)
 
 
-def _singular_set(index: TableIndex, k: int) -> IntervalSet:
-    """The SINGULAR k-simplices: candidates (enter < regular) ranked by enter, ended by regular."""
+def _singular_orders(index: TableIndex, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """(s,) int32 the SINGULAR k-candidates (enter < regular) by ascending enter, and by
+    ascending regular."""
     level = index.level(k)
     by_enter = np.flatnonzero(level.enter < level.regular)
     if k == 0:  # levels k >= 1 are sorted by enter; weighted vertices keep the points' order
         by_enter = by_enter[argsort_radii(np.take(level.enter, by_enter))]
     by_ended = by_enter[argsort_radii(np.take(level.regular, by_enter))]
+    return by_enter.astype(np.int32), by_ended.astype(np.int32)
+
+
+def _regular_set(index: TableIndex, by_regular: np.ndarray) -> IntervalSet:
+    """The REGULAR facets: candidates ranked by regular, ended by interior."""
+    facets = index.level(index.dim - 1)
+    return IntervalSet(facets.regular, facets.interior, by_regular,
+                       index.table.facet_interior_order, index.facets_by_interior[0],
+                       _oriented_rows(index, by_regular))
+
+
+def _singular_set(index: TableIndex, k: int, by_enter: np.ndarray,
+                  by_ended: np.ndarray) -> IntervalSet:
+    """The SINGULAR k-simplices: candidates ranked by enter, ended by regular."""
+    level = index.level(k)
     return IntervalSet(level.enter, level.regular, by_enter, by_ended,
-                       np.take(level.regular, by_ended), np.take(level.simplices, by_enter, 0))
+                       take(level.regular, by_ended), take(level.simplices, by_enter))
 
 
 def _oriented_rows(index: TableIndex, ids: np.ndarray) -> np.ndarray:
@@ -253,7 +324,7 @@ def _oriented_rows(index: TableIndex, ids: np.ndarray) -> np.ndarray:
     In its REGULAR interval a facet bounds exactly one cell: the one entered first (cells
     are sorted by enter), which is cell 1 when that is real and lower.
     """
-    rows = np.take(index.simplices(index.dim - 1), ids, 0)
-    pairs = index.facet_cells()[ids]
+    rows = take(index.simplices(index.dim - 1), ids)
+    pairs = take(index.facet_cells(), ids)
     inside_second = (pairs[:, 1] >= 0) & (pairs[:, 1] < pairs[:, 0])
-    return facing_out(rows, np.take(index.table.facet_flip, ids), inside_second, rows)
+    return facing_out(rows, take(index.table.facet_flip, ids), inside_second, rows)

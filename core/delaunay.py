@@ -10,6 +10,7 @@ import numpy as np
 from scipy.spatial import ConvexHull, Delaunay, QhullError, cKDTree
 
 from .errors import InputError
+from .parallel import slot_of
 from .tolerances import LOWER_FACET_COS
 
 _NETWORKS = {3: ((0, 1), (1, 2), (0, 1)), 4: ((0, 1), (2, 3), (0, 2), (1, 3), (1, 2))}
@@ -47,6 +48,21 @@ def mirror_fits(neighbors: np.ndarray, mirror: np.ndarray, samples: int = 512) -
         return False
     cell = np.broadcast_to(rows[:, None], nbr.shape)
     return bool(np.all(neighbors[nbr[inner], back[inner]] == cell[inner]))
+
+
+def interior_facets(neighbors: np.ndarray, mirror: np.ndarray | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Every interior facet once, (t, i, u, j) (n,) int64: cell t's facet opposite its
+    vertex i is cell u's opposite its vertex j (t < u, t ascending), from a (t, d+1)
+    neighbour table (-1 = hull). j is read from `mirror` (the neighbours' columns that
+    point back, Triangulation.mirror) where given, else found in u's row (one compare per
+    column, core.parallel.slot_of). Shared by the backend check and the certification."""
+    slots = np.flatnonzero(neighbors > np.arange(len(neighbors), dtype=neighbors.dtype)[:, None])
+    t, i = np.divmod(slots, neighbors.shape[1])
+    u = np.take(neighbors, slots).astype(np.int64)
+    if mirror is not None:
+        return t, i, u, np.take(mirror, slots).astype(np.int64)
+    return t, i, u, slot_of(neighbors, u, t)
 
 
 def sort_rows(cells: np.ndarray, neighbors: np.ndarray) -> None:

@@ -10,15 +10,15 @@ other points, so it was removed and built again). Every caller (window, `alphasc
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Literal
+from typing import Literal, Protocol
 
 import numpy as np
 
 from .cache import entry_exists, entry_path, read_entry, save_entry
 from .complex import AlphaComplex
+from .cursor import ShapeCursor
 from .modes import Mode
 from .points import as_points
 from .progress import Progress
@@ -45,6 +45,11 @@ class BuildRequest:
 
     def run(self, progress: Progress | None = None) -> tuple[AlphaComplex, Path | None]:
         """Build here: (the complex, the entry it was saved to, or None when not saved)."""
+        ac = self.build(progress)
+        return ac, self.save(ac, progress)
+
+    def build(self, progress: Progress | None = None) -> AlphaComplex:
+        """The complex (with its signatures when asked), not saved; progress up to SAVE_START."""
         def step(fraction: float, stage: str) -> None:
             if progress is not None:
                 progress(fraction, stage)
@@ -57,19 +62,56 @@ class BuildRequest:
         if self.signatures:
             step(TABLE_SHARE, "topology")
             ac.signatures()
+        return ac
+
+    def save(self, ac: AlphaComplex, progress: Progress | None = None) -> Path | None:
+        """Save the built `ac` to save_to: the entry written, None when not saved (no entry
+        asked, or the cache cannot be written)."""
         if self.save_to is None:
-            return ac, None
-        step(SAVE_START, "saving the table")
-        return ac, save_entry(ac, self.save_to)
+            return None
+        if progress is not None:
+            progress(SAVE_START, "saving the table")
+        return save_entry(ac, self.save_to)
 
 
-#: runner(request, progress) -> the complex of request, saved to request.save_to if it can be.
-Runner = Callable[[BuildRequest, Progress | None], AlphaComplex]
+@dataclass(frozen=True)
+class HandOver:
+    """What a runner found beside the complex it built, so that its caller need not: the
+    quick opening alpha (core.opening.opening_alpha_of) and the slider's cursor; None for
+    what it did not find."""
+
+    opening_alpha: float | None = None
+    cursor: ShapeCursor | None = None
 
 
-def run_here(request: BuildRequest, progress: Progress | None = None) -> AlphaComplex:
-    """The default runner: build in the calling thread (Cancelled raised by progress stops it)."""
-    return request.run(progress)[0]
+class Runner(Protocol):
+    """Builds the complex of a request for `obtain`: in this thread (run_here) or elsewhere
+    (the window's build process, app.build_process.ChildRunner)."""
+
+    def __call__(self, request: BuildRequest, progress: Progress | None = None
+                 ) -> AlphaComplex:
+        """The complex of request, saved to request.save_to if it can be; Cancelled raised
+        by progress stops it."""
+
+    def handed_over(self, ac: AlphaComplex) -> HandOver:
+        """What this runner found beside `ac` while building it (HandOver() for a complex
+        it did not build last)."""
+
+
+class BuildHere:
+    """The default runner: builds in the calling thread and finds nothing beside."""
+
+    def __call__(self, request: BuildRequest, progress: Progress | None = None
+                 ) -> AlphaComplex:
+        """The complex of request, saved to request.save_to if it can be."""
+        return request.run(progress)[0]
+
+    def handed_over(self, ac: AlphaComplex) -> HandOver:
+        """Nothing: the caller finds the opening alpha and makes the cursor itself."""
+        return HandOver()
+
+
+run_here = BuildHere()
 
 
 @dataclass(frozen=True, eq=False)

@@ -40,6 +40,19 @@ def together(job: Callable[[], T]) -> Callable[[], T]:
     return _pool("jobs").submit(job).result
 
 
+def both(first: Callable[[], T], second: Callable[[], T]) -> tuple[T, T]:
+    """(first(), second()) run at once, second in the passes' helper thread (both in this
+    thread when it is that helper: waiting on itself would deadlock)."""
+    if _inside(PASSES):
+        return first(), second()
+    other = _pool(PASSES).submit(second)
+    try:
+        mine = first()
+    finally:
+        theirs = other.result()
+    return mine, theirs
+
+
 def _inside(role: str) -> bool:
     """Whether this thread is `role`'s helper (waiting on itself would deadlock)."""
     return threading.current_thread().name.startswith(f"{HELPER}-{role}")

@@ -68,11 +68,9 @@ def level_columns(index: TableIndex) -> tuple[tuple[np.ndarray, np.ndarray, np.n
                  for level in (index.level(k) for k in range(index.dim + 1)))
 
 
-def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology,
-                       opening_alpha: float | None = None) -> Signatures:
+def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology) -> Signatures:
     """Signatures over the whole spectrum of the table `index` of a complex with (m, dim)
-    `points`, from its `topology`; `opening_alpha`, when given, is this table's
-    opening_alpha_of found before (the window's build process finds it), not searched again."""
+    `points`, from its `topology`."""
     dim = index.dim
     alphas = np.asarray(index.spectrum(), dtype=np.float64)
     cell_enter = np.asarray(index.level(dim).enter, dtype=np.float64)
@@ -88,8 +86,7 @@ def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology
         solid_components=readonly(solids),
         measure=readonly(measure[cells_in]),
         boundary_measure=readonly(boundary[cells_in]),
-        opening_alpha=(opening_alpha_of(index, len(points)) if opening_alpha is None
-                       else float(opening_alpha)),
+        opening_alpha=opening_alpha_of(index, len(points)),
         intervals=level_columns(index),
     )
 

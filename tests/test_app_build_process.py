@@ -12,9 +12,10 @@ from child_cancel import cancel_at
 
 from app import build_process, child_process
 from core import AlphaComplex
-from core.cache import entry_path
+from core.cache import entry_path, read_entry
 from core.errors import AlphaScoopError, Cancelled, InputError
-from core.obtain import obtain
+from core.modes import Mode
+from core.obtain import BuildRequest, HandOver, obtain
 from core.opening import opening_alpha_of
 
 
@@ -112,11 +113,14 @@ def test_the_child_finds_the_quick_opening_alpha_while_it_saves(in_process):
     runner = build_process.ChildRunner(threading.Event())
     ac = obtain(points, runner=runner).complex
     assert not ac.has_signatures
-    assert runner.opening_alpha == opening_alpha_of(ac.index, len(points))
-    assert runner.opening_alpha == AlphaComplex.from_points(points).default_alpha()
+    assert runner.handed_over(ac).opening_alpha == opening_alpha_of(ac.index, len(points))
+    assert runner.handed_over(ac).opening_alpha == AlphaComplex.from_points(
+        points).default_alpha()
     with_signatures = build_process.ChildRunner(threading.Event())
-    obtain(points + 1.0, signatures=True, runner=with_signatures)
-    assert with_signatures.opening_alpha is None  # the signatures hold it
+    built = obtain(points + 1.0, signatures=True, runner=with_signatures).complex
+    assert with_signatures.handed_over(built).opening_alpha is None  # the signatures hold it
+    assert with_signatures.handed_over(built).cursor is not None
+    assert runner.handed_over(built) == HandOver()  # not the complex it built
 
 
 
@@ -133,8 +137,75 @@ def test_an_opening_alpha_the_child_cannot_find_is_left_to_the_window(tmp_path, 
     points = np.random.default_rng(6).random((3000, 3))
     np.save(tmp_path / "points.npy", points)
     job = {"mode": None, "signatures": False, "save_to": None, "backend": None}
+    handed: list[dict] = []
     answer = json.loads(build_process.build_in_child(
-        str(tmp_path / "points.npy"), str(tmp_path / "table.npz"), job, never))
-    assert answer == {"table": str(tmp_path / "table.npz"), "opening_alpha": None}
-    assert len(AlphaComplex.load(answer["table"]).simplices(3)) == len(
+        str(tmp_path / "points.npy"), str(tmp_path / "table.npz"), job, never,
+        lambda text: handed.append(json.loads(text))))
+    assert answer == {"opening_alpha": None}
+    assert handed == [{"table": str(tmp_path / "table.npz"),
+                       "orders": str(tmp_path / build_process.ORDERS_NAME)}]
+    assert len(AlphaComplex.load(handed[0]["table"]).simplices(3)) == len(
         AlphaComplex.from_points(points).simplices(3))
+
+
+def test_the_handed_over_cursor_equals_the_tables_own(in_process):
+    """The cursor the runner made from the child's sort orders hands out the same shapes,
+    row for row, as the loaded table's own cursor."""
+    points = np.random.default_rng(7).random((3000, 3))
+    runner = build_process.ChildRunner(threading.Event())
+    ac = obtain(points, runner=runner).complex
+    handed = runner.handed_over(ac).cursor
+    own = ac.cursor()
+    spectrum = ac.spectrum()
+    for alpha in spectrum[np.linspace(0, len(spectrum) - 1, 15).astype(int)]:
+        mine, theirs = own.move(alpha), handed.move(alpha)
+        np.testing.assert_array_equal(mine.regular_facets, theirs.regular_facets)
+        for k in range(3):
+            np.testing.assert_array_equal(mine.singular(k), theirs.singular(k))
+
+
+def test_a_child_killed_while_it_saves_leaves_no_partial_entry(in_process):
+    """Cancel a moment after the child starts writing the table (a few hundred ms of
+    writes at this size): the entry is absent or whole (atomic write), never damaged, and
+    the next lookup removes the killed writer's temporary file."""
+    points = np.random.default_rng(8).random((120_000, 3))
+    cancel = threading.Event()
+
+    def progress(_fraction: float, stage: str) -> None:
+        if stage == "saving the table":
+            threading.Timer(0.05, cancel.set).start()
+
+    with pytest.raises(Cancelled):
+        child_obtain(points, progress, cancel)
+    entry = entry_path(points)
+    if entry.exists():  # it finished the rename before the kill: a whole table
+        assert len(AlphaComplex.load(entry).points) == len(points)
+    assert read_entry(entry, len(points), Mode())[1] is False  # never a damaged entry
+    left = [path.name for path in entry.parent.iterdir()] if entry.parent.exists() else []
+    assert left in ([], [entry.name])
+    assert multiprocessing.active_children() == []
+
+
+def test_a_child_that_dies_after_the_hand_over_leaves_the_table(tmp_path, monkeypatch):
+    """The table and orders were handed over, then the child died (out of memory, say):
+    the runner keeps the table and its cursor and leaves the opening alpha to the window."""
+    import json
+
+    points = np.random.default_rng(9).random((3000, 3))
+    np.save(tmp_path / "points.npy", points)
+    job = {"mode": None, "signatures": False, "save_to": None, "backend": None}
+    handed: list[str] = []
+    build_process.build_in_child(str(tmp_path / "points.npy"), str(tmp_path / "table.npz"),
+                                 job, never, handed.append)
+
+    def dies_after_handing_over(_work, _args, _progress, _cancel, _name, hand) -> str:
+        hand(handed[0])
+        raise AlphaScoopError("the background process stopped without a result")
+
+    monkeypatch.setattr(build_process, "IN_THREAD_BELOW", 0)
+    monkeypatch.setattr(build_process, "run_in_child", dies_after_handing_over)
+    runner = build_process.ChildRunner(threading.Event())
+    ac = runner(BuildRequest(points))
+    assert len(ac.points) == 3000 and json.loads(handed[0])["orders"] is not None
+    assert runner.handed_over(ac).opening_alpha is None
+    assert runner.handed_over(ac).cursor is not None

@@ -136,33 +136,12 @@ def test_the_child_hands_over_before_it_rewrites_the_entry(tmp_path):
     def progress(_fraction: float, stage: str) -> None:
         seen.append((stage, target.is_file(), load_cached(points).has_signatures))
 
-    topology_process.topology_in_child(str(entry), True, str(target), None, progress)
+    topology_process.topology_in_child(str(entry), True, str(target), progress)
     stages = [stage for stage, _, _ in seen]
     handed, saving = stages.index(topology_process.HANDED_OVER), stages.index(
         topology_process.SAVING)
     assert handed < saving and seen[handed][1:] == (True, False)
     assert load_cached(points).has_signatures
-
-
-@pytest.mark.parametrize("dim", [3, 2])
-def test_a_known_opening_alpha_is_not_searched_again(tmp_path, monkeypatch, dim):
-    """Given the table's opening alpha (the build process found it), the child's body (run
-    here) does not search it again, and hands over the same arrays as without it."""
-    import core.signatures
-
-    points = blobs(3000, dim, seed=15)
-    obtained = obtain(points)
-    opening = obtained.complex.signatures().opening_alpha  # what the build process finds
-
-    def searched(*_args):
-        raise AssertionError("the opening alpha was searched again")
-
-    monkeypatch.setattr(core.signatures, "opening_alpha_of", searched)
-    target = tmp_path / "topology.npz"
-    topology_process.topology_in_child(str(obtained.entry), False, str(target), opening, never)
-    monkeypatch.undo()
-    assert_same_topology(read_topology(target, obtained.complex),
-                         AlphaComplex.from_points(points))
 
 
 def test_killing_the_child_while_it_rewrites_the_entry_leaves_a_whole_entry():

@@ -9,6 +9,8 @@ from reference import data_dir, read_scan
 
 import core.backends as backends
 from benchmarks.datasets import noisy_torus
+from core import parallel
+from core.backends import facets
 from core.backends.certify import why_not_delaunay
 from core.backends.facets import neighbours
 from core.delaunay import triangulate
@@ -165,6 +167,68 @@ def test_neighbours_from_cells_equal_qhulls(d: int, n_points: int | None) -> Non
 def test_neighbours_report_a_facet_in_three_cells() -> None:
     cells = np.array([[0, 1, 2], [0, 1, 3], [0, 1, 4]], dtype=np.int32)
     assert not neighbours(cells, 5)[1]
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_neighbours_matched_on_two_threads_equal_qhulls(d: int, monkeypatch) -> None:
+    """The long-input path: keys packed in halves, split at a sampled median and sorted on
+    two threads (thresholds lowered so a small set takes it); a repeated cell is caught."""
+    monkeypatch.setattr(parallel, "PARALLEL_ABOVE", 64)
+    monkeypatch.setattr(facets, "PARALLEL_ABOVE", 64)
+    points = prepared(np.random.default_rng(d).uniform(size=(2000, d)))
+    ref = triangulate(points)
+    nbrs, mirror, manifold = facets.paired(ref.cells, len(points))
+    assert manifold and np.array_equal(nbrs, ref.neighbors)
+    inner = nbrs >= 0
+    rows = np.broadcast_to(np.arange(len(nbrs))[:, None], nbrs.shape)
+    assert np.array_equal(inner, mirror >= 0)
+    assert np.array_equal(nbrs[nbrs[inner], mirror[inner]], rows[inner])
+    inner_cell = int(np.flatnonzero(inner.all(axis=1))[0])
+    twice = np.concatenate((ref.cells, ref.cells[inner_cell:inner_cell + 1]))
+    assert not facets.paired(twice, len(points))[2]
+
+
+def _flipped(cells: np.ndarray, nbrs: np.ndarray, t: int) -> np.ndarray:
+    """2D cells with the edge between triangle t and its first neighbour flipped (the
+    quad's other diagonal), rows ascending."""
+    i = int(np.flatnonzero(nbrs[t] >= 0)[0])
+    u = int(nbrs[t, i])
+    p, q = cells[t, i], int(np.setdiff1d(cells[u], cells[t])[0])
+    x, y = np.delete(cells[t], i)
+    out = cells.copy()
+    out[t], out[u] = np.sort([p, q, x]), np.sort([p, q, y])
+    return out
+
+
+def _first_flipped(cells: np.ndarray, n_points: int) -> np.ndarray:
+    """2D cells with the edge of the first triangle that has a neighbour flipped."""
+    nbrs, _ = backends.facets.neighbours(cells, n_points)
+    return _flipped(cells, nbrs, int(np.flatnonzero((nbrs >= 0).any(axis=1))[0]))
+
+
+@pytest.mark.parametrize("where", ["gmsh's own cells", "restored cells"])
+def test_gmsh_check_covers_own_and_restored_cells(where: str, monkeypatch) -> None:
+    """gmsh's own cells are checked beside the restoration and the restored (and relinked)
+    ones after it: a wrong edge in either part is caught; hull cells gmsh left out come
+    back as Qhull's."""
+    points = prepared(np.random.default_rng(9).uniform(size=(400, 2)))
+    ref = triangulate(points)
+    h = int(np.flatnonzero((ref.neighbors < 0).any(axis=1))[0])
+    dropped = [h, int(ref.neighbors[h][ref.neighbors[h] >= 0][0])]  # two adjacent cells
+    own = np.delete(ref.cells, dropped, axis=0)
+    assert np.isin(np.arange(len(points)), own).all()  # every point still in a cell
+    monkeypatch.setattr(backends.gmsh_backend, "gmsh_cells", lambda _: own)
+    tri = backends._by_gmsh(points)
+    assert np.array_equal(cell_set(tri.cells), cell_set(ref.cells))
+    if where == "restored cells":  # the restoration brings one edge back flipped
+        missing = backends.restore._missing
+        monkeypatch.setattr(backends.restore, "_missing",
+                            lambda *args: _first_flipped(missing(*args), len(points)))
+    else:  # one edge flipped among gmsh's own cells, away from the dropped ones
+        inner = np.flatnonzero((ref.neighbors >= 0).all(axis=1))
+        far = inner[~np.isin(inner, np.unique(ref.neighbors[dropped]))][len(inner) // 2]
+        own = np.delete(_flipped(ref.cells, ref.neighbors, int(far)), dropped, axis=0)
+    assert isinstance(backends._by_gmsh(points), str)
 
 
 def test_certify_accepts_delaunay_and_rejects_the_rest() -> None:

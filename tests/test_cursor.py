@@ -8,6 +8,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from core import REGULAR, SINGULAR, AlphaComplex
+from core.complex import at_value
+from core.cursor import CursorOrders, cursor_orders
 from core.errors import InputError
 
 
@@ -167,3 +169,56 @@ def test_split_passes_fill_every_element_and_never_wait_on_their_own_thread():
     select(keep, [(values, out)], ranks=ranks)
     np.testing.assert_array_equal(out, values[keep])
     np.testing.assert_array_equal(ranks, np.flatnonzero(keep))
+
+
+def reference_orders(ac: AlphaComplex) -> CursorOrders:
+    """The cursor's sort orders by numpy's stable argsort (ties by id), from the definition."""
+    def by(values: np.ndarray, ids: np.ndarray) -> np.ndarray:
+        return ids[np.argsort(values[ids], kind="stable")].astype(np.int32)
+
+    facets = ac.index.level(ac.dim - 1)
+    singular = []
+    for k in range(ac.dim):
+        level = ac.index.level(k)
+        by_enter = by(level.enter, np.flatnonzero(level.enter < level.regular))
+        singular.append((by_enter, by(level.regular, by_enter)))
+    return CursorOrders(by(facets.regular, np.flatnonzero(facets.regular < facets.interior)),
+                        tuple(singular))
+
+
+@pytest.mark.parametrize("weighted", [False, True])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_orders_found_apart_make_the_same_cursor(dim, weighted):
+    """cursor_orders (what a build process hands over) equals the definition, and a cursor
+    made from them hands out the same shapes, row for row, as one that sorts itself."""
+    rng = np.random.default_rng(10 + dim)
+    points = rng.random((1200, dim))
+    extra = {"weights": rng.random(1200) * 1e-3} if weighted else {}
+    ac = AlphaComplex.from_points(points, **extra)
+    orders = cursor_orders(ac.index)
+    want = reference_orders(ac)
+    np.testing.assert_array_equal(orders.regular, want.regular)
+    for (enter, ended), (want_enter, want_ended) in zip(orders.singular, want.singular,
+                                                        strict=True):
+        np.testing.assert_array_equal(enter, want_enter)
+        np.testing.assert_array_equal(ended, want_ended)
+    again = CursorOrders.from_arrays(orders.to_arrays(), ac.dim)
+    own, handed = ac.cursor(), ac.cursor(again)
+    spectrum = ac.spectrum()
+    for alpha in spectrum[rng.integers(0, len(spectrum), 25)]:
+        mine, theirs = own.move(**at_value(alpha)), handed.move(**at_value(alpha))
+        np.testing.assert_array_equal(mine.regular_facets, theirs.regular_facets)
+        np.testing.assert_array_equal(mine.regular_facet_ids, theirs.regular_facet_ids)
+        for k in range(dim):
+            np.testing.assert_array_equal(mine.singular(k), theirs.singular(k))
+            np.testing.assert_array_equal(mine.singular_ids(k), theirs.singular_ids(k))
+
+
+def test_orders_of_another_table_are_an_input_error():
+    ac = AlphaComplex.from_points(np.random.default_rng(3).random((400, 3)))
+    other = AlphaComplex.from_points(np.random.default_rng(4).random((500, 3)))
+    with pytest.raises(InputError, match="another table"):
+        ac.cursor(cursor_orders(other.index))
+    int64 = cursor_orders(ac.index)
+    with pytest.raises(InputError, match="another table"):
+        ac.cursor(CursorOrders(int64.regular.astype(np.int64), int64.singular))

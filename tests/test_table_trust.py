@@ -12,7 +12,9 @@ import pytest
 from core import AlphaComplex
 from core.cache import entry_path
 from core.errors import FileFormatError
+from core.npz import read_npz
 from core.obtain import obtain
+from core.storage import FORMAT
 
 
 @pytest.fixture(params=[2, 3, "weighted"])
@@ -172,3 +174,43 @@ def test_good_tables_pass_the_checks(saved, tmp_path):
         (np.savez_compressed if compressed else np.savez)(path, **arrays)
         loaded = AlphaComplex.load(path)
         assert loaded.optimal_alpha() == ac.optimal_alpha()
+
+
+def test_a_just_written_table_loads_unchecked_but_keeps_the_archive_checks(saved, tmp_path):
+    """verify=False (a table the build process wrote a moment ago) skips the table's array
+    checks, giving the same complex, but an archive that lies about its sizes, or a file
+    that is not one of our tables, still fails."""
+    ac = saved[1]
+    path = tmp_path / "own.npz"
+    ac.save(path)
+    fast = AlphaComplex.load(path, verify=False)
+    for k in range(ac.dim + 1):
+        np.testing.assert_array_equal(fast.simplices(k), ac.simplices(k))
+        np.testing.assert_array_equal(fast.intervals(k), ac.intervals(k))
+    crafted(saved, tmp_path, "facet cell")  # a value check: skipped
+    AlphaComplex.load(tmp_path / "crafted.npz", verify=False)
+    with pytest.raises(FileFormatError, match=r"claims|declares"):
+        AlphaComplex.load(crafted(saved, tmp_path, "header:points"), verify=False)
+    write_archive(tmp_path / "other.npz", {"x": np.zeros(3)})
+    with pytest.raises(FileFormatError, match="format"):
+        AlphaComplex.load(tmp_path / "other.npz", verify=False)
+
+
+@pytest.mark.parametrize("compressed", [False, True])
+def test_a_trusted_read_gives_the_same_arrays(tmp_path, compressed):
+    """read_npz(trusted=True) reads stored members straight from the file: the same dtypes,
+    shapes, memory orders and values as numpy's reader (compressed archives use it)."""
+    rng = np.random.default_rng(0)
+    arrays = {"points": rng.random((5000, 3)), "rows": rng.integers(0, 9, (700, 4), np.int32),
+              "fortran": np.asfortranarray(rng.random((50, 7))), "tag": np.array(FORMAT),
+              "empty": np.zeros((0, 3), np.int32), "flags": rng.random(1001) > 0.5,
+              "scalar": np.array(3), "big_endian": np.arange(9, dtype=">i8")}
+    path = tmp_path / "arrays.npz"
+    (np.savez_compressed if compressed else np.savez)(path, **arrays)
+    fast, plain = read_npz(path, trusted=True), read_npz(path)
+    assert sorted(fast) == sorted(plain) == sorted(arrays)
+    for name, want in arrays.items():
+        for got in (fast[name], plain[name]):
+            assert got.dtype == want.dtype and got.shape == want.shape
+            assert got.flags.f_contiguous == want.flags.f_contiguous
+            np.testing.assert_array_equal(got, want)

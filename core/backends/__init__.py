@@ -10,14 +10,17 @@ regular triangulation. Qhull works on two halves at once on larger inputs
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
 from ..delaunay import Triangulation, regular_triangulate, triangulate
 from ..errors import InputError
+from ..parallel import both
 from . import gmsh as gmsh_backend
 from . import split as split_backend
-from .certify import why_not_delaunay
+from .certify import why_not_delaunay, why_not_locally_delaunay
+from .facets import paired
 from .restore import restored
 
 BACKENDS = ("qhull", "gmsh")
@@ -49,18 +52,30 @@ def check_backend(backend: object) -> str | None:
 
 
 def _by_gmsh(points: np.ndarray) -> Triangulation | str:
-    """gmsh's triangulation completed and certified, or the reason it cannot be used."""
-    cells = gmsh_backend.gmsh_cells(points)
-    if not len(cells):
+    """gmsh's triangulation completed and certified, or the reason it cannot be used. Its
+    own cells are checked locally (every inner facet) on one thread while the cells it
+    dropped near the hull are restored on the other (Qhull on the boundary vertices, one
+    thread); then the facets of the restored and relinked cells, and the global checks."""
+    own = gmsh_backend.gmsh_cells(points)
+    if not len(own):
         return "gmsh found no cell (too few points?)"
-    cells, nbrs, mirror, manifold = restored(points, cells)
+    nbrs, back, manifold = paired(own, len(points))
     if not manifold:
         return "a facet is in three cells"
-    reason = why_not_delaunay(points, cells, nbrs, mirror=mirror)
+    (cells, whole, mirror, manifold), reason = both(
+        partial(restored, points, own, nbrs, back),
+        partial(why_not_locally_delaunay, points, own, nbrs, back))
+    if not manifold:
+        return "a facet is in three cells"
+    if reason:
+        return reason
+    near = np.ones(len(cells), dtype=bool)  # the restored cells and those relinked to them
+    near[:len(own)] = (whole[:len(own)] != nbrs).any(axis=1)
+    reason = why_not_delaunay(points, cells, whole, near=near)
     if reason:
         return reason
     vertex_of_point = np.arange(len(points), dtype=np.int64)
-    return Triangulation(cells, nbrs, vertex_of_point, vertex_of_point.copy(), mirror)
+    return Triangulation(cells, whole, vertex_of_point, vertex_of_point.copy(), mirror)
 
 
 def delaunay(points: np.ndarray, backend: str | None = None) -> tuple[Triangulation, Choice]:

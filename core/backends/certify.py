@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
+from ..delaunay import interior_facets
 from ..geometry import CACHE_CHUNK
 from ..parallel import halves, slot_of
 from ..tolerances import BACKEND_CERTAIN_RTOL
@@ -120,24 +121,15 @@ def in_sphere(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
     return out
 
 
-def _inner_pairs(neighbors: np.ndarray, near: np.ndarray | None = None,
-                 mirror: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
-    """Each inner facet once (of a cell in the (t,) bool mask `near`, when given): cell t,
-    its vertex i opposite the facet, the cell u across and u's vertex j opposite it
-    (neighbour tables are symmetric by construction; j read from `mirror` where given)."""
-    if near is None:
-        slots = np.flatnonzero(neighbors > np.arange(len(neighbors), dtype=np.int32)[:, None])
-        t, i = np.divmod(slots, neighbors.shape[1])
-        u = np.take(neighbors, slots)
-        if mirror is not None:
-            return t, i, u, np.take(mirror, slots)
-    else:  # the facets of the near cells; a facet between two of them once
-        rows = np.flatnonzero(near)
-        row, i = np.nonzero(neighbors[rows] >= 0)
-        t = rows[row]
-        u = neighbors[t, i]
-        once = ~near[u] | (u > t)
-        t, i, u = t[once], i[once], u[once]
+def _near_pairs(neighbors: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Each inner facet of a cell in the (t,) bool mask `near` once (a facet between two
+    near cells once), as core.delaunay.interior_facets gives all: (t, i, u, j)."""
+    rows = np.flatnonzero(near)
+    row, i = np.nonzero(neighbors[rows] >= 0)
+    t = rows[row]
+    u = neighbors[t, i]
+    once = ~near[u] | (u > t)
+    t, i, u = t[once], i[once], u[once]
     return t, i, u, slot_of(neighbors, u, t)
 
 
@@ -162,6 +154,45 @@ def _outer_facets_are_hull(points: np.ndarray, cells: np.ndarray,
     return bool(np.array_equal(np.unique(facets, axis=0), np.unique(outer, axis=0)))
 
 
+def _oriented(points: np.ndarray, cells: np.ndarray, pairs: tuple[np.ndarray, ...],
+              some: np.ndarray | slice) -> tuple[str, np.ndarray]:
+    """The cells' orientation signs ((t,) int8, computed on the cells `some` only) and
+    "" when they are all certain and the two cells of every facet pair (t, i, u, j) lie on
+    opposite sides of it, else the reason."""
+    t, i, u, j = pairs
+    sign = np.zeros(len(cells), dtype=np.int8)
+    sign[some] = orientations(points, cells[some])
+    if not sign[some].all():
+        return f"{int(np.count_nonzero(sign[some] == 0))} cells are (nearly) flat", sign
+    same_side = ((i + j) % 2 == 1) == (sign[t] != sign[u])
+    if same_side.any():
+        return f"{int(np.count_nonzero(same_side))} pairs of cells overlap", sign
+    return "", sign
+
+
+def _spheres_empty(points: np.ndarray, cells: np.ndarray, pairs: tuple[np.ndarray, ...],
+                   sign: np.ndarray, weights: np.ndarray | None) -> str:
+    """"" when the vertex across every facet pair (t, i, u, j) is certainly outside cell
+    t's circumsphere (power test with `weights`), else the reason."""
+    t, _, u, j = pairs
+    side = in_sphere(points, cells[t], cells[u, j], sign[t], weights)
+    if (side <= 0).any():
+        return (f"{int(np.count_nonzero(side <= 0))} facets are not certainly Delaunay "
+                "(near-cospherical points)")
+    return ""
+
+
+def why_not_locally_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
+                             mirror: np.ndarray | None = None) -> str:
+    """The local half of why_not_delaunay on every inner facet of (t, d+1) ascending `cells`
+    (certain orientations, the two cells of a facet on opposite sides, the vertex across
+    outside the sphere), without its global checks (every point a vertex, the outer facets
+    the hull): gmsh's own cells are checked so while the cells it dropped are restored."""
+    pairs = interior_facets(neighbors, mirror)
+    reason, sign = _oriented(points, cells, pairs, slice(None))
+    return reason or _spheres_empty(points, cells, pairs, sign, None)
+
+
 def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray, *,
                      weights: np.ndarray | None = None, hidden: np.ndarray | None = None,
                      near: np.ndarray | None = None, mirror: np.ndarray | None = None) -> str:
@@ -171,8 +202,9 @@ def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarra
 
     `hidden` (m,) bool: points known to be hidden (in no cell). `near` (t,) bool: check
     orientation and local Delaunay-ness only on the facets of these cells, and trust the
-    others as Qhull made them (the halves of core.backends.split): the answer is then "the
-    same cells as one Qhull call, given Qhull's own facets", not a proof for those facets.
+    others (the halves of core.backends.split: as Qhull made them; gmsh's own cells: checked
+    by why_not_locally_delaunay): for the split the answer is then "the same cells as one
+    Qhull call, given Qhull's own facets", not a proof for those facets.
     `mirror`: the neighbours' columns that point back (core.backends.facets.paired), if known.
     """
     used = np.zeros(len(points), dtype=bool)
@@ -183,20 +215,12 @@ def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarra
         used |= hidden
     if not used.all():
         return f"{int(np.count_nonzero(~used))} points are in no cell"
-    t, i, u, j = _inner_pairs(neighbors, near, mirror)
-    sign = np.zeros(len(cells), dtype=np.int8)
-    some = slice(None) if near is None else np.unique(np.concatenate((t, u, np.flatnonzero(
-        near))))
-    sign[some] = orientations(points, cells[some])
-    if not sign[some].all():
-        return f"{int(np.count_nonzero(sign[some] == 0))} cells are (nearly) flat"
-    same_side = ((i + j) % 2 == 1) == (sign[t] != sign[u])
-    if same_side.any():
-        return f"{int(np.count_nonzero(same_side))} pairs of cells overlap"
+    pairs = interior_facets(neighbors, mirror) if near is None else _near_pairs(neighbors, near)
+    some = slice(None) if near is None else np.unique(np.concatenate((pairs[0], pairs[2],
+                                                                      np.flatnonzero(near))))
+    reason, sign = _oriented(points, cells, pairs, some)
+    if reason:
+        return reason
     if not _outer_facets_are_hull(points, cells, neighbors):
         return "the outer facets are not the convex hull"
-    side = in_sphere(points, cells[t], cells[u, j], sign[t], weights)
-    if (side <= 0).any():
-        return (f"{int(np.count_nonzero(side <= 0))} facets are not certainly Delaunay "
-                "(near-cospherical points)")
-    return ""
+    return _spheres_empty(points, cells, pairs, sign, weights)

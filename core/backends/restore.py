@@ -114,14 +114,12 @@ def joined(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray, extra: np.nd
     return np.concatenate((cells, extra)), table.astype(np.int32), mirror, manifold
 
 
-def restored(points: np.ndarray, cells: np.ndarray
+def restored(points: np.ndarray, cells: np.ndarray, nbrs: np.ndarray, mirror: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
-    """gmsh's (t, d+1) ascending `cells` plus the Delaunay cells it dropped near the hull,
-    their neighbour table ((t', d+1) int32, -1 = none), its mirror (facets.paired) and
-    whether every facet is in at most two cells."""
-    nbrs, mirror, manifold = paired(cells, len(points))
-    if not manifold:
-        return cells, nbrs, mirror, False
+    """gmsh's (t, d+1) ascending `cells` (with their neighbour table and its mirror,
+    facets.paired, manifold) plus the Delaunay cells it dropped near the hull, their
+    neighbour table ((t', d+1) int32, -1 = none), its mirror and whether every facet is in
+    at most two cells."""
     extra = _missing(points, cells, *boundary_facets(cells, nbrs))
     if not len(extra):
         return cells, nbrs, mirror, True
