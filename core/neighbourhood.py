@@ -7,7 +7,7 @@ radii by the local spacing, anisotropy compresses the alpha ball along the surfa
 from __future__ import annotations
 
 import numpy as np
-from scipy.sparse import coo_matrix
+from scipy.sparse import coo_matrix, csr_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components, minimum_spanning_tree
 from scipy.spatial import cKDTree
 
@@ -97,12 +97,8 @@ def orient(points: np.ndarray, normals: np.ndarray, ids: np.ndarray) -> np.ndarr
     """Flip normals so neighbours agree (Hoppe et al. 1992): signs propagate along a minimum
     spanning tree of the k-nearest-neighbour graph weighted by 1 - |n_i . n_j|; each tree's
     root faces away from the centroid of its points."""
-    m, k = ids.shape
-    rows = np.repeat(np.arange(m), k)
-    cols = ids.ravel()
-    dots = np.einsum("md,md->m", normals[rows], normals[cols])
-    graph = coo_matrix((1.0 - np.abs(dots) + _EDGE_FLOOR, (rows, cols)), shape=(m, m))
-    tree = minimum_spanning_tree(graph.tocsr())
+    m = len(ids)
+    tree = minimum_spanning_tree(orientation_graph(normals, ids))
     tree = (tree + tree.T).tocsr()
     _, part = connected_components(tree, directed=False)
     roots = np.unique(part, return_index=True)[1]
@@ -118,6 +114,24 @@ def orient(points: np.ndarray, normals: np.ndarray, ids: np.ndarray) -> np.ndarr
     away = points[roots] - centres[part[roots]]
     flip[roots] = np.einsum("md,md->m", normals[roots], away) < 0
     return np.where(_path_parity(parent, flip)[:, None], -normals, normals)
+
+
+def orientation_graph(normals: np.ndarray, ids: np.ndarray) -> csr_matrix:
+    """The (m, m) graph joining each point to its neighbours `ids` (m, k), weighted by
+    1 - |n_i . n_j| + _EDGE_FLOOR, in canonical CSR form (columns ascending in each row, as
+    a COO matrix's tocsr gives it, so the spanning tree breaks ties the same way), built
+    column by column: no (m k, d) copies of the normals."""
+    m, k = ids.shape
+    weights = np.empty((m, k))
+    for c in range(k):
+        dots = np.einsum("md,md->m", normals, np.take(normals, ids[:, c], axis=0))
+        np.subtract(1.0, np.abs(dots), out=weights[:, c])
+        weights[:, c] += _EDGE_FLOOR
+    order = np.argsort(ids, axis=1)
+    columns = np.take_along_axis(ids, order, axis=1).astype(np.int32)
+    data = np.take_along_axis(weights, order, axis=1)
+    indptr = np.arange(0, m * k + 1, k, dtype=np.int32)
+    return csr_matrix((data.ravel(), columns.ravel(), indptr), shape=(m, m))
 
 
 def _grown(matrix, size: int):

@@ -52,11 +52,17 @@ def _pairs(width: int) -> list[tuple[int, int]]:
     return [(i, j) for i in range(width) for j in range(i + 1, width)]
 
 
-def _simplex_frames(corners: _Corners, rows: np.ndarray, extra: float):
-    """For a chunk of (n, k+1) simplices: their vertices, vertex normals, pairwise normal
-    dots, unit normals and stretched edge vectors from the first vertex."""
-    width = rows.shape[1]
-    gathered = [corners.of(rows[:, i].astype(np.intp)) for i in range(width)]
+def _columns(rows: np.ndarray) -> list[np.ndarray]:
+    """The vertex columns (n,) intp of a chunk of (n, k+1) simplices."""
+    return [rows[:, i].astype(np.intp) for i in range(rows.shape[1])]
+
+
+def _simplex_frames(corners: _Corners, ids: list[np.ndarray], extra: float):
+    """For a chunk of simplices given by their vertex columns `ids` (_columns): their
+    vertices, vertex normals, pairwise normal dots, unit normals and stretched edge vectors
+    from the first vertex."""
+    width = len(ids)
+    gathered = [corners.of(column) for column in ids]
     points = [p for p, _ in gathered]
     normals = [n for _, n in gathered]
     dots = {(i, j): dot(normals[i], normals[j]) for i, j in _pairs(width)}
@@ -78,7 +84,7 @@ def _cells(table: Table, corners: _Corners, extra: float) -> np.ndarray:
     out = np.empty(len(simplices))
 
     def part(lo: int, hi: int) -> None:
-        edges = _simplex_frames(corners, simplices[lo:hi], extra)[4]
+        edges = _simplex_frames(corners, _columns(simplices[lo:hi]), extra)[4]
         out[lo:hi] = np.sqrt(sphere_centres(edges)[1])
 
     in_chunks(part, len(simplices), ROWS)
@@ -98,15 +104,17 @@ def _facets(table: Table, corners: _Corners, extra: float,
     gain = (1.0 + extra) ** 2 - 1.0
 
     def part(lo: int, hi: int) -> None:
-        rows = simplices[lo:hi]
-        points, normals, dots, unit, edges = _simplex_frames(corners, rows, extra)
+        ids = _columns(simplices[lo:hi])
+        points, normals, dots, unit, edges = _simplex_frames(corners, ids, extra)
         centre, radii2 = sphere_centres(edges)
-        sums = rows.sum(axis=1, dtype=np.int64)
+        sums = ids[0] + ids[1]  # vertex sums: the far vertex is a cell's sum minus them
+        for column in ids[2:]:
+            sums += column
         attached = np.zeros(hi - lo, dtype=bool)
         for side in (0, 1):  # no cell beyond the hull (-1): the first vertex, not inside
             cell = facet_cells[lo:hi, side]
-            far = cell_sums[cell] - sums if side == 0 else np.where(
-                cell >= 0, cell_sums[np.maximum(cell, 0)] - sums, rows[:, 0])
+            far = np.take(cell_sums, cell) - sums if side == 0 else np.where(
+                cell >= 0, np.take(cell_sums, np.maximum(cell, 0)) - sums, ids[0])
             inside = _inside(centre, radii2, unit, minus(corners.at(far), points[0]), extra)
             attached |= inside & (cell >= 0) if side else inside
         out[lo:hi] = np.where(attached, np.inf, np.sqrt(radii2))
@@ -149,7 +157,7 @@ def _edges(table: Table, corners: _Corners, extra: float, attached: np.ndarray) 
     out = np.empty(len(simplices))
 
     def part(lo: int, hi: int) -> None:
-        edges = _simplex_frames(corners, simplices[lo:hi], extra)[4]
+        edges = _simplex_frames(corners, _columns(simplices[lo:hi]), extra)[4]
         out[lo:hi] = np.sqrt(sphere_centres(edges)[1])
 
     in_chunks(part, len(simplices), ROWS)

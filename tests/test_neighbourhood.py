@@ -1,12 +1,14 @@
 """core/neighbourhood.py: the closed-form smallest eigenvectors of the PCA normals against
-LAPACK's eigh, on random, flat (surface-like) and degenerate covariances."""
+LAPACK's eigh, on random, flat (surface-like) and degenerate covariances; the orientation
+graph against scipy's own COO to CSR conversion."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
+from scipy.sparse import coo_matrix
 
-from core.neighbourhood import least_axes
+from core.neighbourhood import least_axes, orientation_graph
 
 
 def _covariances(kind: str) -> np.ndarray:
@@ -42,3 +44,23 @@ def test_least_axes_in_2d_use_eigh():
     cov = np.array([[[2.0, 0.0], [0.0, 1.0]], [[1.0, 1.0], [1.0, 1.0]]])
     axes = least_axes(cov)
     np.testing.assert_allclose(np.abs(axes), np.sqrt([[0.0, 1.0], [0.5, 0.5]]), atol=1e-12)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_orientation_graph_is_the_canonical_csr_of_the_neighbour_graph(dim):
+    """Built column by column, the graph is the same CSR matrix, array for array, as the
+    COO matrix of every (point, neighbour) edge converted by scipy; so the spanning tree,
+    whose ties follow the order of its data, is the same."""
+    rng = np.random.default_rng(dim)
+    normals = rng.normal(size=(300, dim))
+    normals[:40] = normals[0]  # exactly parallel normals: equal weights, tied edges
+    normals /= np.linalg.norm(normals, axis=1)[:, None]
+    ids = np.argsort(rng.uniform(size=(300, 300)), axis=1)[:, :8]
+    m, k = ids.shape
+    rows, cols = np.repeat(np.arange(m), k), ids.ravel()
+    dots = np.einsum("md,md->m", normals[rows], normals[cols])
+    want = coo_matrix((1.0 - np.abs(dots) + 1e-9, (rows, cols)), shape=(m, m)).tocsr()
+    got = orientation_graph(normals, ids)
+    for name in ("data", "indices", "indptr"):
+        assert np.array_equal(getattr(got, name), getattr(want, name)), name
+        assert getattr(got, name).dtype == getattr(want, name).dtype
