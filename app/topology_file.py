@@ -5,7 +5,7 @@ Arrays: the signatures and forests exactly as a saved table holds them (core/sto
 `derived_arrays`, read back and checked against the window's table by `read_derived`; files
 from before `sig_alphas` was written load too); the persistence pairs `pers_components`,
 `pers_cavities` (n, 2) float64; `optimal_alpha` and `default_alpha` () float64; `entry_saved`
-() bool (the cache entry was rewritten with them).
+() bool (the topology process rewrites the cache entry with them, after this hand-over).
 """
 
 from __future__ import annotations

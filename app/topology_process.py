@@ -9,7 +9,9 @@ the dataset has no entry), computes the topology and writes it to the hand-over 
 HANDED_OVER, does it rewrite the cache entry with the signatures (so the next open skips the
 pass): the window does not wait for that rewrite (about 7 s at 1M points). The rewrite is
 atomic (core.atomic), so a child killed in the middle of it (a newer open, the window closed)
-leaves the old entry as it was. The window's side (starting it early, following it, Cancel):
+leaves the old entry as it was. (Chosen over a file of the topology beside the entry,
+which the cache's reads, pruning and checks of which table it belongs to would have to treat
+as one with the entry.) The window's side (starting it early, following it, Cancel):
 app.topology_child.
 """
 
