@@ -19,6 +19,7 @@ most, and a process would add about one (its start and the table's trip through 
 from __future__ import annotations
 
 import json
+import sys
 import threading
 from collections.abc import Callable
 from dataclasses import replace
@@ -84,8 +85,9 @@ class ChildRunner:
             except (AlphaScoopError, MemoryError) as error:
                 if not taken or isinstance(error, Cancelled):
                     raise
-                answer = {"opening_alpha": None}  # it died after the hand-over: the window
-                #                                   finds the opening alpha itself
+                print(f"alphascoop: the build process failed after handing its table over "
+                      f"({error}); the window finds the opening alpha itself", file=sys.stderr)
+                answer = {"opening_alpha": None}
         if not taken:
             raise AlphaScoopError("the build process finished without handing its table over")
         ac, handed = taken[0]
@@ -103,6 +105,8 @@ class ChildRunner:
         """The table a child handed over (JSON {"table": its file, "orders": the cursor's
         orders file or None}) and the cursor made from those orders; on_saved is told first
         when that file is the cache entry of a table without signatures."""
+        if self.cancel.is_set():  # no topology process for a table nobody will load
+            raise Cancelled("build cancelled")
         answer = json.loads(text)
         if (self.on_saved is not None and not request.signatures
                 and answer["table"] == str(request.save_to)):

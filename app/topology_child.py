@@ -8,13 +8,18 @@ over it stops with the load (the load's cancel: a cancelled or superseded open),
 with the topology job (a newer open, the window closed); `stop` ends it in any case. The
 result comes once the child has written its hand-over file: the child then goes on rewriting
 the cache entry with the signatures, followed by the same thread and stopped the same way,
-while the window already shows the topology. The scratch folder with the hand-over file is
-removed once the child has ended and its result was read (or is no longer wanted).
+while the window already shows the topology. A newer open, a mode change or closing the
+window within those seconds (about 7 s at 1M points) kills the rewrite too: the atomic write
+leaves the entry whole but without the signatures, so the next open of that file computes the
+topology again (a cost accepted so that nothing runs on behind the user's next action). The
+scratch folder with the hand-over file is removed once the child has ended and its result
+was read (or is no longer wanted).
 """
 
 from __future__ import annotations
 
 import queue
+import sys
 import threading
 import time
 from pathlib import Path
@@ -96,6 +101,8 @@ class TopologyChild:
         progress meanwhile. Raises Cancelled when it was stopped, and its errors."""
         try:
             while not self._handed.wait(POLL_SECONDS):
+                if self.is_set():
+                    raise Cancelled("topology cancelled")
                 self._relay(progress)
             self._relay(progress)
             with self._reading:
@@ -127,20 +134,34 @@ class TopologyChild:
     def _follow(self, entry: Path | None, copy: AlphaComplex | None) -> None:
         """Thread body: run the process to its end (or until stopped), then keep its folder
         until the result was read or is no longer wanted."""
-        with scratch(f"{NAME}-") as folder:
-            try:
-                table = entry
-                if copy is not None:
-                    table = Path(folder) / "table.npz"
-                    copy.save(table)
-                self._target = Path(folder) / "topology.npz"
-                run_in_child(topology_in_child, (str(table), copy is None, str(self._target)),
-                             self._note, self, NAME)
-            except BaseException as error:  # handed to parts(); a failed rewrite is dropped
-                self._error = error
-            finally:
-                self._handed.set()
-                while not self._consumed.wait(POLL_SECONDS) and not self.is_set():
-                    pass
-                with self._reading:
-                    self._gone = True
+        try:
+            with scratch(f"{NAME}-") as folder:
+                try:
+                    table = entry
+                    if copy is not None:
+                        table = Path(folder) / "table.npz"
+                        copy.save(table)
+                    self._target = Path(folder) / "topology.npz"
+                    run_in_child(topology_in_child,
+                                 (str(table), copy is None, str(self._target)),
+                                 self._note, self, NAME)
+                except BaseException as error:
+                    self._keep(error)
+                finally:
+                    self._handed.set()
+                    while not self._consumed.wait(POLL_SECONDS) and not self.is_set():
+                        pass
+                    with self._reading:
+                        self._gone = True
+        except BaseException as error:  # the scratch folder could not be made (disk full)
+            self._keep(error)
+            self._handed.set()
+
+    def _keep(self, error: BaseException) -> None:
+        """Keep error for parts(); once the result was handed over (the cache rewrite
+        failed) nobody waits for it, so an unexpected one is printed instead."""
+        if self._written is None:
+            self._error = self._error or error
+        elif not isinstance(error, Cancelled):
+            print(f"alphascoop: the topology was not saved to the cache ({error})",
+                  file=sys.stderr)

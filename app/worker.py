@@ -37,11 +37,11 @@ def load_job(path: str | Path, mode: Mode | None = None,
     def work(progress: Progress, cancel: threading.Event) -> Dataset:
         started: list[TopologyChild] = []
 
-        def start_topology(entry: Path, n_points: int) -> None:
+        def on_saved(entry: Path, n_points: int) -> None:
             if n_points >= topology_process.IN_THREAD_BELOW:
                 started.append(TopologyChild(entry, cancel))
 
-        runner = build_process.ChildRunner(cancel, on_saved=start_topology)
+        runner = build_process.ChildRunner(cancel, on_saved=on_saved)
         try:
             dataset = load_dataset(path, progress, runner, mode=mode, options=options,
                                    topology=False)
@@ -71,10 +71,11 @@ def topology_job(dataset: Dataset) -> Job:
 
         child = dataset.topology_child
         if child is not None and not child.hand_to(cancel):
-            child.stop()  # stopped before this job took it (its load was superseded)
-            child = None
+            child.stop()  # stopped before this job took it: its load was superseded
+            raise Cancelled("topology cancelled")
         progress(0.0, "topology")
-        if dataset.has_topology or len(dataset.ac.points) < topology_process.IN_THREAD_BELOW:
+        small = child is None and len(dataset.ac.points) < topology_process.IN_THREAD_BELOW
+        if dataset.has_topology or small:
             if child is not None:
                 child.stop()
             return with_topology(dataset, check)

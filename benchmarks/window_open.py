@@ -24,6 +24,7 @@ TIMEOUT_MS = 3_600_000
 CANCELS, REOPENS = 10, 10
 CANCEL_AFTER_S = 2.0  # cancel once the build has run this long (the child is started)
 PROBE_MS = 10  # the stall probe's tick
+PROCESS_END_SECONDS = 300  # the topology process's cache rewrite ends well before (7 s at 1M)
 DRAG_STEPS = 200  # critical values a probe's drag walks over
 ARRIVAL_MS = 2000  # the probe runs on this long after the topology arrived: the docks' and
 # the view's deferred redraws (matplotlib's draw_idle, the render at the opening alpha) count
@@ -127,7 +128,8 @@ def _cpu_seconds() -> float:
     """CPU seconds so far of this process (all threads), of its waited-for children (the
     build processes) and of its build and topology processes still running (the topology
     process goes on rewriting the cache entry after it handed its topology over)."""
-    running = sum(cpu_seconds_of(pid) for pid in passes())  # read before any is reaped
+    # a process reaped between these two reads would count twice (a microseconds' window)
+    running = sum(cpu_seconds_of(pid) for pid in passes())
     children = resource.getrusage(resource.RUSAGE_CHILDREN)
     return time.process_time() + children.ru_utime + children.ru_stime + running
 
@@ -212,8 +214,12 @@ def first_open(points_path: str, other_path: str, cancel_path: str, soak: int,
         children = ChildPeaks()
         result = _open_timed(win, points_path, drag)
         win.topology.wait()
-        while passes():  # the topology process has ended too (its rewrite of the entry)
+        deadline = time.perf_counter() + PROCESS_END_SECONDS
+        while passes() and time.perf_counter() < deadline:  # the topology process's rewrite
             _spin(100)
+        if passes():
+            raise RuntimeError(f"a build or topology process still runs "
+                               f"{PROCESS_END_SECONDS} s after the topology arrived")
         _spin(200)  # the deferred give-back runs
         peaks = children.stop()
         result.update(base_rss_mib=base, rss_after_mib=rss_mib(), peak_mib=peak_rss_mib(),

@@ -263,18 +263,21 @@ class CursorOrders:
                                             for k in range(dim)))
 
     def check(self, index: TableIndex) -> None:
-        """InputError unless these are int32 id arrays of the right levels and lengths
-        (cheap: the ids' values are trusted, as orders this program found for the table)."""
+        """InputError unless these are int32 id arrays of the right levels, lengths and id
+        range (cheap: that they sort the table is trusted, as orders this program found)."""
         facets = index.level(index.dim - 1)
-        wanted = [(self.regular, int(np.count_nonzero(facets.regular < facets.interior)))]
+        wanted = [(self.regular, int(np.count_nonzero(facets.regular < facets.interior)),
+                   len(facets.enter))]
         for k, pair in enumerate(self.singular):
             level = index.level(k)
-            wanted += [(order, int(np.count_nonzero(level.enter < level.regular)))
-                       for order in pair]
+            wanted += [(order, int(np.count_nonzero(level.enter < level.regular)),
+                        len(level.enter)) for order in pair]
         if len(self.singular) != index.dim or not all(
                 isinstance(order, np.ndarray) and order.dtype == np.int32
-                and order.shape == (length,) for order, length in wanted):
-            raise InputError("cursor orders of another table")
+                and order.shape == (length,)
+                and (length == 0 or (int(order.min()) >= 0 and int(order.max()) < ids))
+                for order, length, ids in wanted):
+            raise InputError("cursor orders that do not fit this table")
 
 
 def cursor_orders(index: TableIndex) -> CursorOrders:

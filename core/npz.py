@@ -101,7 +101,8 @@ def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> dict[str, np.
             with zipfile.ZipFile(fh) as zf:
                 members = [_check_member(zf, info, archive_bytes, path)
                            for info in zf.infolist()]
-            if trusted and all(m.info.compress_type == zipfile.ZIP_STORED for m in members):
+            if trusted and all(m.info.compress_type == zipfile.ZIP_STORED
+                               and m.info.compress_size == m.info.file_size for m in members):
                 return {m.name: _read_stored(fh, m, path) for m in members}
             fh.seek(0)
             data = np.load(fh, allow_pickle=False)
@@ -114,5 +115,5 @@ def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> dict[str, np.
     except FileFormatError:
         raise
     except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError, SyntaxError,
-            NotImplementedError, zlib.error) as exc:
+            NotImplementedError, RuntimeError, zlib.error) as exc:  # RuntimeError: encrypted
         raise _bad(path, str(exc).splitlines()[0] if str(exc) else type(exc).__name__) from None

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor, wait
 from typing import TypeVar
 
 import numpy as np
@@ -22,6 +22,7 @@ PASSES = "passes"  # the helper role of the build's and the topology's passes
 _lock = threading.Lock()
 _pools: dict[str, ThreadPoolExecutor] = {}
 T = TypeVar("T")
+U = TypeVar("U")
 
 
 def _pool(role: str) -> ThreadPoolExecutor:
@@ -40,7 +41,7 @@ def together(job: Callable[[], T]) -> Callable[[], T]:
     return _pool("jobs").submit(job).result
 
 
-def both(first: Callable[[], T], second: Callable[[], T]) -> tuple[T, T]:
+def both(first: Callable[[], T], second: Callable[[], U]) -> tuple[T, U]:
     """(first(), second()) run at once, second in the passes' helper thread (both in this
     thread when it is that helper: waiting on itself would deadlock)."""
     if _inside(PASSES):
@@ -48,9 +49,10 @@ def both(first: Callable[[], T], second: Callable[[], T]) -> tuple[T, T]:
     other = _pool(PASSES).submit(second)
     try:
         mine = first()
-    finally:
-        theirs = other.result()
-    return mine, theirs
+    except BaseException:
+        wait([other])  # the helper is done with the caller's arrays; first's error is raised
+        raise
+    return mine, other.result()
 
 
 def _inside(role: str) -> bool:

@@ -188,8 +188,25 @@ def test_a_child_taken_over_no_longer_stops_with_its_load():
 
 
 def test_a_child_reads_a_cache_entry_or_a_copy_not_both():
+    ac = AlphaComplex.from_points(blobs(200, 3, seed=15))
     with pytest.raises(ValueError):
         TopologyChild(None, threading.Event())
+    with pytest.raises(ValueError):
+        TopologyChild(Path("table.npz"), threading.Event(), copy=ac)
+
+
+def test_a_scratch_folder_that_cannot_be_made_fails_the_pass_not_hangs(monkeypatch):
+    """The follower's folder failing (a full disk) reaches parts() as that error; before,
+    parts() waited for ever, even after Cancel."""
+    def full(_prefix):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr("app.topology_child.scratch", full)
+    ac = AlphaComplex.from_points(blobs(300, 3, seed=16))
+    child = TopologyChild(None, threading.Event(), copy=ac)
+    with pytest.raises(OSError, match="No space"):
+        child.parts(ac, never)
+    assert child.wait(10)
 
 
 def test_a_topology_file_of_another_table_is_refused(tmp_path):

@@ -217,8 +217,13 @@ def test_orders_found_apart_make_the_same_cursor(dim, weighted):
 def test_orders_of_another_table_are_an_input_error():
     ac = AlphaComplex.from_points(np.random.default_rng(3).random((400, 3)))
     other = AlphaComplex.from_points(np.random.default_rng(4).random((500, 3)))
-    with pytest.raises(InputError, match="another table"):
+    with pytest.raises(InputError, match="do not fit"):
         ac.cursor(cursor_orders(other.index))
     int64 = cursor_orders(ac.index)
-    with pytest.raises(InputError, match="another table"):
+    with pytest.raises(InputError, match="do not fit"):
         ac.cursor(CursorOrders(int64.regular.astype(np.int64), int64.singular))
+    for bad in (-1, len(ac.index.level(ac.dim - 1).enter)):  # ids outside the facets
+        regular = int64.regular.copy()
+        regular[0] = bad
+        with pytest.raises(InputError, match="do not fit"):
+            ac.cursor(CursorOrders(regular, int64.singular))

@@ -10,6 +10,8 @@ sorted at once on two threads.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..parallel import PARALLEL_ABOVE, PASSES, both, halves
@@ -67,7 +69,10 @@ def _match_part(keys: np.ndarray, pivot: np.uint64, low: bool, other: np.ndarray
     part = np.compress(mask, keys)
     del mask
     order = np.argsort(part)
-    return _match_sorted(part[order], slots[order], other)
+    part = part[order]
+    slots = slots[order]
+    del order
+    return _match_sorted(part, slots, other)
 
 
 def _match_keys(keys: np.ndarray, other: np.ndarray) -> bool:
@@ -77,7 +82,10 @@ def _match_keys(keys: np.ndarray, other: np.ndarray) -> bool:
     if len(keys) < PARALLEL_ABOVE:
         order = np.argsort(keys)
         return _match_sorted(keys[order], order, other)
-    sample = np.sort(keys[::max(1, len(keys) // 4096)])
+    step = max(1, len(keys) // 4096)
+    while math.gcd(step, 12) != 1:  # not a multiple of a cell's 3 or 4 slots: every column
+        step += 1
+    sample = np.sort(keys[::step])
     pivot = sample[len(sample) // 2]
     low, high = both(lambda: _match_part(keys, pivot, True, other),
                      lambda: _match_part(keys, pivot, False, other))
