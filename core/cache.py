@@ -1,12 +1,13 @@
 """Re-open instantly: interval tables cached by the content hash of the points.
 
 Entries live in platformdirs' user cache dir ("alphascoop/tables", or $ALPHASCOOP_CACHE_DIR)
-as the .npz files `AlphaComplex.save` writes. core.obtain is the one path that reads and fills
-it; this module names, reads, writes and prunes entries. A corrupt or unreadable entry is
-deleted (and rebuilt by core.obtain), never an error; a cache that cannot be written is
-simply skipped. Temporary files of stores that were killed (a cancelled build process) are
-removed on every lookup and prune; only finished entries (named by their key) ever count as
-results.
+as the .npz files `AlphaComplex.save` writes, at most MAX_CACHE_BYTES of them (or
+$ALPHASCOOP_CACHE_LIMIT, e.g. "8G": a 1M-point table with its topology is about 2 GB).
+core.obtain is the one path that reads and fills it; this module names, reads, writes and
+prunes entries. A corrupt or unreadable entry is deleted (and rebuilt by core.obtain), never
+an error; a cache that cannot be written is simply skipped. Temporary files of stores that
+were killed (a cancelled build process) are removed on every lookup and prune; only finished
+entries (named by their key) ever count as results.
 """
 
 from __future__ import annotations
@@ -14,6 +15,8 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import os
+import re
+import warnings
 import zipfile
 from pathlib import Path
 
@@ -25,7 +28,24 @@ from core.errors import AlphaScoopError
 from core.modes import Mode
 
 CACHE_VERSION = 2  # bump when the saved table layout or the build rules change
-MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this
+MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this ($ALPHASCOOP_CACHE_LIMIT)
+_UNITS = {"": 1, "K": 1024, "M": 1024**2, "G": 1024**3, "T": 1024**4}
+_SIZE = re.compile(r"\s*(\d+(?:\.\d*)?)\s*([KMGT]?)(?:I?B)?\s*", re.IGNORECASE)
+
+
+def cache_limit() -> int:
+    """Bytes the cache may hold: $ALPHASCOOP_CACHE_LIMIT ("8G", "500M", "3.5GiB", bytes) or
+    MAX_CACHE_BYTES. A value that is no size is a warning, and the default applies."""
+    value = os.environ.get("ALPHASCOOP_CACHE_LIMIT", "").strip()
+    if not value:
+        return MAX_CACHE_BYTES
+    match = _SIZE.fullmatch(value)
+    if match is None:
+        warnings.warn(f"ALPHASCOOP_CACHE_LIMIT={value!r} is not a size such as 8G or 500M; "
+                      f"the table cache keeps its default of {MAX_CACHE_BYTES // 1024**3} GiB",
+                      stacklevel=2)
+        return MAX_CACHE_BYTES
+    return int(float(match[1]) * _UNITS[match[2].upper()])
 
 
 def cache_dir() -> Path:
@@ -136,10 +156,10 @@ def prune(folder: Path, max_bytes: int | None = None, *, keep: Path | None = Non
     """Delete the least recently used entries until the folder holds at most max_bytes.
 
     The newest entry (or `keep`, the one just written) always stays, even when it alone is
-    larger than max_bytes (default MAX_CACHE_BYTES). Temporary files of running stores are
+    larger than max_bytes (default cache_limit()). Temporary files of running stores are
     left alone and not counted; those of killed stores are deleted.
     """
-    limit = MAX_CACHE_BYTES if max_bytes is None else max_bytes
+    limit = cache_limit() if max_bytes is None else max_bytes
     remove_stale_temporaries(folder)
     entries = [(st.st_mtime, st.st_size, p) for p in folder.glob("*.npz")
                if not p.name.startswith(".") and (st := _stat(p)) is not None]

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from core import AlphaComplex
-from core.cache import entry_path, is_cached, points_key, prune
+from core.cache import MAX_CACHE_BYTES, cache_limit, entry_path, is_cached, points_key, prune
 from core.obtain import obtain
 
 
@@ -117,6 +117,32 @@ def test_entry_larger_than_the_limit_is_still_cached(cache, points, monkeypatch)
     obtain(other)
     obtain(points)
     assert is_cached(points) and not is_cached(other)
+
+
+@pytest.mark.parametrize(("value", "limit"), [
+    ("8G", 8 * 1024**3), ("500m", 500 * 1024**2), ("3.5GiB", int(3.5 * 1024**3)),
+    (" 1024 ", 1024), ("2 TB", 2 * 1024**4), ("", MAX_CACHE_BYTES)])
+def test_the_cache_limit_is_a_setting(monkeypatch, value, limit):
+    monkeypatch.setenv("ALPHASCOOP_CACHE_LIMIT", value)
+    assert cache_limit() == limit
+
+
+@pytest.mark.parametrize("value", ["lots", "-3G", "8X", "1e9", "G"])
+def test_a_cache_limit_that_is_no_size_warns_and_keeps_the_default(monkeypatch, value):
+    monkeypatch.setenv("ALPHASCOOP_CACHE_LIMIT", value)
+    with pytest.warns(UserWarning, match="ALPHASCOOP_CACHE_LIMIT"):
+        assert cache_limit() == MAX_CACHE_BYTES
+
+
+def test_prune_follows_the_cache_limit_setting(tmp_path, monkeypatch):
+    import os
+
+    for i in range(5):
+        (tmp_path / f"{i}.npz").write_bytes(b"x" * 100)
+        os.utime(tmp_path / f"{i}.npz", (i, i))
+    monkeypatch.setenv("ALPHASCOOP_CACHE_LIMIT", "350")
+    prune(tmp_path)
+    assert sorted(p.name for p in tmp_path.glob("*.npz")) == ["2.npz", "3.npz", "4.npz"]
 
 
 def test_save_to_missing_folder_is_a_clear_error(tmp_path, points):
