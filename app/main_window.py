@@ -55,7 +55,8 @@ class MainWindow(QMainWindow):
         self.setWindowIcon(QIcon(str(ICON_PATH)))
         self.setAcceptDrops(True)
         self.prefs = Preferences(settings)
-        self.start_alpha: float | None = None
+        self.start_alpha: float | None = None  # `--alpha`: where the first open shows its file
+        self.start_request: int | None = None  # the open start_alpha belongs to (the first)
         self.mode = Mode()  # the alpha mode of the next open or rebuild
         self.last_options: ImportOptions | None = None  # how the last file was read
         self.start_optimal = False  # open the next dataset at CGAL's optimal alpha
@@ -139,7 +140,12 @@ class MainWindow(QMainWindow):
         self.prefs.set_last_dir(path)
         self.progress.start(f"opening {path.name}")
         self.last_options = options
-        return self.loader.start(load_job(path, self.mode, options))
+        request = self.loader.start(load_job(path, self.mode, options))
+        if self.start_request is None:
+            self.start_request = request
+        elif self.start_alpha is not None:  # a newer open: the start belonged to the first
+            self.start_alpha = None
+        return request
 
     def open_asking(self, path: str | Path) -> int | None:
         """Open path as a user does (File → Open, a drop): text and big files first show the
@@ -228,7 +234,8 @@ class MainWindow(QMainWindow):
         if not dataset.has_topology:
             self.topology.start(topology_job(dataset))
         reopened, self.reopen_alpha = self.reopen_alpha, None
-        alpha = reopened[1] if reopened is not None and reopened[0] == request else self.start_alpha
+        start = self.start_alpha if request == self.start_request else None
+        alpha = reopened[1] if reopened is not None and reopened[0] == request else start
         self.start_alpha = None
         if alpha is not None:
             self.model.set_alpha(alpha)

@@ -209,3 +209,21 @@ def test_a_start_alpha_of_a_cancelled_first_open_is_not_kept_for_the_next(
         window.open_path(files["next"])  # held: still building when cancelled
         window.loader.cancel()
     _open_third_at_its_own_alpha(window, qtbot, files, held, "the cancelled one's --alpha")
+
+
+def test_a_start_alpha_is_not_given_to_a_file_that_superseded_its_open(
+        window, qtbot, files, held):
+    """`alphascoop FILE --alpha A`, then the user opens another file before FILE is built:
+    that file opens at its own opening alpha, not at A (before, A went to whichever load
+    finished first)."""
+    window.start_alpha = 0.05
+    window.open_path(files["next"])  # held: still building
+    _open_third_at_its_own_alpha(window, qtbot, files, held, "the superseded one's --alpha")
+
+
+def test_a_start_alpha_goes_to_its_own_open(window, qtbot, files, held):
+    window.start_alpha = 0.05
+    held.set()
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["next"])
+    assert window.model.touched and window.model.alpha == pytest.approx(0.05, rel=0.05)
