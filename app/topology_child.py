@@ -158,10 +158,10 @@ class TopologyChild:
             self._handed.set()
 
     def _keep(self, error: BaseException) -> None:
-        """Keep error for parts(); once the result was handed over (the cache rewrite
-        failed) nobody waits for it, so an unexpected one is printed instead."""
+        """Keep error for parts(); once the result was handed over (then the cache rewrite or
+        the folder's removal failed) nobody waits for it, so an unexpected one is printed."""
         if self._written is None:
             self._error = self._error or error
         elif not isinstance(error, Cancelled):
-            print(f"alphascoop: the topology was not saved to the cache ({error})",
-                  file=sys.stderr)
+            print(f"alphascoop: the topology process failed after its hand-over ({error}); "
+                  "the topology may not be in the cache", file=sys.stderr)

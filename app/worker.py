@@ -71,8 +71,11 @@ def topology_job(dataset: Dataset) -> Job:
 
         child = dataset.topology_child
         if child is not None and not child.hand_to(cancel):
-            child.stop()  # stopped before this job took it: its load was superseded
-            raise Cancelled("topology cancelled")
+            # stopped before this job took it: a newer open began meanwhile. That open may
+            # still fail before it releases this dataset, so the pass starts again (a stale
+            # one is cancelled with the release).
+            child.stop()
+            child = None
         progress(0.0, "topology")
         small = child is None and len(dataset.ac.points) < topology_process.IN_THREAD_BELOW
         if dataset.has_topology or small:
