@@ -32,6 +32,7 @@ from core.complex import AlphaComplex
 from core.cursor import CursorOrders, cursor_orders
 from core.errors import AlphaScoopError, Cancelled
 from core.modes import Mode, make_mode
+from core.npz import read_npz
 from core.obtain import BuildRequest, HandOver, run_here
 from core.opening import opening_alpha_of
 from core.progress import Progress
@@ -120,8 +121,7 @@ def _load_handed(answer: dict, report: Progress) -> tuple[AlphaComplex, HandOver
     ac = AlphaComplex.load(answer["table"], verify=False)  # our child wrote it just now
     if answer["orders"] is None:
         return ac, HandOver()
-    with np.load(answer["orders"], allow_pickle=False) as saved:
-        orders = CursorOrders.from_arrays(saved, ac.dim)
+    orders = CursorOrders.from_arrays(read_npz(answer["orders"], trusted=True), ac.dim)
     return ac, HandOver(cursor=ac.cursor(orders))
 
 

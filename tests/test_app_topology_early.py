@@ -9,6 +9,7 @@ import multiprocessing
 import os
 import tempfile
 import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -93,12 +94,14 @@ def no_child_left(qtbot) -> None:
 
 
 def test_the_topology_process_runs_before_the_dataset_arrives(window, qtbot, files, started):
-    arrived: list[object] = []
-    window.model.datasetChanged.connect(lambda: arrived.append(window.model.dataset))
+    arrived: list[tuple[object, float]] = []
+    window.model.datasetChanged.connect(
+        lambda: arrived.append((window.model.dataset, time.perf_counter())))
     with qtbot.waitSignal(window.model.topologyChanged, timeout=BUILD_TIMEOUT_MS):
         window.open_path(files["first"])
-    assert len(started) == 1 and arrived[0].topology_child is started[0]
-    assert not arrived[0].has_topology
+    assert len(started) == 1 and arrived[0][0].topology_child is started[0]
+    assert started[0].started < arrived[0][1]  # it ran before the dataset reached the window
+    assert not arrived[0][0].has_topology
     ds, here = window.model.dataset, AlphaComplex.from_points(np.load(files["first"]))
     assert ds.topology_child is None
     for name in ("betti", "solid_components", "measure", "boundary_measure"):
