@@ -54,6 +54,10 @@ from .progress import Progress
 from .table_signs import settle_cells, settle_facets, settle_obtuse
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
 
+#: Points up to which the edge pass packs each triangle's first two vertices and attach bits
+#: into one int64 (29 bits for the second vertex), read by one gather per incidence.
+WORDS_UP_TO = 1 << 29
+
 
 @dataclass
 class Level:
@@ -90,8 +94,17 @@ def _permute(level: Level, order: np.ndarray | None) -> np.ndarray | None:
     level.interior = level.enter.copy() if shared else take(level.interior, order)
     if level.face_ids is not None:
         level.face_ids = take(level.face_ids, order)
+    return _inverse(order)
+
+
+def _inverse(order: np.ndarray) -> np.ndarray:
+    """(n,) int32 inverse of a permutation, its two halves scattered at once."""
     inverse = np.empty(len(order), dtype=np.int32)
-    inverse[order] = np.arange(len(order), dtype=np.int32)
+
+    def part(lo: int, hi: int) -> None:
+        inverse[order[lo:hi]] = np.arange(lo, hi, dtype=np.int32)
+
+    halves(part, len(order), PASSES)
     return inverse
 
 
@@ -492,23 +505,48 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
     two threads."""
     inside = None if bits is None else np.empty(len(keys), dtype=bool)
     face_ids = np.empty(tris.size, dtype=np.int32)
-    first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
     size = 4 * CACHE_CHUNK
     base = np.cumsum([0] + [np.count_nonzero(is_start[lo:lo + size])
                             for lo in range(0, len(keys), size)])
+    words = _triangle_words(tris, bits) if m <= WORDS_UP_TO else None
 
     def part(lo: int, hi: int) -> None:
         t = tri_ids[lo:hi]
         a = keys[lo:hi] // m  # a floor division by a constant: much faster than divmod
         b = keys[lo:hi] - a * m
-        local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
-        if inside is not None:
-            inside[lo:hi] = (bits[t] >> local) & 1
+        if words is None:
+            local = np.where(a != tris[t, 0], 0, np.where(b == tris[t, 1], 2, 1))
+            if inside is not None:
+                inside[lo:hi] = (bits[t] >> local) & 1
+        else:  # one random gather per incidence instead of three
+            word = np.take(words, t)
+            local = np.where(a != word >> 32, 0,
+                             np.where(b == (word >> 3) & ((1 << 29) - 1), 2, 1))
+            if inside is not None:
+                inside[lo:hi] = (word >> local) & 1
         edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
         face_ids[3 * t.astype(np.int64) + local] = edge_of
 
     in_chunks(part, len(keys), size)
     return inside, face_ids
+
+
+def _triangle_words(tris: np.ndarray, bits: np.ndarray | None) -> np.ndarray:
+    """(t,) int64 first vertex << 32 | second vertex << 3 | attach bits of every triangle
+    (vertices below 2**29), so an incidence reads its triangle in one gather; in halves."""
+    words = np.empty(len(tris), dtype=np.int64)
+
+    def part(lo: int, hi: int) -> None:
+        out = words[lo:hi]
+        out[:] = tris[lo:hi, 0]
+        out <<= 29
+        out += tris[lo:hi, 1]
+        out <<= 3
+        if bits is not None:
+            out |= bits[lo:hi] & 7  # one bit per vertex
+
+    halves(part, len(tris), PASSES)
+    return words
 
 
 def _gathered(source: np.ndarray, ids: np.ndarray | None) -> Callable[[int, int], np.ndarray]:

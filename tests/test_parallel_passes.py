@@ -213,3 +213,14 @@ def test_every_table_array_is_the_same_split_or_not(dim: int, backend: str) -> N
     for name, array in a.items():
         assert array.dtype == b[name].dtype, name
         np.testing.assert_array_equal(array, b[name], err_msg=name)
+
+
+def test_edge_pass_reads_triangles_packed_or_not_the_same() -> None:
+    """The edge pass's packed triangle words (vertices below WORDS_UP_TO) and its
+    column reads (larger point sets) give the same table."""
+    points = np.random.default_rng(5).random((500, 3))
+    packed = _table_arrays(build_complex(points))
+    with mock.patch.object(core.table, "WORDS_UP_TO", 0):
+        columns = _table_arrays(build_complex(points))
+    for name, array in packed.items():
+        np.testing.assert_array_equal(array, columns[name], err_msg=name)
