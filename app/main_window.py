@@ -13,16 +13,9 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
-from PySide6.QtCore import QEvent, QSettings, Qt, QTimer
+from PySide6.QtCore import QSettings, Qt, QTimer
 from PySide6.QtGui import QIcon
-from PySide6.QtWidgets import (
-    QApplication,
-    QDockWidget,
-    QLabel,
-    QMainWindow,
-    QMessageBox,
-    QWidget,
-)
+from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 
 from app import child_process, memory
 from app.alpha_panel import AlphaPanel
@@ -251,7 +244,7 @@ class MainWindow(QMainWindow):
         self.start_optimal = self.start_optimal and not dataset.has_topology
         # the docks take their new widths now, before the view's first frame: that frame is
         # drawn once, at its final size (a resize after it would draw it again)
-        QApplication.sendPostedEvents(None, QEvent.Type.LayoutRequest)
+        self.layout().activate()
 
     def _on_topology(self, _request: int, dataset) -> None:
         """The current dataset's topology arrived: fill in the docks (the model moves to the
