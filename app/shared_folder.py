@@ -18,7 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from app.child_process import SHARED_ROOT, make_scratch
+from app import child_process
 
 PREFIX = "alphascoop-shared-"
 
@@ -27,17 +27,20 @@ class SharedFolder:
     """A scratch folder in shared memory, removed once every holder let go; its maker holds
     it from the start (`release`), others through `hold`."""
 
-    def __init__(self, root: str | Path = SHARED_ROOT) -> None:
-        """Make the folder in root (OSError when it cannot be made)."""
-        self.path, self._owner_lock = make_scratch(PREFIX, root)
+    def __init__(self, root: str | Path | None = None) -> None:
+        """Make the folder in root (default child_process.SHARED_ROOT; OSError when it
+        cannot be made)."""
+        self.path, self._owner_lock = child_process.make_scratch(
+            PREFIX, child_process.SHARED_ROOT if root is None else root)
         self._lock = threading.Lock()
         self._holders = 1
         self._release_own = self._releaser()
 
     @classmethod
-    def make(cls, root: str | Path = SHARED_ROOT) -> SharedFolder | None:
-        """A new folder in root, None when there is no shared memory to put one in (then the
-        table is handed over as a file)."""
+    def make(cls, root: str | Path | None = None) -> SharedFolder | None:
+        """A new folder in root (default child_process.SHARED_ROOT), None when there is no
+        shared memory to put one in (then the table is handed over as a file)."""
+        root = child_process.SHARED_ROOT if root is None else root
         if not Path(root).is_dir():
             return None
         try:
