@@ -1,16 +1,23 @@
 """Build big tables in a child process: Qhull cannot be interrupted, a process can be killed.
 
 ChildRunner is the window's runner for core.obtain. The child builds the table (and its
-signatures when asked), writes it to the cache entry (or to a temporary file when the cache
-cannot be written or is not used) and hands it over as soon as it is written; beside the
-save, in threads, it finds the slider cursor's sort orders (core.cursor.cursor_orders,
-handed over in a scratch file) and, without the signatures, the table's quick opening alpha
-(core.opening), sent when found. The caller loads the table it was handed (without
-re-checking the file its own child wrote a moment ago) and makes the cursor from those
-orders while the child still looks for the opening alpha; the runner keeps both
-(`handed_over`). `on_saved(entry, n_points)` is told as soon as the child has handed over a
-table without signatures written to its cache entry, before this process loads it (the
-window starts the topology process then: app.worker). Cancel kills the child at once, so a
+signatures when asked) and hands it over at once through shared memory: a folder on /dev/shm
+the runner made (app.shared_folder) into which the child writes the table and the slider
+cursor's sort orders (core.cursor.cursor_orders, found in a thread beside) as raw arrays
+(core.mapped), which the caller and the topology process map, read-only, instead of reading
+them; only then does the child write the cache entry (atomic: core.cache), holding a lock
+the topology process waits for before it rewrites that entry with the signatures. Without
+/dev/shm, or with too little room in it, the child writes the cache entry (or a temporary
+file when the cache cannot be written or is not used) first and hands that file over, with
+the orders in a scratch file, as before. Beside those writes, without the signatures, it
+finds the table's quick opening alpha (core.opening), sent when done. The caller maps (or
+loads, without re-checking the file its own child wrote a moment ago) the table it was handed
+and makes the cursor from those orders while the child still writes the entry and looks for
+the opening alpha; the runner keeps both (`handed_over`). `on_saved(entry, n_points,
+shared)` is told as soon as the child has handed over a table without signatures that is in
+its cache entry or in shared memory on its way there, before this process maps or loads it
+(the window starts the topology process then: app.worker). The shared folder is removed once
+this process and the topology process have mapped it (or gave up): app.shared_folder. Cancel kills the child at once, so a
 newer open or closing the window never waits for a Delaunay triangulation to finish. Small
 sets build in the caller's thread: under IN_THREAD_BELOW points a build takes a few seconds at
 most, and a process would add about one (its start and the table's trip through a file).
