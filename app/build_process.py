@@ -5,19 +5,22 @@ signatures when asked) and hands it over at once through shared memory: a folder
 the runner made (app.shared_folder) into which the child writes the table and the slider
 cursor's sort orders (core.cursor.cursor_orders, found in a thread beside) as raw arrays
 (core.mapped), which the caller and the topology process map, read-only, instead of reading
-them; only then does the child write the cache entry (atomic: core.cache), holding a lock
-the topology process waits for before it rewrites that entry with the signatures. Without
-/dev/shm, or with too little room in it, the child writes the cache entry (or a temporary
-file when the cache cannot be written or is not used) first and hands that file over, with
-the orders in a scratch file, as before. Beside those writes, without the signatures, it
-finds the table's quick opening alpha (core.opening), sent when done. The caller maps (or
-loads, without re-checking the file its own child wrote a moment ago) the table it was handed
-and makes the cursor from those orders while the child still writes the entry and looks for
-the opening alpha; the runner keeps both (`handed_over`). `on_saved(entry, n_points,
-shared)` is told as soon as the child has handed over a table without signatures that is in
-its cache entry or in shared memory on its way there, before this process maps or loads it
-(the window starts the topology process then: app.worker). The shared folder is removed once
-this process and the topology process have mapped it (or gave up): app.shared_folder. Cancel kills the child at once, so a
+them. Then it sends the table's quick opening alpha (core.opening, found in a thread beside
+those writes; not with the signatures) and only then writes the cache entry (atomic:
+core.cache), at a lower priority, holding a lock the topology process waits for before it
+rewrites that entry with the signatures. The caller does not wait for that write: it is
+left to the child (HandOver.saving), which a newer open still kills (the load's cancel;
+the entry is then absent, never damaged). Without /dev/shm, or with too little room in it,
+the child writes the cache entry (or a temporary file when the cache cannot be written or is
+not used) first and hands that file over, with the orders in a scratch file, as before.
+
+The caller maps (or loads, without re-checking the file its own child wrote a moment ago) the
+table it was handed and makes the cursor from those orders while the child still works; the
+runner keeps both (`handed_over`). `on_saved(entry, n_points, shared)` is told as soon as the
+child has handed over a table without signatures that is in its cache entry or in shared
+memory on its way there, before this process maps or loads it (the window starts the topology
+process then: app.worker). The shared folder is removed once this process and the topology
+process have mapped it (or gave up): app.shared_folder. Cancel kills the child at once, so a
 newer open or closing the window never waits for a Delaunay triangulation to finish. Small
 sets build in the caller's thread: under IN_THREAD_BELOW points a build takes a few seconds at
 most, and a process would add about one (its start and the table's trip through a file).
@@ -25,8 +28,10 @@ most, and a process would add about one (its start and the table's trip through 
 
 from __future__ import annotations
 
+import contextlib
 import fcntl
 import json
+import os
 import shutil
 import sys
 import threading
@@ -36,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from app.child_process import LOCK_NAME, run_in_child, scratch
+from app.child_process import LOCK_NAME, LeaveRunning, make_scratch, run_in_child
 from app.shared_folder import SharedFolder, SharedTable
 from core.complex import AlphaComplex
 from core.cursor import CursorOrders, cursor_orders
@@ -53,6 +58,7 @@ IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
 ORDERS_NAME = "cursor.npz"  # the cursor's sort orders, beside the table in the scratch folder
 ORDERS_FOLDER = "cursor"  # the same in the shared folder, as core.mapped arrays
 SAVING_NAME = "saving.lock"  # locked by the child until its cache entry is written
+SAVE_NICENESS = 10  # the entry's write after a shared hand-over yields the cores to others
 
 
 class ChildRunner:
@@ -85,9 +91,17 @@ class ChildRunner:
         if len(request.points) < IN_THREAD_BELOW:
             return run_here(request, progress)
         shared = SharedFolder.make()
+        folder, lock = make_scratch("alphascoop-build-")
+
+        def remove() -> None:  # once the child has ended (it may outlive this call)
+            lock.close()
+            shutil.rmtree(folder, ignore_errors=True)
+
         try:
-            with scratch("alphascoop-build-") as folder:
-                answer, taken = self._run(request, Path(folder), shared, report)
+            answer, taken = self._run(request, folder, shared, report, remove)
+        except BaseException:
+            remove()  # (again: harmless) a child that failed or was killed has ended
+            raise
         finally:
             if shared is not None:
                 shared.release()  # the window has mapped it, or gave up
@@ -95,17 +109,23 @@ class ChildRunner:
             raise AlphaScoopError("the build process finished without handing its table over")
         ac, handed = taken[0]
         self._built = ac
-        self._handed = replace(handed, opening_alpha=answer["opening_alpha"])
+        self._handed = replace(handed, opening_alpha=answer["opening_alpha"],
+                               saving=bool(answer.get("saving", False)))
         return ac
 
     def handed_over(self, ac: AlphaComplex) -> HandOver:
         """The quick opening alpha (None when the signatures hold it) and the cursor the
-        child's orders made, for the complex this runner built last; else HandOver()."""
+        child's orders made, for the complex this runner built last, and whether its child
+        still writes its cache entry; else HandOver()."""
         return self._handed if ac is self._built else HandOver()
 
     def _run(self, request: BuildRequest, folder: Path, shared: SharedFolder | None,
-             report: Progress) -> tuple[dict, list[tuple[AlphaComplex, HandOver]]]:
-        """Run the child with its inputs in folder: its answer and what it handed over."""
+             report: Progress, remove: Callable[[], None]
+             ) -> tuple[dict, list[tuple[AlphaComplex, HandOver]]]:
+        """Run the child with its inputs in folder: its answer and what it handed over.
+        Without the signatures, a child that handed its table over in shared memory and
+        then its opening alpha is left to write the cache entry on its own (answer
+        "saving": True), killed if `cancel` is set meanwhile; remove() once it ended."""
         source = folder / "points.npy"
         np.save(source, request.points)
         if request.weights is not None:
@@ -117,28 +137,38 @@ class ChildRunner:
                "backend": request.backend,
                "shared": None if shared is None else str(shared.path)}
         taken: list[tuple[AlphaComplex, HandOver]] = []
+        opening: list[float | None] = []
+
+        def handed(text: str) -> None:
+            message = json.loads(text)
+            if "opening_alpha" not in message:
+                taken.append(self._take(message, request, shared, report))
+                return
+            opening.append(message["opening_alpha"])
+            if taken and not request.signatures and request.save_to is not None:
+                raise LeaveRunning  # only the entry's write is left: the window goes on
+
         try:
-            answer = json.loads(run_in_child(
-                build_in_child, (str(source), str(folder / "table.npz"), job), report,
-                self.cancel, "alphascoop-build",
-                lambda text: taken.append(self._take(text, request, shared, report))))
+            result = run_in_child(build_in_child, (str(source), str(folder / "table.npz"), job),
+                                  report, self.cancel, "alphascoop-build", handed, remove)
         except (AlphaScoopError, MemoryError) as error:
             if not taken or isinstance(error, Cancelled):
                 raise
             print(f"alphascoop: the build process failed after handing its table over "
                   f"({error}); the window finds the opening alpha itself", file=sys.stderr)
-            answer = {"opening_alpha": None}
-        return answer, taken
+            return {"opening_alpha": opening[0] if opening else None}, taken
+        if result is None:
+            return {"opening_alpha": opening[0], "saving": True}, taken
+        return json.loads(result), taken
 
-    def _take(self, text: str, request: BuildRequest, shared: SharedFolder | None,
+    def _take(self, answer: dict, request: BuildRequest, shared: SharedFolder | None,
               report: Progress) -> tuple[AlphaComplex, HandOver]:
-        """The table a child handed over (JSON {"table": its file or shared folder, "mapped":
+        """The table a child handed over ({"table": its file or shared folder, "mapped":
         whether it is that folder, "orders": the cursor's orders (file or folder) or None})
         and the cursor made from those orders; on_saved is told first when the table is, or
         is about to be written to, the cache entry without signatures."""
         if self.cancel.is_set():  # no topology process for a table nobody will load
             raise Cancelled("build cancelled")
-        answer = json.loads(text)
         mapped = bool(answer["mapped"]) and shared is not None
         if (self.on_saved is not None and not request.signatures
                 and request.save_to is not None
@@ -204,6 +234,10 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress,
             orders_folder = _share_orders(orders, Path(shared) / ORDERS_FOLDER)
             hand_over(json.dumps({"table": shared, "mapped": True, "orders": orders_folder,
                                   "saving": str(saving)}))
+            finder()
+            hand_over(json.dumps({"opening_alpha": float(opening[0]) if opening else None}))
+            with contextlib.suppress(OSError):  # the cores go to the window and the topology
+                os.nice(SAVE_NICENESS)
             request.save(ac)  # unreported: the window is past this stage already
         else:
             written = request.save(ac, progress)

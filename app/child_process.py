@@ -123,16 +123,25 @@ def _alive(pid: int) -> bool:
     return state not in ("Z", "X")
 
 
+class LeaveRunning(Exception):
+    """Raised by a `handed` callback of run_in_child: the caller has what it needs, the child
+    finishes its work on its own (run_in_child's `finish`)."""
+
+
 def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
                  cancel: CancelFlag, name: str,
-                 handed: Callable[[str], None] | None = None) -> str:
+                 handed: Callable[[str], None] | None = None,
+                 finish: Callable[[], None] | None = None) -> str | None:
     """Run work(*args, progress) in a spawned process; the text it returned. Its errors are
     raised here as the same core.errors class (MemoryError as MemoryError); Cancelled as
     soon as `cancel` is set (the child is killed).
 
     With `handed`, work gets a third callable, hand_over(text), to pass a result before it
     is done (a file it has finished writing, say): handed(text) runs here as soon as it
-    comes, while the child goes on; its errors stop the child too."""
+    comes, while the child goes on; its errors stop the child too. When it raises
+    LeaveRunning, None is returned at once and the child is left to end on its own,
+    followed by a thread (killed as soon as `cancel` is set); `finish()` runs once it has
+    ended (else right here, when this returns or raises)."""
     context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
     receiver, sender = context.Pipe(duplex=False)
     child = context.Process(target=child_main,
@@ -140,13 +149,42 @@ def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
                             name=name, daemon=True)
     child.start()
     sender.close()
+    left = False
     try:
         return _follow(child, receiver, progress, cancel, handed)
+    except LeaveRunning:
+        left = True
+        threading.Thread(target=_end, args=(child, receiver, cancel, finish),
+                         name=f"{name}-follower", daemon=True).start()
+        return None
     finally:
+        if not left:
+            _end(child, receiver, _ENDED, finish)
+
+
+class _Ended:
+    """A cancel flag that is always set: end the child now."""
+
+    def is_set(self) -> bool:
+        return True
+
+
+_ENDED = _Ended()
+
+
+def _end(child, receiver: Connection, cancel: CancelFlag,
+         finish: Callable[[], None] | None) -> None:
+    """Wait until the child has ended (killed once cancel is set), then close and finish."""
+    try:
+        while child.is_alive() and not cancel.is_set():
+            child.join(POLL_SECONDS)
         if child.is_alive():
             child.kill()
         child.join()
         receiver.close()
+    finally:
+        if finish is not None:
+            finish()
 
 
 def _follow(child, receiver: Connection, progress: Progress, cancel: CancelFlag,

@@ -200,9 +200,12 @@ def test_a_child_that_dies_after_the_hand_over_leaves_the_table(tmp_path, monkey
     build_process.build_in_child(str(tmp_path / "points.npy"), str(tmp_path / "table.npz"),
                                  job, never, handed.append)
 
-    def dies_after_handing_over(_work, _args, _progress, _cancel, _name, hand) -> str:
-        hand(handed[0])
-        raise AlphaScoopError("the background process stopped without a result")
+    def dies_after_handing_over(_work, _args, _progress, _cancel, _name, hand, finish) -> str:
+        try:
+            hand(handed[0])
+            raise AlphaScoopError("the background process stopped without a result")
+        finally:
+            finish()
 
     monkeypatch.setattr(build_process, "IN_THREAD_BELOW", 0)
     monkeypatch.setattr(build_process, "run_in_child", dies_after_handing_over)

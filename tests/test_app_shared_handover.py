@@ -12,6 +12,7 @@ import multiprocessing
 import os
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -28,6 +29,7 @@ from core.cache import entry_path, read_entry
 from core.errors import AlphaScoopError, Cancelled
 from core.modes import Mode
 from core.obtain import obtain
+from core.opening import opening_alpha_of
 
 ROOT = Path(__file__).resolve().parents[1]
 pytestmark = pytest.mark.skipif(not child_process.SHARED_ROOT.is_dir(), reason="no /dev/shm")
@@ -40,6 +42,14 @@ def in_process(monkeypatch, tmp_path):
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
 
 
+@pytest.fixture(autouse=True)
+def no_process_left():
+    """A build process left to write its entry (the runner returned) ends before the next
+    test counts processes."""
+    yield
+    assert wait_until(lambda: not multiprocessing.active_children())
+
+
 def never(*_args) -> None:
     """A progress callback that ignores its reports."""
 
@@ -47,6 +57,11 @@ def never(*_args) -> None:
 def my_shared() -> list[Path]:
     """This process's shared folders in /dev/shm."""
     return list(child_process.SHARED_ROOT.glob(f"alphascoop-shared-{os.getpid()}-*"))
+
+
+def my_scratch() -> list[Path]:
+    """This process's scratch folders in the temp dir."""
+    return list(Path(tempfile.gettempdir()).glob(f"alphascoop-*-{os.getpid()}-*"))
 
 
 def mapped_here(folder: Path) -> list[str]:
@@ -79,7 +94,10 @@ def test_the_table_is_handed_over_in_shared_memory_before_the_entry_is_written(t
     shared, entry = tmp_path / "shared", tmp_path / "cache" / "entry.npz"
     shared.mkdir()
     handed, entry_then = run_body(tmp_path, points, shared, entry)
-    assert [h["mapped"] for h in handed] == [True] and entry_then == [False]
+    assert [h.get("mapped") for h in handed] == [True, None]  # the table, then ...
+    assert entry_then == [False, False]  # ... the opening alpha, both before the entry
+    assert handed[1] == {"opening_alpha": opening_alpha_of(AlphaComplex.from_points(
+        points).index, len(points))}
     assert handed[0]["table"] == str(shared)
     here = AlphaComplex.from_points(points)
     got = AlphaComplex.load(shared, verify=False)
@@ -139,7 +157,8 @@ def test_the_folder_goes_once_the_window_and_the_topology_process_mapped_it():
     assert not damaged and upgraded.has_signatures
     folder = shared_seen[0].folder.path
     assert mapped_here(folder)  # the window's table lives on in its mapping ...
-    del ac, obtained, runner, upgraded, parts, started
+    del ac, obtained, runner, upgraded, parts
+    started.clear()
     gc.collect()
     assert mapped_here(folder) == []  # ... and goes with it
 
@@ -172,7 +191,7 @@ def test_cancel_at_every_stage_leaves_nothing_in_shared_memory(stage):
         obtain(points, runner=runner, progress=progress)
     for child in started:
         child.stop()
-    assert multiprocessing.active_children() == [] and my_shared() == []
+    assert multiprocessing.active_children() == [] and my_shared() == []  # killed at once
     assert read_entry(entry_path(points), len(points), Mode())[1] is False
 
 
@@ -182,19 +201,22 @@ def test_a_child_that_dies_after_a_shared_hand_over_leaves_a_working_table(tmp_p
     written: the window keeps a whole, working table; the folder is gone; no entry."""
     points = np.random.default_rng(6).random((3000, 3))
 
-    def dies_after_handing_over(work, args, _progress, _cancel, _name, hand) -> str:
+    def dies_after_handing_over(work, args, _progress, _cancel, _name, hand, finish) -> str:
         source, target, job = args
         job = {**job, "save_to": None}  # the body stops before its entry is written
         texts: list[str] = []
-        work(source, target, job, never, texts.append)
-        hand(texts[0])
-        raise AlphaScoopError("the background process stopped without a result")
+        try:
+            work(source, target, job, never, texts.append)
+            hand(texts[0])  # the table; the process dies before its opening alpha
+            raise AlphaScoopError("the background process stopped without a result")
+        finally:
+            finish()
 
     monkeypatch.setattr(build_process, "run_in_child", dies_after_handing_over)
     runner = build_process.ChildRunner(threading.Event())
     obtained = obtain(points, runner=runner)
     ac = obtained.complex
-    assert my_shared() == [] and obtained.entry is None
+    assert my_shared() == [] and obtained.entry is None and my_scratch() == []
     assert runner.handed_over(ac).cursor is not None
     here = AlphaComplex.from_points(points)
     assert ac.optimal_alpha() == here.optimal_alpha()
@@ -287,3 +309,33 @@ def test_a_shared_folder_goes_when_its_last_holder_lets_go():
     with pytest.raises(ValueError):
         folder.hold()
 
+
+
+def wait_until(condition, seconds: float = 60) -> bool:
+    """Poll condition until it holds or seconds passed; whether it held."""
+    deadline = time.monotonic() + seconds
+    while not condition() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    return condition()
+
+
+@pytest.mark.parametrize("cancel_after", [False, True])
+def test_the_runner_leaves_the_entry_to_its_child_which_a_cancel_still_stops(cancel_after):
+    """Without the signatures the runner returns once it has the table and the opening
+    alpha; the child writes the entry on its own (the entry is already named), then ends
+    and its scratch folder goes. A cancel (a newer open) kills it: the entry is then
+    absent or whole, never damaged."""
+    points = np.random.default_rng(10).random((120_000, 3))
+    cancel = threading.Event()
+    runner = build_process.ChildRunner(cancel)
+    obtained = obtain(points, runner=runner)
+    handed = runner.handed_over(obtained.complex)
+    assert handed.saving and handed.opening_alpha is not None
+    assert obtained.entry == entry_path(points)
+    if cancel_after:
+        cancel.set()
+    assert wait_until(lambda: not multiprocessing.active_children() and my_scratch() == [])
+    if not cancel_after:
+        assert entry_path(points).is_file()
+    assert read_entry(entry_path(points), len(points), Mode())[1] is False
+    assert my_shared() == []
