@@ -63,9 +63,9 @@ class LayersPanel(QWidget):
         for line, (name, style) in enumerate(styles.items()):
             row = LayerRow(name)
             row.show(style)
-            self.grid.addWidget(row.visible, line, 0)
-            self.grid.addWidget(row.colour, line, 1)
-            self.grid.addWidget(row.opacity, line, 2)
+            for column, widget in enumerate((row.visible, row.colour, row.opacity)):
+                self.grid.addWidget(widget, line, column)
+                widget.show()  # now, not by the layout's queued show: the dock widens once
             row.visible.toggled.connect(lambda on, n=name: self._edit(n, visible=on))
             row.opacity.valueChanged.connect(lambda v, n=name: self._edit(n, opacity=v))
             row.colour.clicked.connect(lambda _=False, n=name: self._pick_colour(n))

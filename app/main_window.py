@@ -13,9 +13,16 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
-from PySide6.QtCore import QSettings, Qt, QTimer
+from PySide6.QtCore import QEvent, QSettings, Qt, QTimer
 from PySide6.QtGui import QIcon
-from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
+from PySide6.QtWidgets import (
+    QApplication,
+    QDockWidget,
+    QLabel,
+    QMainWindow,
+    QMessageBox,
+    QWidget,
+)
 
 from app import child_process, memory
 from app.alpha_panel import AlphaPanel
@@ -242,6 +249,9 @@ class MainWindow(QMainWindow):
         elif self.start_optimal and dataset.has_topology:
             self.model.set_index(self.model.optimal_index())
         self.start_optimal = self.start_optimal and not dataset.has_topology
+        # the docks take their new widths now, before the view's first frame: that frame is
+        # drawn once, at its final size (a resize after it would draw it again)
+        QApplication.sendPostedEvents(None, QEvent.Type.LayoutRequest)
 
     def _on_topology(self, _request: int, dataset) -> None:
         """The current dataset's topology arrived: fill in the docks (the model moves to the
@@ -282,9 +292,9 @@ class MainWindow(QMainWindow):
         if ds.atomic_numbers is not None:  # a molecule: atoms in CPK colours, its cavities
             styles["balls"], styles["cavities"] = ATOM_STYLE, CAVITY_STYLE
             rgb = cpk_rgb(ds.atomic_numbers)
+        self.layers_panel.set_layers(styles)  # first: the docks it widens redraw no shape
         self.scene.set_dataset(scene_data(ds, styles, rgb))
         self.colourer.set_dataset(ds.attributes)
-        self.layers_panel.set_layers(styles)
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
 

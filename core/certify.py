@@ -16,6 +16,7 @@ import numpy as np
 from .cell_pass import CellSpheres, first_pass
 from .delaunay import Triangulation, interior_facets, regular_triangulate, sort_rows
 from .errors import InputError
+from .parallel import PASSES, cast, halves, nonzero, rows_cols
 from .predicates import in_sphere, orientations
 from .rewrap import grow, rewrap, sound
 
@@ -38,10 +39,17 @@ class Certified:
 def _folded(n: int, signs: np.ndarray, t, i, u, j) -> np.ndarray:
     """(n,) bool: cells on the same side of a shared facet (t, i, u, j) as their neighbour
     (rows ascending, so the facet's orientation follows from the cell's sign and the
-    position left out)."""
-    same = np.where(i & 1, -signs[t], signs[t]) == np.where(j & 1, -signs[u], signs[u])
+    position left out); the facets in halves (both only ever set True)."""
     out = np.zeros(n, dtype=bool)
-    out[t[same]] = out[u[same]] = True
+
+    def part(lo: int, hi: int) -> None:
+        tt, uu = t[lo:hi], u[lo:hi]
+        st, su = signs[tt], signs[uu]
+        same = np.where(i[lo:hi] & 1, -st, st) == np.where(j[lo:hi] & 1, -su, su)
+        out[tt[same]] = True
+        out[uu[same]] = True
+
+    halves(part, len(t), PASSES)
     return out
 
 
@@ -51,8 +59,8 @@ class _Mesh:
     def __init__(self, points: np.ndarray, tri: Triangulation, ties: np.ndarray) -> None:
         self.points = points
         self.ties = ties
-        self.cells = tri.cells.astype(np.int64)
-        self.nbs = tri.neighbors.astype(np.int64)
+        self.cells = cast(tri.cells, np.int64)
+        self.nbs = cast(tri.neighbors, np.int64)
         self.alive = np.ones(len(self.cells), dtype=bool)
         self.mirror = tri.mirror  # valid until the first flip (peeling only cuts links)
         self.first = interior_facets(self.nbs, self.mirror)  # first round's
@@ -139,9 +147,15 @@ def _first_violations(mesh: _Mesh, t, i, u, j) -> np.ndarray:
     exactly when V has the sign opposite to the cell's): only the rows its bound left open
     are re-decided, by core.predicates.in_sphere."""
     side, doubt = mesh.side
-    solid = ~mesh.bad[t] & ~mesh.bad[u]
-    bad = solid & (side == -mesh.signs[t])
-    ids = np.flatnonzero(solid & doubt)
+    bad = np.empty(len(t), dtype=bool)
+
+    def part(lo: int, hi: int) -> np.ndarray:
+        tt = t[lo:hi]
+        solid = ~mesh.bad[tt] & ~mesh.bad[u[lo:hi]]
+        np.logical_and(solid, side[lo:hi] == -mesh.signs[tt], out=bad[lo:hi])
+        return solid & doubt[lo:hi]
+
+    ids = nonzero(part, len(t))
     inside, n_exact = in_sphere(mesh.points, mesh.cells[t[ids]], mesh.cells[u[ids], j[ids]],
                                 mesh.signs[t[ids]], mesh.ties)
     mesh.exact += n_exact
@@ -266,7 +280,7 @@ def _fill_reflex_hull(mesh: _Mesh) -> int:
     Returns how many reflex ridges are left unfilled (the hull is then not convex there)."""
     d = mesh.cells.shape[1] - 1
     mesh.concave = np.empty(0, dtype=np.int64)
-    t, k = np.nonzero(mesh.nbs < 0)
+    t, k = rows_cols(nonzero(lambda lo, hi: mesh.nbs[lo:hi] < 0, len(mesh.nbs)), d + 1)
     keep = mesh.alive[t] & ~mesh.bad[t]
     t, k = t[keep], k[keep]
     if not len(t):

@@ -17,8 +17,8 @@ import numpy as np
 from .alpha import table_value, threshold
 from .arrays import readonly
 from .errors import InputError
-from .index import TableIndex, facing_out
-from .parallel import halves, place, select, take, together
+from .index import TableIndex
+from .parallel import PASSES, halves, in_chunks, place, select, take, together
 from .shape import AlphaShape, Known
 from .table import argsort_radii
 
@@ -26,6 +26,9 @@ FEW = 256  # changes up to this many are spliced by runs of memcpy, more by a ma
 EVENT_COST = 8  # an ended simplex (random look-ups, a sort) costs about this many elements
 #                of a sequential pass
 NOT_A_CANDIDATE = np.iinfo(np.int32).max
+ROW_CHUNK = 1 << 16  # facets oriented per chunk (its temporaries stay in cache)
+
+
 def _between(sorted_values: np.ndarray, low: float, high: float) -> slice:
     """Positions of the values in (low, high] of an ascending array."""
     return slice(int(np.searchsorted(sorted_values, low, "right")),
@@ -48,11 +51,10 @@ class IntervalSet:
         lo; `by_hi`, `hi_sorted`: simplex ids by ascending hi and their hi values (others
         than candidates are ignored); `rows_by_lo`: (m, width) int32 rows of the candidates
         in `by_lo` order."""
-        self._by_lo = by_lo.astype(np.int32)
+        self._by_lo = by_lo.astype(np.int32, copy=False)
         self._lo_sorted = take(lo, by_lo)  # random gathers: in halves (core.parallel)
         self._hi_by_lo = take(hi, by_lo)
-        self._rank = np.full(len(lo), NOT_A_CANDIDATE, dtype=np.int32)
-        self._rank[by_lo] = np.arange(len(by_lo), dtype=np.int32)
+        self._rank = _rank_array(self._by_lo, len(lo))
         self._by_hi, self._hi_sorted = by_hi, hi_sorted
         self._width = rows_by_lo.shape[1]
         self._row = np.dtype((np.void, 4 * self._width))  # one row as one item: faster moves
@@ -203,7 +205,6 @@ class ShapeCursor:
         (cursor_orders, by a build process beside its save), so only gathers remain."""
         self._index = index
         self._points = points
-        index.facets_by_interior  # noqa: B018 (a cached property: made here, not in a thread)
         if orders is None:
             singular = together(lambda: {k: _singular_set(index, k, *_singular_orders(index, k))
                                          for k in range(index.dim)})
@@ -309,7 +310,7 @@ def _regular_set(index: TableIndex, by_regular: np.ndarray) -> IntervalSet:
     """The REGULAR facets: candidates ranked by regular, ended by interior."""
     facets = index.level(index.dim - 1)
     return IntervalSet(facets.regular, facets.interior, by_regular,
-                       index.table.facet_interior_order, index.facets_by_interior[0],
+                       index.table.facet_interior_order, index.interiors_sorted,
                        _oriented_rows(index, by_regular))
 
 
@@ -321,13 +322,41 @@ def _singular_set(index: TableIndex, k: int, by_enter: np.ndarray,
                        take(level.regular, by_ended), take(level.simplices, by_enter))
 
 
+def _rank_array(by_lo: np.ndarray, n: int) -> np.ndarray:
+    """(n,) int32 the rank of every simplex in `by_lo` (NOT_A_CANDIDATE for the others):
+    a fill and a random scatter, each in halves (the halves write disjoint items)."""
+    rank = np.empty(n, dtype=np.int32)
+    halves(lambda a, b: rank[a:b].fill(NOT_A_CANDIDATE), n, PASSES)
+
+    def part(start: int, stop: int) -> None:
+        rank[by_lo[start:stop]] = np.arange(start, stop, dtype=np.int32)
+
+    halves(part, len(by_lo), PASSES)
+    return rank
+
+
 def _oriented_rows(index: TableIndex, ids: np.ndarray) -> np.ndarray:
-    """(len(ids), dim) int32 facets as the shape orients them while REGULAR.
+    """(len(ids), dim) int32 facets as the shape orients them while REGULAR (as
+    core.index.facing_out would turn them).
 
     In its REGULAR interval a facet bounds exactly one cell: the one entered first (cells
-    are sorted by enter), which is cell 1 when that is real and lower.
+    are sorted by enter), which is cell 1 when that is real and lower. Chunk by chunk, in
+    two threads: each chunk's gathers and swaps stay in cache, with no whole-length
+    temporaries (fresh memory costs more than the passes at a million points).
     """
-    rows = take(index.simplices(index.dim - 1), ids)
-    pairs = take(index.facet_cells(), ids)
-    inside_second = (pairs[:, 1] >= 0) & (pairs[:, 1] < pairs[:, 0])
-    return facing_out(rows, take(index.table.facet_flip, ids), inside_second, rows)
+    facets, cells = index.simplices(index.dim - 1), index.facet_cells()
+    flip = index.table.facet_flip
+    rows = np.empty((len(ids), index.dim), dtype=np.int32)
+
+    def part(start: int, stop: int) -> None:
+        chunk, block = ids[start:stop], rows[start:stop]
+        np.take(facets, chunk, axis=0, out=block)
+        pair = np.take(cells, chunk, axis=0)
+        reverse = np.take(flip, chunk)
+        reverse ^= (pair[:, 1] >= 0) & (pair[:, 1] < pair[:, 0])  # inside its cell 1
+        last = block[:, -1].copy()
+        np.copyto(block[:, -1], block[:, -2], where=reverse)
+        np.copyto(block[:, -2], last, where=reverse)
+
+    in_chunks(part, len(ids), ROW_CHUNK)
+    return rows

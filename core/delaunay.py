@@ -10,7 +10,7 @@ import numpy as np
 from scipy.spatial import ConvexHull, Delaunay, QhullError, cKDTree
 
 from .errors import InputError
-from .parallel import slot_of
+from .parallel import nonzero, rows_cols, slot_of, take
 from .tolerances import LOWER_FACET_COS
 
 _NETWORKS = {3: ((0, 1), (1, 2), (0, 1)), 4: ((0, 1), (2, 3), (0, 2), (1, 3), (1, 2))}
@@ -57,11 +57,14 @@ def interior_facets(neighbors: np.ndarray, mirror: np.ndarray | None = None
     neighbour table (-1 = hull). j is read from `mirror` (the neighbours' columns that
     point back, Triangulation.mirror) where given, else found in u's row (one compare per
     column, core.parallel.slot_of). Shared by the backend check and the certification."""
-    slots = np.flatnonzero(neighbors > np.arange(len(neighbors), dtype=neighbors.dtype)[:, None])
-    t, i = np.divmod(slots, neighbors.shape[1])
-    u = np.take(neighbors, slots).astype(np.int64)
+    def inner(lo: int, hi: int) -> np.ndarray:
+        return neighbors[lo:hi] > np.arange(lo, hi, dtype=neighbors.dtype)[:, None]
+
+    slots = nonzero(inner, len(neighbors))
+    t, i = rows_cols(slots, neighbors.shape[1])
+    u = take(neighbors.ravel(), slots, np.int64)
     if mirror is not None:
-        return t, i, u, np.take(mirror, slots).astype(np.int64)
+        return t, i, u, take(mirror.ravel(), slots, np.int64)
     return t, i, u, slot_of(neighbors, u, t)
 
 

@@ -92,16 +92,71 @@ def in_chunks(part: Callable[[int, int], object], n: int, size: int) -> None:
         other.result()
 
 
-def take(source: np.ndarray, ids: np.ndarray) -> np.ndarray:
+def take(source: np.ndarray, ids: np.ndarray, dtype: type | None = None) -> np.ndarray:
     """source[ids] along the first axis (ids in [-len, len), negatives from the end as in
-    Python), gathered in halves: random gathers are bound by memory latency."""
-    out = np.empty((len(ids), *source.shape[1:]), dtype=source.dtype)
+    Python), gathered in halves: random gathers are bound by memory latency. `dtype`: the
+    result's, cast while gathering (default source's)."""
+    out = np.empty((len(ids), *source.shape[1:]), dtype=dtype or source.dtype)
 
     def part(start: int, stop: int) -> None:
-        np.take(source, ids[start:stop], axis=0, out=out[start:stop], mode="wrap")
+        if out.dtype == source.dtype:
+            np.take(source, ids[start:stop], axis=0, out=out[start:stop], mode="wrap")
+        else:
+            out[start:stop] = np.take(source, ids[start:stop], axis=0, mode="wrap")
 
     halves(part, len(ids), PASSES)
     return out
+
+
+def nonzero(test: Callable[[int, int], np.ndarray], n: int) -> np.ndarray:
+    """(k,) int64 flat indices, ascending, of the True items of the (n, ...) boolean array
+    whose rows [lo, hi) test(lo, hi) gives (as np.flatnonzero of the whole): each half's
+    rows tested and listed at once, then the two lists joined in place."""
+    found: dict[int, tuple[int, np.ndarray]] = {}  # first row -> (first flat index, list)
+
+    def find(start: int, stop: int) -> None:
+        mask = test(start, stop)
+        found[start] = (start * (mask.size // max(stop - start, 1)), np.flatnonzero(mask))
+
+    halves(find, n, PASSES)
+    parts = [found[lo] for lo in sorted(found)]
+    if len(parts) == 1:
+        return parts[0][1].astype(np.int64, copy=False)
+    ends = np.cumsum([0] + [len(hits) for _, hits in parts])
+    out = np.empty(int(ends[-1]), dtype=np.int64)
+
+    def join(k: int) -> None:
+        offset, hits = parts[k]
+        np.add(hits, offset, out=out[ends[k]:ends[k + 1]])
+
+    both(lambda: join(0), lambda: join(1))
+    return out
+
+
+def cast(source: np.ndarray, dtype: type) -> np.ndarray:
+    """source.astype(dtype) (a new array), the rows in halves."""
+    out = np.empty(source.shape, dtype=dtype)
+
+    def part(start: int, stop: int) -> None:
+        out[start:stop] = source[start:stop]
+
+    halves(part, len(source), PASSES)
+    return out
+
+
+def rows_cols(slots: np.ndarray, width: int) -> tuple[np.ndarray, np.ndarray]:
+    """np.divmod(slots, width) of (n,) int64 flat slots: (rows, columns), in halves (as a
+    floor division and a product: numpy divides by a constant several times faster than
+    it takes remainders)."""
+    rows, cols = np.empty(len(slots), dtype=np.int64), np.empty(len(slots), dtype=np.int64)
+
+    def part(start: int, stop: int) -> None:
+        np.floor_divide(slots[start:stop], width, out=rows[start:stop])
+        np.multiply(rows[start:stop], width, out=cols[start:stop])
+        np.subtract(slots[start:stop], cols[start:stop], out=cols[start:stop])
+
+    halves(part, len(slots), PASSES)
+    return rows, cols
 
 
 def searchsorted(ascending: np.ndarray, values: np.ndarray, side: str = "left") -> np.ndarray:

@@ -10,6 +10,10 @@ import numpy as np
 from .errors import InputError
 from .tolerances import FLAT_RTOL, MAX_COORDINATE
 
+#: clearly_spread's least scatter eigenvalue, relative to the largest: FLAT_RTOL squared
+#: is 1e-18, so a set this far from flat is decided without an SVD
+SPREAD_MARGIN = 1e-6
+
 
 def first_too_large(points: np.ndarray) -> tuple[int, float] | None:
     """(row, value) of the first finite coordinate beyond MAX_COORDINATE for the points'
@@ -100,6 +104,25 @@ def flatness(points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return centroid, s * scale, vt
 
 
+def clearly_spread(points: np.ndarray) -> bool:
+    """True when the (n, d) points certainly spread in every direction, far from flat: the
+    least eigenvalue of their scaled scatter matrix (one BLAS pass, not an SVD) is above a
+    margin that dwarfs both its rounding error (about n * eps of the largest) and the flat
+    threshold (FLAT_RTOL of the largest singular value, squared). False says nothing: the
+    SVD (flatness) decides then."""
+    n = len(points)
+    if n < 2:
+        return False
+    centred = points - points.mean(axis=0)
+    scale = np.abs(centred).max()
+    if not np.isfinite(scale) or scale == 0.0:
+        return False
+    centred /= scale
+    eigen = np.linalg.eigvalsh(centred.T @ centred)
+    margin = max(SPREAD_MARGIN, 1000.0 * n * np.finfo(np.float64).eps)
+    return bool(eigen[0] > margin * eigen[-1])
+
+
 def check_spread(points: np.ndarray) -> Frame | None:
     """Frame to build a planar 3D set in 2D, or None; InputError if too few or collinear."""
     n, d = points.shape
@@ -108,6 +131,8 @@ def check_spread(points: np.ndarray) -> Frame | None:
             f"only {n} distinct point(s): a {d}D alpha shape needs at least {d + 1} points "
             "that are not all on one line" + (" or plane" if d == 3 else "")
         )
+    if clearly_spread(points):  # neither one point, nor a line, nor a plane
+        return None
     centroid, s, vt = flatness(points)
     if s[0] == 0.0:
         raise InputError("all points are the same point")

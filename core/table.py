@@ -29,7 +29,19 @@ from .geometry import (
     edge_vectors,
     facet_radii2,
 )
-from .parallel import in_chunks, reduce_segments, slot_of, sort, take, together
+from .parallel import (
+    PARALLEL_ABOVE,
+    PASSES,
+    both,
+    halves,
+    in_chunks,
+    nonzero,
+    reduce_segments,
+    rows_cols,
+    slot_of,
+    take,
+    together,
+)
 from .power import (
     any_point_below,
     cell_orthospheres,
@@ -41,6 +53,10 @@ from .power import (
 from .progress import Progress
 from .table_signs import settle_cells, settle_facets, settle_obtuse
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
+
+#: Points up to which the edge pass packs each triangle's first two vertices and attach bits
+#: into one int64 (29 bits for the second vertex), read by one gather per incidence.
+WORDS_UP_TO = 1 << 29
 
 
 @dataclass
@@ -78,8 +94,17 @@ def _permute(level: Level, order: np.ndarray | None) -> np.ndarray | None:
     level.interior = level.enter.copy() if shared else take(level.interior, order)
     if level.face_ids is not None:
         level.face_ids = take(level.face_ids, order)
+    return _inverse(order)
+
+
+def _inverse(order: np.ndarray) -> np.ndarray:
+    """(n,) int32 inverse of a permutation, its two halves scattered at once."""
     inverse = np.empty(len(order), dtype=np.int32)
-    inverse[order] = np.arange(len(order), dtype=np.int32)
+
+    def part(lo: int, hi: int) -> None:
+        inverse[order[lo:hi]] = np.arange(lo, hi, dtype=np.int32)
+
+    halves(part, len(order), PASSES)
     return inverse
 
 
@@ -95,23 +120,63 @@ def argsort_radii(values: np.ndarray) -> np.ndarray:
 
     np.sort of (float32 key, index) packed in a uint64 is several times faster than
     np.argsort here; float32 rounding is monotone, so a stable pass over the nearly sorted
-    result restores the exact float64 order.
+    result restores the exact float64 order. The packing, unpacking and that pass run on
+    two threads (the pass in two parts cut where the float32 key changes).
     """
     n = len(values)
     if n >= 2**32:
         return np.argsort(values, kind="stable")
-    with np.errstate(over="ignore"):  # beyond float32's range: inf keys, order fixed below
-        key = values.astype(np.float32)
-    bits = key.view(np.uint32)
-    if n and values.min() < 0:  # IEEE order as unsigned: flip negatives, set positives' sign
-        bits = np.where(key < 0, ~bits, bits | np.uint32(0x80000000))
-    packed = bits.astype(np.uint64) << np.uint64(32)
-    del key
-    packed |= np.arange(n, dtype=np.uint64)
+    negative = bool(n) and bool(values.min() < 0)
+    packed = np.empty(n, dtype=np.uint64)
+
+    def pack(lo: int, hi: int) -> None:
+        with np.errstate(over="ignore"):  # beyond float32's range: inf keys, fixed below
+            key = values[lo:hi].astype(np.float32)
+        bits = key.view(np.uint32)
+        if negative:  # IEEE order as unsigned: flip negatives, set positives' sign
+            bits = np.where(key < 0, ~bits, bits | np.uint32(0x80000000))
+        out = packed[lo:hi]
+        out[:] = bits
+        out <<= np.uint64(32)
+        out |= np.arange(lo, hi, dtype=np.uint64)
+
+    halves(pack, n, PASSES)
     packed.sort()
-    order = (packed & np.uint64(0xFFFFFFFF)).astype(np.int64)
-    del packed
-    return order[np.argsort(values[order], kind="stable")]
+    order = np.empty(n, dtype=np.int64)
+
+    def unpack(lo: int, hi: int) -> None:
+        np.bitwise_and(packed[lo:hi], np.uint64(0xFFFFFFFF), out=order[lo:hi].view(np.uint64))
+
+    halves(unpack, n, PASSES)
+    return stable_fix(values, order, _key_cut(packed))
+
+
+def _key_cut(packed: np.ndarray) -> int:
+    """A position near the middle of the sorted (key << 32 | index) array where the key
+    changes (0 where the middle key runs to the end, or for short arrays)."""
+    n = len(packed)
+    if n < PARALLEL_ABOVE:
+        return 0
+    key = int(packed[n // 2 - 1]) >> 32
+    if key == 0xFFFFFFFF:
+        return 0
+    return int(np.searchsorted(packed, np.uint64((key + 1) << 32)))
+
+
+def stable_fix(values: np.ndarray, order: np.ndarray, cut: int) -> np.ndarray:
+    """order[np.argsort(values[order], kind="stable")]: in two parts on two threads when
+    every value before `cut` is at most every value from it (0: in one part)."""
+    def fix(lo: int, hi: int) -> np.ndarray:
+        part = order[lo:hi]
+        return part[np.argsort(np.take(values, part), kind="stable")]
+
+    if 0 < cut < len(order):
+        first, second = both(lambda: fix(0, cut), lambda: fix(cut, len(order)))
+        if values[first[-1]] <= values[second[0]]:
+            out = np.empty_like(order)
+            both(lambda: np.copyto(out[:cut], first), lambda: np.copyto(out[cut:], second))
+            return out
+    return fix(0, len(order))
 
 
 def _order(enter: np.ndarray, sort: bool) -> np.ndarray | None:
@@ -313,10 +378,12 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     only their structure. `mirror`: the neighbours' columns that point back, if
     known (else found from their rows)."""
     n_cells, width = cells.simplices.shape
-    keep = (neighbors > np.arange(n_cells, dtype=np.int32)[:, None]) | (neighbors < 0)
-    slot0 = np.flatnonzero(keep)  # cell-major, as np.nonzero lists them
-    del keep
-    t0, i0 = np.divmod(slot0, width)
+    def keep(lo: int, hi: int) -> np.ndarray:
+        rows = neighbors[lo:hi]
+        return (rows > np.arange(lo, hi, dtype=np.int32)[:, None]) | (rows < 0)
+
+    slot0 = nonzero(keep, n_cells)  # cell-major, as np.nonzero lists them
+    t0, i0 = rows_cols(slot0, width)
     t1 = take(neighbors.ravel(), slot0)
     simplices = _drop_vertex(cells.simplices, t0, i0)
     has1 = np.flatnonzero(t1 >= 0)
@@ -344,9 +411,9 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
         enter = regular = interior = np.empty(0)  # (0,): no values
     order = _order_beside(enter, sort)  # while the facets' orientation and ids are found
 
-    flip = (i0 % 2 == 1) ^ (det0 < 0)
+    flip = (i0 & 1).astype(bool) ^ (det0 < 0)
     better = np.abs(det1) > np.abs(take(det0, has1))
-    flip_other = ~((j1 % 2 == 1) ^ (det1 < 0))
+    flip_other = ~((j1 & 1).astype(bool) ^ (det1 < 0))
     flip[has1[better]] = flip_other[better]
     del det0, det1, better, flip_other
     hull = np.flatnonzero(t1 < 0)
@@ -371,11 +438,17 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
 
 
 def _drop_vertex(simplices: np.ndarray, rows: np.ndarray, drop: np.ndarray) -> np.ndarray:
-    """(n, w-1) the ascending rows `rows` of (c, w) `simplices` without column `drop`."""
-    full = take(simplices, rows)
+    """(n, w-1) the ascending rows `rows` of (c, w) `simplices` without column `drop`; in
+    cache-sized chunks, alternate ones in a helper thread."""
     out = np.empty((len(rows), simplices.shape[1] - 1), dtype=simplices.dtype)
-    for c in range(out.shape[1]):
-        np.copyto(out[:, c], np.where(drop > c, full[:, c], full[:, c + 1]))
+
+    def part(lo: int, hi: int) -> None:
+        full = np.take(simplices, rows[lo:hi], axis=0)
+        gone = drop[lo:hi]
+        for c in range(out.shape[1]):
+            np.copyto(out[lo:hi, c], np.where(gone > c, full[:, c], full[:, c + 1]))
+
+    in_chunks(part, len(rows), 4 * CACHE_CHUNK)
     return out
 
 
@@ -384,7 +457,8 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
     whether the ids ascend within each key.
 
     Packs key and triangle id into one uint64 when they fit, because np.sort is several
-    times faster than np.argsort on this machine class.
+    times faster than np.argsort on this machine class (and, vectorised, than two sorted
+    halves and a merge); the packing and unpacking run on two threads.
     """
     m = np.uint64(n_points)
     nt = len(triangles)
@@ -393,13 +467,28 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
     pairs = ((0, 1), (0, 2), (1, 2))
     if key_bits + tri_bits <= 64:
         shift = np.uint64(tri_bits)
-        tid = np.arange(nt, dtype=np.uint64)
-        cols = [triangles[:, c].astype(np.uint64) for c in range(3)]
-        packed = np.concatenate([((cols[i] * m + cols[j]) << shift) | tid for i, j in pairs])
-        del cols, tid
-        sort(packed)
-        tri_ids = (packed & np.uint64((1 << tri_bits) - 1)).astype(np.int32)
-        packed >>= shift
+        packed = np.empty(3 * nt, dtype=np.uint64)
+
+        def pack(lo: int, hi: int) -> None:
+            tid = np.arange(lo, hi, dtype=np.uint64)
+            cols = [triangles[lo:hi, c].astype(np.uint64) for c in range(3)]
+            for k, (i, j) in enumerate(pairs):
+                out = packed[k * nt + lo:k * nt + hi]
+                np.multiply(cols[i], m, out=out)
+                out += cols[j]
+                out <<= shift
+                out |= tid
+
+        in_chunks(pack, nt, 4 * CACHE_CHUNK)
+        packed.sort()
+        tri_ids = np.empty(len(packed), dtype=np.int32)
+
+        def unpack(lo: int, hi: int) -> None:
+            np.bitwise_and(packed[lo:hi], np.uint64((1 << tri_bits) - 1), out=tri_ids[lo:hi],
+                           casting="unsafe")
+            packed[lo:hi] >>= shift
+
+        halves(unpack, len(packed), PASSES)
         return packed.view(np.int64), tri_ids, True
     keys = np.concatenate([triangles[:, i].astype(np.int64) * n_points + triangles[:, j]
                            for i, j in pairs])
@@ -416,22 +505,48 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
     two threads."""
     inside = None if bits is None else np.empty(len(keys), dtype=bool)
     face_ids = np.empty(tris.size, dtype=np.int32)
-    first_col, second_col = np.ascontiguousarray(tris[:, 0]), np.ascontiguousarray(tris[:, 1])
     size = 4 * CACHE_CHUNK
     base = np.cumsum([0] + [np.count_nonzero(is_start[lo:lo + size])
                             for lo in range(0, len(keys), size)])
+    words = _triangle_words(tris, bits) if m <= WORDS_UP_TO else None
 
     def part(lo: int, hi: int) -> None:
         t = tri_ids[lo:hi]
-        a, b = np.divmod(keys[lo:hi], m)
-        local = np.where(a != first_col[t], 0, np.where(b == second_col[t], 2, 1))
-        if inside is not None:
-            inside[lo:hi] = (bits[t] >> local) & 1
+        a = keys[lo:hi] // m  # a floor division by a constant: much faster than divmod
+        b = keys[lo:hi] - a * m
+        if words is None:
+            local = np.where(a != tris[t, 0], 0, np.where(b == tris[t, 1], 2, 1))
+            if inside is not None:
+                inside[lo:hi] = (bits[t] >> local) & 1
+        else:  # one random gather per incidence instead of three
+            word = np.take(words, t)
+            local = np.where(a != word >> 32, 0,
+                             np.where(b == (word >> 3) & ((1 << 29) - 1), 2, 1))
+            if inside is not None:
+                inside[lo:hi] = (word >> local) & 1
         edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
         face_ids[3 * t.astype(np.int64) + local] = edge_of
 
     in_chunks(part, len(keys), size)
     return inside, face_ids
+
+
+def _triangle_words(tris: np.ndarray, bits: np.ndarray | None) -> np.ndarray:
+    """(t,) int64 first vertex << 32 | second vertex << 3 | attach bits of every triangle
+    (vertices below 2**29), so an incidence reads its triangle in one gather; in halves."""
+    words = np.empty(len(tris), dtype=np.int64)
+
+    def part(lo: int, hi: int) -> None:
+        out = words[lo:hi]
+        out[:] = tris[lo:hi, 0]
+        out <<= 29
+        out += tris[lo:hi, 1]
+        out <<= 3
+        if bits is not None:
+            out |= bits[lo:hi] & 7  # one bit per vertex
+
+    halves(part, len(tris), PASSES)
+    return words
 
 
 def _gathered(source: np.ndarray, ids: np.ndarray | None) -> Callable[[int, int], np.ndarray]:
@@ -441,22 +556,67 @@ def _gathered(source: np.ndarray, ids: np.ndarray | None) -> Callable[[int, int]
     return lambda lo, hi: np.take(source, ids[lo:hi])
 
 
-def _edge_enter(points: np.ndarray, a: np.ndarray, b: np.ndarray, regular: np.ndarray,
+def _edge_enter(points: np.ndarray, simplices: np.ndarray, regular: np.ndarray,
                 attached: np.ndarray, check: np.ndarray,
                 weights: np.ndarray | None) -> np.ndarray:
-    """(e,) enter of the edges (a, b): their own (half length, or signed radius of power)
-    unless attached; the edges `check` get the global attachment test."""
+    """(e,) enter of the (e, 2) edges `simplices`: their own (half length, or signed radius
+    of power) unless attached; the edges `check` get the global attachment test. The half
+    lengths in cache-sized chunks, alternate ones in a helper thread."""
+    a, b = simplices[:, 0], simplices[:, 1]
     if weights is None:
-        half = 0.5 * np.sqrt(((points[b] - points[a]) ** 2).sum(axis=1))
+        half = np.empty(len(simplices))
+
+        def part(lo: int, hi: int) -> None:
+            ends = np.take(points, b[lo:hi], axis=0) - np.take(points, a[lo:hi], axis=0)
+            half[lo:hi] = 0.5 * np.sqrt((ends ** 2).sum(axis=1))
+
+        in_chunks(part, len(simplices), 4 * CACHE_CHUNK)
         if len(check):
             centres = 0.5 * (points[a[check]] + points[b[check]])
             attached[check] |= any_point_inside(points, centres, half[check] ** 2)
     else:
-        power, centres, _ = edge_powers(points, weights, np.stack((a, b), axis=1))
+        power, centres, _ = edge_powers(points, weights, simplices.astype(np.int64))
         half = signed_sqrt(power)
         if len(check):
             attached[check] |= any_point_below(points, weights, centres[check], power[check])
-    return np.where(attached, regular, np.minimum(half, regular))
+    out = np.empty(len(half))
+
+    def choose(lo: int, hi: int) -> None:
+        out[lo:hi] = np.where(attached[lo:hi], regular[lo:hi],
+                              np.minimum(half[lo:hi], regular[lo:hi]))
+
+    halves(choose, len(half), PASSES)
+    return out
+
+
+def _starts(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(n,) bool: each of the ascending `keys` differs from the one before (the first is a
+    start), and (k,) int64 the positions of those starts; on two threads."""
+    is_start = np.empty(len(keys), dtype=bool)
+
+    def boundaries(lo: int, hi: int) -> np.ndarray:
+        mark = is_start[lo:hi]
+        if lo == 0:
+            mark[:1] = True
+            np.not_equal(keys[1:hi], keys[:max(hi - 1, 0)], out=mark[1:])
+        else:
+            np.not_equal(keys[lo:hi], keys[lo - 1:hi - 1], out=mark)
+        return mark
+
+    return is_start, nonzero(boundaries, len(keys))
+
+
+def _edge_ends(keys: np.ndarray, starts: np.ndarray, m: int) -> np.ndarray:
+    """(k, 2) int32 vertices (a, b) of the edge keys a * m + b at `starts`; in halves."""
+    simplices = np.empty((len(starts), 2), dtype=np.int32)
+
+    def part(lo: int, hi: int) -> None:
+        edge = np.take(keys, starts[lo:hi])
+        simplices[lo:hi, 0] = first = edge // m
+        simplices[lo:hi, 1] = edge - first * m
+
+    halves(part, len(starts), PASSES)
+    return simplices
 
 
 def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
@@ -472,17 +632,10 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     m = len(points)
     tris = triangles.simplices
     keys, tri_ids, ids_ascend = _edge_incidences(tris, m)
-    is_start = np.empty(len(keys), dtype=bool)
-    is_start[0] = True
-    np.not_equal(keys[1:], keys[:-1], out=is_start[1:])
-    starts = np.flatnonzero(is_start)
-
+    is_start, starts = _starts(keys)
     inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m)
     del is_start
-    edges = keys[starts]
-    a, b = np.divmod(edges, m)
-    simplices = np.stack((a, b), axis=1).astype(np.int32)
-    del edges, a, b
+    simplices = _edge_ends(keys, starts, m)
     if bits is None:  # a mode supplies every value (core/modes.py)
         triangles.face_ids = face_ids.reshape(-1, 3)
         return Level(simplices, np.empty(0), np.empty(0), np.empty(0))
@@ -499,8 +652,7 @@ def _edges(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     # over all incidences
     check = np.unique(face_ids.reshape(-1, 3)[np.flatnonzero(near_flat)])
     del keys, tri_ids, inside
-    a, b = simplices[:, 0].astype(np.int64), simplices[:, 1].astype(np.int64)
-    enter = _edge_enter(points, a, b, regular, attached, check, weights)
+    enter = _edge_enter(points, simplices, regular, attached, check, weights)
     level = Level(simplices, enter, regular, interior)
     inverse = _permute(level, _order(enter, sort))
     triangles.face_ids = (face_ids if inverse is None else take(inverse, face_ids)).reshape(-1, 3)

@@ -54,3 +54,16 @@ def test_window_screenshot_is_not_blank(sample_window, qtbot) -> None:
 def test_contrast_measure_rejects_a_black_frame() -> None:
     """The contrast check is able to fail: a uniform frame scores zero."""
     assert image_contrast(np.zeros((64, 64, 3), dtype=np.uint8)) < MIN_CONTRAST
+
+
+def test_first_frame_is_drawn_at_the_final_view_size(window, qtbot) -> None:
+    """The docks take the widths a dataset's panels need before its first frame: the view
+    has its final size once the load is handled, so the shape is not drawn again by a
+    resize afterwards (a whole extra frame at a million points)."""
+    view = window.centralWidget()
+    seen = []
+    window.loader.finished.connect(lambda *_: seen.append(view.size()))  # after the window's
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=120_000):
+        window.open_path(SAMPLE_PATH)
+    qtbot.wait(500)
+    assert seen == [view.size()]

@@ -227,3 +227,53 @@ def test_orders_of_another_table_are_an_input_error():
         regular[0] = bad
         with pytest.raises(InputError, match="do not fit"):
             ac.cursor(CursorOrders(regular, int64.singular))
+
+
+def assert_same_as_shape(ac: AlphaComplex, shape, value: float) -> None:
+    """The cursor's shape at table value `value` (negative ones too: weighted) holds, row for
+    row and oriented alike, what ac.shape and ac.classify give there."""
+    at = at_value(value)
+    fresh = ac.shape(**at)
+    ids = shape.regular_facet_ids
+    order = np.argsort(ids)
+    np.testing.assert_array_equal(ids[order],
+                                  np.flatnonzero(ac.classify(k=ac.dim - 1, **at) == REGULAR))
+    np.testing.assert_array_equal(shape.regular_facets[order], fresh.regular_facets)
+    for k in range(ac.dim):
+        ids = shape.singular_ids(k)
+        order = np.argsort(ids)
+        np.testing.assert_array_equal(ids[order],
+                                      np.flatnonzero(ac.classify(k=k, **at) == SINGULAR))
+        np.testing.assert_array_equal(shape.singular(k)[order], fresh.singular(k))
+
+
+@pytest.mark.parametrize("weighted", [False, True])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_set_up_in_chunks_and_halves_gives_the_shapes_row_for_row(dim, weighted, monkeypatch):
+    """The cursor's set-up (facets oriented chunk by chunk, ranks scattered in halves), with
+    tiny chunks and every pass split, from handed orders or its own sorts: its shapes equal
+    ac.shape's at many alphas (classic and weighted, 2D and 3D), and its oriented rows equal
+    core.index.facing_out's definition for every facet."""
+    import core.cursor
+    import core.parallel
+    from core.index import facing_out
+
+    monkeypatch.setattr(core.cursor, "ROW_CHUNK", 7)
+    monkeypatch.setattr(core.parallel, "PARALLEL_ABOVE", 2)
+    rng = np.random.default_rng(20 + dim)
+    points = rng.random((700, dim))
+    extra = {"weights": rng.random(700) * 2e-3} if weighted else {}
+    ac = AlphaComplex.from_points(points, **extra)
+    index = ac.index
+    facets = np.arange(len(index.level(dim - 1).enter))
+    cells = index.facet_cells()
+    inside_second = (cells[:, 1] >= 0) & (cells[:, 1] < cells[:, 0])
+    np.testing.assert_array_equal(
+        core.cursor._oriented_rows(index, facets[::-1].copy()),
+        facing_out(index.simplices(dim - 1), index.table.facet_flip, inside_second)[::-1])
+    spectrum = ac.spectrum()
+    stops = np.concatenate([rng.integers(0, len(spectrum), 30), [0, len(spectrum) - 1]])
+    for cursor in (ac.cursor(), ac.cursor(cursor_orders(index))):
+        for stop in stops:
+            value = float(spectrum[stop])
+            assert_same_as_shape(ac, cursor.move(**at_value(value)), value)

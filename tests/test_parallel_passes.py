@@ -13,10 +13,14 @@ import pytest
 import core.geometry
 import core.parallel
 import core.table
+from core.build import build_complex
 from core.complex import AlphaComplex
 from core.parallel import (
+    cast,
     in_chunks,
+    nonzero,
     reduce_segments,
+    rows_cols,
     searchsorted,
     sort,
     take,
@@ -29,6 +33,7 @@ def everything_split():
     """Split every pass of more than 2 items; chunks of 7 rows."""
     with contextlib.ExitStack() as stack:
         stack.enter_context(mock.patch.object(core.parallel, "PARALLEL_ABOVE", 2))
+        stack.enter_context(mock.patch.object(core.table, "PARALLEL_ABOVE", 2))
         stack.enter_context(mock.patch.object(core.geometry, "CHUNK", 7))
         stack.enter_context(mock.patch.object(core.geometry, "CACHE_CHUNK", 7))
         stack.enter_context(mock.patch.object(core.table, "CACHE_CHUNK", 7))
@@ -107,3 +112,115 @@ def test_searchsorted_ascending_searches_values_that_do_not_ascend_whole():
     for side in ("left", "right"):
         np.testing.assert_array_equal(searchsorted_ascending(ascending, values, side, chunk=2),
                                       np.searchsorted(ascending, values, side))
+
+
+@pytest.mark.parametrize("n", [0, 1, 2, 3, 7, 1001])
+def test_split_nonzero_and_slots_equal_numpy(n: int) -> None:
+    """Each half's hits listed and joined: the same as one np.flatnonzero, also where a
+    half has no hit or every hit (a dropped or misplaced half fails)."""
+    rng = np.random.default_rng(n)
+    masks = {"random": rng.random((n, 4)) < 0.3, "flat": rng.random(n) < 0.5,
+             "first half empty": np.arange(n)[:, None] >= n // 2 + np.zeros((1, 3), int),
+             "second half empty": np.arange(n)[:, None] < n // 2 + np.zeros((1, 3), int),
+             "none": np.zeros((n, 3), bool), "all": np.ones((n, 3), bool)}
+    with everything_split():
+        for name, mask in masks.items():
+            got = nonzero(lambda lo, hi, mask=mask: mask[lo:hi], n)
+            want = np.flatnonzero(mask)
+            assert got.dtype == np.int64, name
+            np.testing.assert_array_equal(got, want, err_msg=name)
+            width = mask[0].size if n else 1
+            rows, cols = rows_cols(got, width)
+            np.testing.assert_array_equal(rows, want // width, err_msg=name)
+            np.testing.assert_array_equal(cols, want % width, err_msg=name)
+        ints = rng.integers(-5, 5, (n, 4)).astype(np.int32)
+        np.testing.assert_array_equal(cast(ints, np.int64), ints.astype(np.int64))
+        assert cast(ints, np.int64).dtype == np.int64
+
+
+def _argsort_radii_whole(values: np.ndarray) -> np.ndarray:
+    """argsort_radii in one thread and one part (the code before it was split)."""
+    key = values.astype(np.float32)
+    bits = key.view(np.uint32)
+    if len(values) and values.min() < 0:
+        bits = np.where(key < 0, ~bits, bits | np.uint32(0x80000000))
+    packed = np.sort((bits.astype(np.uint64) << np.uint64(32))
+                     | np.arange(len(values), dtype=np.uint64))
+    order = (packed & np.uint64(0xFFFFFFFF)).astype(np.int64)
+    return order[np.argsort(values[order], kind="stable")]
+
+
+@pytest.mark.parametrize("n", [0, 1, 2, 5, 1000])
+def test_split_argsort_radii_equals_a_stable_argsort(n: int) -> None:
+    """The order is packed, unpacked and fixed in two parts cut where the float32 key
+    changes: it must be np.argsort(kind="stable") exactly, with ties, negatives, inf,
+    values beyond float32 and values equal in float32 only; and where the whole pass
+    was no stable argsort (-0.0 beside 0.0 in a table without negatives), the same as
+    that pass."""
+    rng = np.random.default_rng(n)
+    cases = [rng.integers(0, 9, n) * 0.25, rng.normal(size=n),
+             np.where(rng.random(n) < 0.1, np.inf, rng.random(n)),
+             1e39 * (1 + rng.random(n)), 1 + rng.integers(0, 3, n) * 2.0**-40]
+    zeros = np.where(rng.random(n) < 0.5, -0.0, 0.0)
+    with everything_split(), np.errstate(over="ignore"):
+        for values in cases:
+            np.testing.assert_array_equal(core.table.argsort_radii(values),
+                                          np.argsort(values, kind="stable"))
+        for values in [*cases, zeros]:
+            np.testing.assert_array_equal(core.table.argsort_radii(values),
+                                          _argsort_radii_whole(values))
+
+
+def test_stable_fix_joins_its_parts_only_where_the_cut_is_sound() -> None:
+    values = np.array([3.0, 1.0, 2.0, 1.0, 5.0, 4.0])
+    order = np.arange(6)
+    want = np.argsort(values, kind="stable")
+    for cut in range(7):  # most cuts are not sound here: the parts are not ordered
+        np.testing.assert_array_equal(core.table.stable_fix(values, order, cut), want)
+    values = np.array([2.0, 1.0, 1.0, 5.0, 4.0, 4.0])
+    np.testing.assert_array_equal(core.table.stable_fix(values, order, 3),
+                                  np.argsort(values, kind="stable"))
+
+
+def _table_arrays(built) -> dict:
+    """Every array of a built table (levels, adjacency, measures, orders) and its info."""
+    table = built.table
+    out = {"facet_cells": table.facet_cells, "facet_flip": table.facet_flip,
+           "cell_measure": table.cell_measure, "by_interior": table.facet_interior_order,
+           "exact": np.array(table.exact_predicates), "points": built.points}
+    for k, level in enumerate(table.levels):
+        for name in ("simplices", "enter", "regular", "interior", "face_ids"):
+            if getattr(level, name) is not None:
+                out[f"{name}{k}"] = getattr(level, name)
+    return out
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("backend", ["qhull", "gmsh"])
+def test_every_table_array_is_the_same_split_or_not(dim: int, backend: str) -> None:
+    """Built with every pass split in tiny parts (the gmsh backend: its neighbour table,
+    mirror columns and checks too), each table array equals the unsplit build's."""
+    if backend == "gmsh":
+        pytest.importorskip("gmsh")
+    rng = np.random.default_rng(10 + dim)
+    points = rng.random((701, dim))
+    plain = build_complex(points, backend=backend)
+    with everything_split():
+        split = build_complex(points, backend=backend)
+    assert plain.info == split.info
+    a, b = _table_arrays(plain), _table_arrays(split)
+    assert a.keys() == b.keys()
+    for name, array in a.items():
+        assert array.dtype == b[name].dtype, name
+        np.testing.assert_array_equal(array, b[name], err_msg=name)
+
+
+def test_edge_pass_reads_triangles_packed_or_not_the_same() -> None:
+    """The edge pass's packed triangle words (vertices below WORDS_UP_TO) and its
+    column reads (larger point sets) give the same table."""
+    points = np.random.default_rng(5).random((500, 3))
+    packed = _table_arrays(build_complex(points))
+    with mock.patch.object(core.table, "WORDS_UP_TO", 0):
+        columns = _table_arrays(build_complex(points))
+    for name, array in packed.items():
+        np.testing.assert_array_equal(array, columns[name], err_msg=name)

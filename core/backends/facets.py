@@ -126,9 +126,10 @@ def paired(cells: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bo
 
     def part(start: int, stop: int) -> None:
         across = other[start:stop]
-        np.remainder(across, width, out=mirror[start:stop], casting="unsafe")
+        cell = across // width  # -1 stays; a division by a constant, not a remainder
+        np.copyto(nbrs[start:stop], cell, casting="unsafe")
+        np.subtract(across, cell * width, out=mirror[start:stop], casting="unsafe")
         mirror[start:stop][across < 0] = -1
-        np.floor_divide(across, width, out=nbrs[start:stop], casting="unsafe")  # -1 stays
 
     halves(part, len(other), PASSES)
     return nbrs.reshape(t, width), mirror.reshape(t, width), manifold
