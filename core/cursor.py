@@ -202,19 +202,25 @@ class ShapeCursor:
         """Over the table `index` of a complex with (m, dim) `points`: rank the REGULAR
         facets by (regular, interior) and every SINGULAR level by (enter, regular); the two
         jobs run in two threads. `orders`: those ranks already found for this table
-        (cursor_orders, by a build process beside its save), so only gathers remain."""
+        (cursor_orders, by a build process beside its save), so only gathers remain. The
+        table's spectrum (the slider's stops, asked for next) is found in the singular
+        levels' thread, the shorter job, when it is not known yet."""
         self._index = index
         self._points = points
         if orders is None:
-            singular = together(lambda: {k: _singular_set(index, k, *_singular_orders(index, k))
-                                         for k in range(index.dim)})
-            self.regular = _regular_set(index, _regular_order(index))
+            def singular_sets() -> dict[int, IntervalSet]:
+                return {k: _singular_set(index, k, *_singular_orders(index, k))
+                        for k in range(index.dim)}
         else:
             orders.check(index)
-            singular = together(lambda: {k: _singular_set(index, k, *orders.singular[k])
-                                         for k in range(index.dim)})
-            self.regular = _regular_set(index, orders.regular)
-        self.singular: dict[int, IntervalSet] = singular()
+
+            def singular_sets() -> dict[int, IntervalSet]:
+                return {k: _singular_set(index, k, *orders.singular[k])
+                        for k in range(index.dim)}
+        singular = together(lambda: (singular_sets(), index.spectrum()))
+        self.regular = _regular_set(index, _regular_order(index) if orders is None
+                                    else orders.regular)
+        self.singular: dict[int, IntervalSet] = singular()[0]
         self.alpha: float | None = None
 
     def _sets(self) -> list[IntervalSet]:

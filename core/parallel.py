@@ -203,6 +203,26 @@ def sort(values: np.ndarray) -> None:
     values.sort(kind="stable")
 
 
+def argsort_stable(values: np.ndarray) -> np.ndarray:
+    """np.argsort(values, kind="stable") as (n,) intp: long arrays as two halves sorted at
+    once, then merged (ties keep the first half first, so the order is the same)."""
+    n = len(values)
+    if n < PARALLEL_ABOVE or _inside(PASSES):
+        return np.argsort(values, kind="stable")
+    half = n // 2
+    first, second = both(lambda: np.argsort(values[:half], kind="stable"),
+                         lambda: np.argsort(values[half:], kind="stable"))
+    second += half
+    at = np.searchsorted(np.take(values, first), np.take(values, second), side="right")
+    at += np.arange(len(second))  # where each of the second half lands in the merged order
+    out = np.empty(n, dtype=np.intp)
+    from_second = np.zeros(n, dtype=bool)
+    from_second[at] = True
+    out[at] = second
+    out[~from_second] = first
+    return out
+
+
 def reduce_segments(ufunc: np.ufunc, values: Callable[[int, int], np.ndarray],
                     starts: np.ndarray, n: int, dtype: type) -> np.ndarray:
     """ufunc.reduceat over the segments [starts[i], starts[i+1]) of an n-long sequence

@@ -8,11 +8,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError
+from .parallel import argsort_stable, in_chunks
 from .tolerances import FLAT_RTOL, MAX_COORDINATE
 
 #: clearly_spread's least scatter eigenvalue, relative to the largest: FLAT_RTOL squared
 #: is 1e-18, so a set this far from flat is decided without an SVD
 SPREAD_MARGIN = 1e-6
+CODE_CHUNK = 1 << 16  # points per chunk of Morton codes
 
 
 def first_too_large(points: np.ndarray) -> tuple[int, float] | None:
@@ -168,8 +170,15 @@ def spatial_order(points: np.ndarray) -> np.ndarray:
     bits = 32 if dim == 2 else 21
     low = points.min(axis=0)
     extent = float((points.max(axis=0) - low).max()) or 1.0
-    grid = ((points - low) * ((2**bits - 1) / extent)).astype(np.uint64)
-    code = np.zeros(len(points), dtype=np.uint64)
-    for axis in range(dim):
-        code |= _spread_bits(grid[:, axis], dim) << np.uint64(axis)
-    return np.argsort(code, kind="stable")
+    factor = (2**bits - 1) / extent
+    code = np.empty(len(points), dtype=np.uint64)
+
+    def part(start: int, stop: int) -> None:  # element by element: chunks change nothing
+        grid = ((points[start:stop] - low) * factor).astype(np.uint64)
+        mine = code[start:stop]
+        mine[:] = 0
+        for axis in range(dim):
+            mine |= _spread_bits(grid[:, axis], dim) << np.uint64(axis)
+
+    in_chunks(part, len(points), CODE_CHUNK)  # the codes' temporaries stay in cache
+    return argsort_stable(code)

@@ -98,3 +98,39 @@ def test_median_spacing_equals_the_nearest_neighbours_of_its_definition(n):
                 np.random.default_rng(0).choice(len(points), SPACING_SAMPLE, replace=False)]
             want = float(np.median(cKDTree(points).query(sample, k=2)[0][:, 1]))
         assert median_spacing(points) == want
+
+
+def spatial_order_by_definition(points: np.ndarray) -> np.ndarray:
+    """Morton order as it was defined in one piece: whole-array codes, numpy's stable sort."""
+    from core.points import _spread_bits
+
+    dim = points.shape[1]
+    bits = 32 if dim == 2 else 21
+    low = points.min(axis=0)
+    extent = float((points.max(axis=0) - low).max()) or 1.0
+    grid = ((points - low) * ((2**bits - 1) / extent)).astype(np.uint64)
+    code = np.zeros(len(points), dtype=np.uint64)
+    for axis in range(dim):
+        code |= _spread_bits(grid[:, axis], dim) << np.uint64(axis)
+    return np.argsort(code, kind="stable")
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("split", [False, True])
+def test_spatial_order_in_chunks_and_halves_is_the_same_permutation(dim, split, monkeypatch):
+    """Codes made chunk by chunk and sorted in two merged halves give the very permutation
+    of the one-piece definition, ties (many points per grid cell, duplicates) in order."""
+    import core.parallel
+    import core.points
+    from core.parallel import argsort_stable
+    from core.points import spatial_order
+
+    if split:
+        monkeypatch.setattr(core.points, "CODE_CHUNK", 5)
+        monkeypatch.setattr(core.parallel, "PARALLEL_ABOVE", 2)
+    rng = np.random.default_rng(dim)
+    for points in (rng.random((3001, dim)), rng.integers(0, 4, (2000, dim)) * 1.0,
+                   np.concatenate([rng.random((500, dim)) * 1e-9, rng.random((3, dim)) * 1e6])):
+        np.testing.assert_array_equal(spatial_order(points), spatial_order_by_definition(points))
+    for values in (rng.integers(0, 7, 1001), rng.random(1000), np.zeros(10, np.uint64)):
+        np.testing.assert_array_equal(argsort_stable(values), np.argsort(values, kind="stable"))
