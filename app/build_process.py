@@ -1,16 +1,26 @@
 """Build big tables in a child process: Qhull cannot be interrupted, a process can be killed.
 
 ChildRunner is the window's runner for core.obtain. The child builds the table (and its
-signatures when asked), writes it to the cache entry (or to a temporary file when the cache
-cannot be written or is not used) and hands it over as soon as it is written; beside the
-save, in threads, it finds the slider cursor's sort orders (core.cursor.cursor_orders,
-handed over in a scratch file) and, without the signatures, the table's quick opening alpha
-(core.opening), sent when found. The caller loads the table it was handed (without
-re-checking the file its own child wrote a moment ago) and makes the cursor from those
-orders while the child still looks for the opening alpha; the runner keeps both
-(`handed_over`). `on_saved(entry, n_points)` is told as soon as the child has handed over a
-table without signatures written to its cache entry, before this process loads it (the
-window starts the topology process then: app.worker). Cancel kills the child at once, so a
+signatures when asked) and hands it over at once through shared memory: a folder on /dev/shm
+the runner made (app.shared_folder) into which the child writes the table and the slider
+cursor's sort orders (core.cursor.cursor_orders, found in a thread beside) as raw arrays
+(core.mapped), which the caller and the topology process map, read-only, instead of reading
+them. Then it sends the table's quick opening alpha (core.opening, found in a thread beside
+those writes; not with the signatures) and only then writes the cache entry (atomic:
+core.cache), at a lower priority, holding a lock the topology process waits for before it
+rewrites that entry with the signatures. The caller does not wait for that write: it is
+left to the child (HandOver.saving), which a newer open still kills (the load's cancel;
+the entry is then absent, never damaged). Without /dev/shm, or with too little room in it,
+the child writes the cache entry (or a temporary file when the cache cannot be written or is
+not used) first and hands that file over, with the orders in a scratch file, as before.
+
+The caller maps (or loads, without re-checking the file its own child wrote a moment ago) the
+table it was handed and makes the cursor from those orders while the child still works; the
+runner keeps both (`handed_over`). `on_saved(entry, n_points, shared)` is told as soon as the
+child has handed over a table without signatures that is in its cache entry or in shared
+memory on its way there, before this process maps or loads it (the window starts the topology
+process then: app.worker). The shared folder is removed once this process and the topology
+process have mapped it (or gave up): app.shared_folder. Cancel kills the child at once, so a
 newer open or closing the window never waits for a Delaunay triangulation to finish. Small
 sets build in the caller's thread: under IN_THREAD_BELOW points a build takes a few seconds at
 most, and a process would add about one (its start and the table's trip through a file).
@@ -18,7 +28,11 @@ most, and a process would add about one (its start and the table's trip through 
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import json
+import os
+import shutil
 import sys
 import threading
 from collections.abc import Callable
@@ -27,18 +41,24 @@ from pathlib import Path
 
 import numpy as np
 
-from app.child_process import run_in_child, scratch
+from app.child_process import LOCK_NAME, LeaveRunning, make_scratch, run_in_child
+from app.shared_folder import SharedFolder, SharedTable
 from core.complex import AlphaComplex
 from core.cursor import CursorOrders, cursor_orders
 from core.errors import AlphaScoopError, Cancelled
+from core.mapped import map_arrays, write_arrays
 from core.modes import Mode, make_mode
 from core.npz import read_npz
-from core.obtain import BuildRequest, HandOver, run_here
+from core.obtain import SAVE_START, BuildRequest, HandOver, run_here
 from core.opening import opening_alpha_of
 from core.progress import Progress
+from core.storage import save_mapped
 
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
 ORDERS_NAME = "cursor.npz"  # the cursor's sort orders, beside the table in the scratch folder
+ORDERS_FOLDER = "cursor"  # the same in the shared folder, as core.mapped arrays
+SAVING_NAME = "saving.lock"  # locked by the child until its cache entry is written
+SAVE_NICENESS = 10  # the entry's write after a shared hand-over yields the cores to others
 
 
 class ChildRunner:
@@ -48,10 +68,13 @@ class ChildRunner:
     """
 
     def __init__(self, cancel: threading.Event,
-                 on_saved: Callable[[Path, int], None] | None = None) -> None:
+                 on_saved: Callable[[Path, int, SharedTable | None], None] | None = None
+                 ) -> None:
         """cancel: set it (from any thread) to stop the build; Cancelled is then raised.
-        on_saved(entry, n_points): called once the child wrote a table without signatures
-        to its cache entry, before it is loaded here."""
+        on_saved(entry, n_points, shared): called once the child handed over a table without
+        signatures that is in its cache entry (shared None), or in shared memory and about
+        to be written there (`shared`, to be held while it is mapped), before it is
+        loaded here."""
         self.cancel = cancel
         self.on_saved = on_saved
         self._built: AlphaComplex | None = None  # the complex its child last handed over
@@ -67,75 +90,126 @@ class ChildRunner:
         report = progress or (lambda _fraction, _stage: None)
         if len(request.points) < IN_THREAD_BELOW:
             return run_here(request, progress)
-        with scratch("alphascoop-build-") as folder:
-            source, target = Path(folder) / "points.npy", Path(folder) / "table.npz"
-            np.save(source, request.points)
-            if request.weights is not None:
-                np.save(Path(folder) / "weights.npy", request.weights)
-            if request.mode.normals == "given" and request.normals is not None:
-                np.save(Path(folder) / "normals.npy", np.asarray(request.normals, np.float64))
-            job = {"mode": request.mode.to_dict(), "signatures": request.signatures,
-                   "save_to": None if request.save_to is None else str(request.save_to),
-                   "backend": request.backend}
-            taken: list[tuple[AlphaComplex, HandOver]] = []
-            try:
-                answer = json.loads(run_in_child(
-                    build_in_child, (str(source), str(target), job), report, self.cancel,
-                    "alphascoop-build", lambda text: taken.append(self._take(text, request,
-                                                                             report))))
-            except (AlphaScoopError, MemoryError) as error:
-                if not taken or isinstance(error, Cancelled):
-                    raise
-                print(f"alphascoop: the build process failed after handing its table over "
-                      f"({error}); the window finds the opening alpha itself", file=sys.stderr)
-                answer = {"opening_alpha": None}
+        shared = SharedFolder.make()
+        folder, lock = make_scratch("alphascoop-build-")
+
+        def remove() -> None:  # once the child has ended (it may outlive this call)
+            lock.close()
+            shutil.rmtree(folder, ignore_errors=True)
+
+        try:
+            answer, taken = self._run(request, folder, shared, report, remove)
+        except BaseException:
+            remove()  # (again: harmless) a child that failed or was killed has ended
+            raise
+        finally:
+            if shared is not None:
+                shared.release()  # the window has mapped it, or gave up
         if not taken:
             raise AlphaScoopError("the build process finished without handing its table over")
         ac, handed = taken[0]
         self._built = ac
-        self._handed = replace(handed, opening_alpha=answer["opening_alpha"])
+        self._handed = replace(handed, opening_alpha=answer["opening_alpha"],
+                               saving=bool(answer.get("saving", False)))
         return ac
 
     def handed_over(self, ac: AlphaComplex) -> HandOver:
         """The quick opening alpha (None when the signatures hold it) and the cursor the
-        child's orders made, for the complex this runner built last; else HandOver()."""
+        child's orders made, for the complex this runner built last, and whether its child
+        still writes its cache entry; else HandOver()."""
         return self._handed if ac is self._built else HandOver()
 
-    def _take(self, text: str, request: BuildRequest, report: Progress
-              ) -> tuple[AlphaComplex, HandOver]:
-        """The table a child handed over (JSON {"table": its file, "orders": the cursor's
-        orders file or None}) and the cursor made from those orders; on_saved is told first
-        when that file is the cache entry of a table without signatures."""
+    def _run(self, request: BuildRequest, folder: Path, shared: SharedFolder | None,
+             report: Progress, remove: Callable[[], None]
+             ) -> tuple[dict, list[tuple[AlphaComplex, HandOver]]]:
+        """Run the child with its inputs in folder: its answer and what it handed over.
+        Without the signatures, a child that handed its table over in shared memory and
+        then its opening alpha is left to write the cache entry on its own (answer
+        "saving": True), killed if `cancel` is set meanwhile; remove() once it ended."""
+        source = folder / "points.npy"
+        np.save(source, request.points)
+        if request.weights is not None:
+            np.save(folder / "weights.npy", request.weights)
+        if request.mode.normals == "given" and request.normals is not None:
+            np.save(folder / "normals.npy", np.asarray(request.normals, np.float64))
+        job = {"mode": request.mode.to_dict(), "signatures": request.signatures,
+               "save_to": None if request.save_to is None else str(request.save_to),
+               "backend": request.backend,
+               "shared": None if shared is None else str(shared.path)}
+        taken: list[tuple[AlphaComplex, HandOver]] = []
+        opening: list[float | None] = []
+
+        def handed(text: str) -> None:
+            message = json.loads(text)
+            if "opening_alpha" not in message:
+                taken.append(self._take(message, request, shared, report))
+                return
+            opening.append(message["opening_alpha"])
+            if taken and not request.signatures and request.save_to is not None:
+                raise LeaveRunning  # only the entry's write is left: the window goes on
+
+        try:
+            result = run_in_child(build_in_child, (str(source), str(folder / "table.npz"), job),
+                                  report, self.cancel, "alphascoop-build", handed, remove)
+        except (AlphaScoopError, MemoryError) as error:
+            if not taken or isinstance(error, Cancelled):
+                raise
+            print(f"alphascoop: the build process failed after handing its table over "
+                  f"({error}); the window finds the opening alpha itself", file=sys.stderr)
+            return {"opening_alpha": opening[0] if opening else None}, taken
+        if result is None:
+            return {"opening_alpha": opening[0], "saving": True}, taken
+        return json.loads(result), taken
+
+    def _take(self, answer: dict, request: BuildRequest, shared: SharedFolder | None,
+              report: Progress) -> tuple[AlphaComplex, HandOver]:
+        """The table a child handed over ({"table": its file or shared folder, "mapped":
+        whether it is that folder, "orders": the cursor's orders (file or folder) or None})
+        and the cursor made from those orders; on_saved is told first when the table is, or
+        is about to be written to, the cache entry without signatures."""
         if self.cancel.is_set():  # no topology process for a table nobody will load
             raise Cancelled("build cancelled")
-        answer = json.loads(text)
+        mapped = bool(answer["mapped"]) and shared is not None
         if (self.on_saved is not None and not request.signatures
-                and answer["table"] == str(request.save_to)):
-            self.on_saved(Path(answer["table"]), len(request.points))
-        return _load_handed(answer, report)
+                and request.save_to is not None
+                and (mapped or answer["table"] == str(request.save_to))):
+            self.on_saved(request.save_to, len(request.points),
+                          SharedTable(shared, Path(answer["saving"])) if mapped else None)
+        taken = _load_handed(answer, mapped, report)
+        if shared is not None:
+            shared.release()  # mapped here: only the topology process may still need it
+        return taken
 
 
-def _load_handed(answer: dict, report: Progress) -> tuple[AlphaComplex, HandOver]:
+def _load_handed(answer: dict, mapped: bool, report: Progress
+                 ) -> tuple[AlphaComplex, HandOver]:
     """The table and cursor orders a child handed over, as a complex and its cursor."""
     report(1.0, "loading the table")
     ac = AlphaComplex.load(answer["table"], verify=False)  # our child wrote it just now
     if answer["orders"] is None:
         return ac, HandOver()
-    orders = CursorOrders.from_arrays(read_npz(answer["orders"], trusted=True), ac.dim)
-    return ac, HandOver(cursor=ac.cursor(orders))
+    arrays = (map_arrays(answer["orders"]) if mapped
+              else read_npz(answer["orders"], trusted=True))
+    return ac, HandOver(cursor=ac.cursor(CursorOrders.from_arrays(arrays, ac.dim)))
 
 
 def build_in_child(source: str, target: str, job: dict, progress: Progress,
                    hand_over: Callable[[str], None]) -> str:
-    """Body of the build process: build (and the signatures if asked), save to the cache entry
-    or else to `target`, and hand_over JSON {"table": the path written, "orders": the file of
-    the cursor's sort orders (beside `target`), or None when they could not be found}; then
-    return JSON {"opening_alpha": the quick opening alpha, or None when the signatures hold
-    it or it could not be found}.
+    """Body of the build process: build (and the signatures if asked), hand the table over,
+    save it to the cache entry; then return JSON {"opening_alpha": the quick opening alpha,
+    or None when the signatures hold it or it could not be found}.
+
+    The hand-over is JSON {"table", "mapped", "orders", "saving"}: with a shared folder
+    (job "shared") that has the room, the table and the cursor's orders are written there
+    (core.mapped) and handed over before the cache entry is written, while this process holds
+    a lock on the file "saving" (beside `target`) until that write is done; else (no shared
+    memory, or too little) the table is handed over as the cache entry once written, or as
+    `target` when it cannot be, with the orders in a file beside. "orders" is None when they
+    could not be found.
 
     `job` holds "mode" (Mode.to_dict()), "signatures" (bool), "save_to" (the cache entry
-    or None) and "backend" (str or None); weights.npy and normals.npy beside the points
-    hold those when given."""
+    or None), "backend" (str or None) and "shared" (a folder or None); weights.npy and
+    normals.npy beside the points hold those when given."""
     points = np.load(source, allow_pickle=False)
     weights = _optional(Path(source).with_name("weights.npy"))
     mode = _saved_mode(job["mode"])
@@ -144,26 +218,82 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress,
     request = BuildRequest(points, weights, mode, normals, bool(job["signatures"]),
                            None if job["save_to"] is None else Path(job["save_to"]),
                            job["backend"])
-    ac = request.build(progress)
-    opening: list[float] = []
-    orders: list[CursorOrders] = []
-    # numpy's sorts and the file's writes leave the GIL: these run beside the save
-    finder = (_beside(lambda: opening.append(opening_alpha_of(ac.index, len(ac.points))),
-                      "alphascoop-opening") if not request.signatures else lambda: None)
-    sorter = _beside(lambda: orders.append(cursor_orders(ac.index)), "alphascoop-orders")
-    written = request.save(ac, progress)
-    if written is None:
-        ac.save(target)
-        written = Path(target)
-    sorter()
-    orders_file = None
-    if orders:
-        orders_file = Path(target).with_name(ORDERS_NAME)
-        np.savez(orders_file, **orders[0].to_arrays())  # a scratch file: no atomic write
-    hand_over(json.dumps({"table": str(written),
-                          "orders": None if orders_file is None else str(orders_file)}))
+    saving = Path(target).with_name(SAVING_NAME)
+    with open(saving, "wb") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # the kernel drops it if this process dies
+        ac = request.build(progress)
+        opening: list[float] = []
+        orders: list[CursorOrders] = []
+        # numpy's sorts and the file's writes leave the GIL: these run beside the writes
+        finder = (_beside(lambda: opening.append(opening_alpha_of(ac.index, len(ac.points))),
+                          "alphascoop-opening") if not request.signatures else lambda: None)
+        sorter = _beside(lambda: orders.append(cursor_orders(ac.index)), "alphascoop-orders")
+        shared = job.get("shared")
+        if shared is not None and _share(ac, Path(shared), progress):
+            sorter()
+            orders_folder = _share_orders(orders, Path(shared) / ORDERS_FOLDER)
+            hand_over(json.dumps({"table": shared, "mapped": True, "orders": orders_folder,
+                                  "saving": str(saving)}))
+            finder()
+            hand_over(json.dumps({"opening_alpha": float(opening[0]) if opening else None}))
+            with contextlib.suppress(OSError):  # the cores go to the window and the topology
+                os.nice(SAVE_NICENESS)
+            request.save(ac)  # unreported: the window is past this stage already
+        else:
+            written = request.save(ac, progress)
+            if written is None:
+                ac.save(target)
+                written = Path(target)
+            sorter()
+            orders_file = None
+            if orders:
+                orders_file = Path(target).with_name(ORDERS_NAME)
+                np.savez(orders_file, **orders[0].to_arrays())  # scratch: no atomic write
+            hand_over(json.dumps({"table": str(written), "mapped": False,
+                                  "orders": None if orders_file is None else str(orders_file),
+                                  "saving": str(saving)}))
     finder()
     return json.dumps({"opening_alpha": float(opening[0]) if opening else None})
+
+
+def _share(ac: AlphaComplex, folder: Path, progress: Progress) -> bool:
+    """Write ac's table into the shared folder; False (the folder emptied) when it lacks the
+    room or ran out of it."""
+    progress(SAVE_START, "handing the table over")
+    try:
+        if save_mapped(ac, folder):
+            return True
+    except OSError:
+        pass
+    _empty(folder)
+    print("alphascoop: too little shared memory (/dev/shm) for the table; it is handed over "
+          "as a file", file=sys.stderr)
+    return False
+
+
+def _share_orders(orders: list[CursorOrders], folder: Path) -> str | None:
+    """The folder the cursor's orders were written to (None when there are none or they do
+    not fit: the window then sorts them itself)."""
+    if not orders:
+        return None
+    try:
+        folder.mkdir()
+        if write_arrays(folder, orders[0].to_arrays()):
+            return str(folder)
+    except OSError:
+        pass
+    shutil.rmtree(folder, ignore_errors=True)
+    return None
+
+
+def _empty(folder: Path) -> None:
+    """Remove the arrays written into folder (the folder and its owner's lock stay)."""
+    for path in folder.iterdir():
+        if path.name != LOCK_NAME:
+            if path.is_dir():
+                shutil.rmtree(path, ignore_errors=True)
+            else:
+                path.unlink(missing_ok=True)
 
 
 def _beside(job: Callable[[], None], name: str) -> Callable[[], None]:

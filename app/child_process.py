@@ -4,9 +4,10 @@ the window's GIL (the build: app.build_process; the topology: app.topology_proce
 The child runs `work(*args, progress)` (or `work(*args, progress, hand_over)`, see
 run_in_child) and answers through a pipe: ("progress", fraction, stage), ("handed", text)
 for each hand_over(text), then ("done", text) or ("error", class name, message). Its files
-live in a temporary folder named after the window's pid (`scratch`), so a window that was
-killed leaves folders the next window can recognise and remove (`remove_orphans`); the child
-also exits by itself when its window is gone.
+live in a temporary folder named after the window's pid (`scratch`, `make_scratch`; a table
+handed over in shared memory lives in one on /dev/shm: app.shared_folder), so a window that
+was killed leaves folders the next window can recognise and remove (`remove_orphans`, in the
+temp dir and in /dev/shm); the child also exits by itself when its window is gone.
 """
 
 from __future__ import annotations
@@ -23,14 +24,15 @@ import time
 from collections.abc import Callable, Iterator
 from multiprocessing.connection import Connection
 from pathlib import Path
-from typing import Protocol
+from typing import BinaryIO, Protocol
 
 from core import errors
 from core.progress import Progress
 
 POLL_SECONDS = 0.1
 PARENT_POLL_SECONDS = 1.0
-PREFIXES = ("alphascoop-build-", "alphascoop-topology-")
+PREFIXES = ("alphascoop-build-", "alphascoop-topology-", "alphascoop-shared-")
+SHARED_ROOT = Path("/dev/shm")  # shared memory as files (Linux); absent elsewhere
 
 
 LOCK_NAME = ".owner.lock"
@@ -44,22 +46,39 @@ class CancelFlag(Protocol):
 
 @contextlib.contextmanager
 def scratch(prefix: str) -> Iterator[str]:
-    """A temporary folder '<prefix><pid>-<random>' of this process (prefix from PREFIXES),
-    removed on exit. The process holds an advisory lock on a file in it for as long as it
-    exists, so `remove_orphans` can tell a living owner even where its pid is not visible
-    (another pid namespace sharing the temp dir); the kernel drops the lock when it dies."""
-    with tempfile.TemporaryDirectory(prefix=f"{prefix}{os.getpid()}-") as folder:
-        with open(Path(folder) / LOCK_NAME, "wb") as lock:
-            fcntl.flock(lock, fcntl.LOCK_EX)
-            yield folder
+    """A temporary folder of this process (make_scratch in the temp dir), removed on exit."""
+    folder, lock = make_scratch(prefix)
+    try:
+        yield str(folder)
+    finally:
+        lock.close()
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def make_scratch(prefix: str, root: str | os.PathLike | None = None) -> tuple[Path, BinaryIO]:
+    """A new folder '<prefix><pid>-<random>' of this process in root (default: the temp dir;
+    prefix from PREFIXES) and the open lock file in it: the process holds an advisory lock on
+    it for as long as the folder exists (close it before removing the folder), so
+    `remove_orphans` can tell a living owner even where its pid is not visible (another pid
+    namespace sharing the folder); the kernel drops the lock when the process dies."""
+    folder = Path(tempfile.mkdtemp(prefix=f"{prefix}{os.getpid()}-", dir=root))
+    try:
+        lock = open(folder / LOCK_NAME, "wb")  # the caller closes it
+        fcntl.flock(lock, fcntl.LOCK_EX)
+    except BaseException:
+        shutil.rmtree(folder, ignore_errors=True)
+        raise
+    return folder, lock
 
 
 def remove_orphans(folder: str | os.PathLike | None = None) -> list[Path]:
-    """Remove the scratch folders in `folder` (default: the temp dir) whose owner process is
-    dead (a window killed mid-build); folders of living processes, and names without a pid,
-    stay. Returns what was removed."""
+    """Remove the scratch folders in `folder` (default: the temp dir and SHARED_ROOT) whose
+    owner process is dead (a window killed mid-build); folders of living processes, and names
+    without a pid, stay. Returns what was removed."""
+    roots = [Path(folder)] if folder is not None else [Path(tempfile.gettempdir()), SHARED_ROOT]
     removed = []
-    for path in Path(folder or tempfile.gettempdir()).glob("alphascoop-*-*-*"):
+    for path in (path for root in roots if root.is_dir()
+                 for path in root.glob("alphascoop-*-*-*")):
         pid = _owner(path.name)
         if pid is not None and path.is_dir() and not _alive(pid) and not _locked(path):
             shutil.rmtree(path, ignore_errors=True)
@@ -104,16 +123,25 @@ def _alive(pid: int) -> bool:
     return state not in ("Z", "X")
 
 
+class LeaveRunning(Exception):
+    """Raised by a `handed` callback of run_in_child: the caller has what it needs, the child
+    finishes its work on its own (run_in_child's `finish`)."""
+
+
 def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
                  cancel: CancelFlag, name: str,
-                 handed: Callable[[str], None] | None = None) -> str:
+                 handed: Callable[[str], None] | None = None,
+                 finish: Callable[[], None] | None = None) -> str | None:
     """Run work(*args, progress) in a spawned process; the text it returned. Its errors are
     raised here as the same core.errors class (MemoryError as MemoryError); Cancelled as
     soon as `cancel` is set (the child is killed).
 
     With `handed`, work gets a third callable, hand_over(text), to pass a result before it
     is done (a file it has finished writing, say): handed(text) runs here as soon as it
-    comes, while the child goes on; its errors stop the child too."""
+    comes, while the child goes on; its errors stop the child too. When it raises
+    LeaveRunning, None is returned at once and the child is left to end on its own,
+    followed by a thread (killed as soon as `cancel` is set); `finish()` runs once it has
+    ended (else right here, when this returns or raises)."""
     context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
     receiver, sender = context.Pipe(duplex=False)
     child = context.Process(target=child_main,
@@ -121,13 +149,42 @@ def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
                             name=name, daemon=True)
     child.start()
     sender.close()
+    left = False
     try:
         return _follow(child, receiver, progress, cancel, handed)
+    except LeaveRunning:
+        left = True
+        threading.Thread(target=_end, args=(child, receiver, cancel, finish),
+                         name=f"{name}-follower", daemon=True).start()
+        return None
     finally:
+        if not left:
+            _end(child, receiver, _ENDED, finish)
+
+
+class _Ended:
+    """A cancel flag that is always set: end the child now."""
+
+    def is_set(self) -> bool:
+        return True
+
+
+_ENDED = _Ended()
+
+
+def _end(child, receiver: Connection, cancel: CancelFlag,
+         finish: Callable[[], None] | None) -> None:
+    """Wait until the child has ended (killed once cancel is set), then close and finish."""
+    try:
+        while child.is_alive() and not cancel.is_set():
+            child.join(POLL_SECONDS)
         if child.is_alive():
             child.kill()
         child.join()
         receiver.close()
+    finally:
+        if finish is not None:
+            finish()
 
 
 def _follow(child, receiver: Connection, progress: Progress, cancel: CancelFlag,

@@ -1,8 +1,10 @@
 """The window's side of a topology process (app.topology_process): start it, follow it in a
 thread of its own, hand its result over, and stop it.
 
-The window starts it as soon as the build process has written the table's cache entry, while
-the window itself still loads that table and makes the slider's cursor (app.worker.load_job);
+The window starts it as soon as the build process has handed the table over (in shared
+memory, app.shared_folder, which the process maps and lets go of at once; or as its cache
+entry, written), while the window itself still maps or loads that table and makes the
+slider's cursor (app.worker.load_job);
 the topology job then takes it over (`hand_to`) and waits for its result (`parts`). Until taken
 over it stops with the load (the load's cancel: a cancelled or superseded open), after that
 with the topology job (a newer open, the window closed); `stop` ends it in any case. The
@@ -25,8 +27,9 @@ import time
 from pathlib import Path
 
 from app.child_process import POLL_SECONDS, CancelFlag, run_in_child, scratch
+from app.shared_folder import SharedTable
 from app.topology_file import TopologyParts, read_topology
-from app.topology_process import HANDED_OVER, NAME, topology_in_child
+from app.topology_process import HANDED_OVER, NAME, READ, topology_in_child
 from core.complex import AlphaComplex
 from core.errors import Cancelled
 from core.progress import Progress
@@ -49,10 +52,15 @@ class TopologyChild:
     """
 
     def __init__(self, entry: Path | None, cancel: CancelFlag,
-                 copy: AlphaComplex | None = None) -> None:
-        """Start the thread, which starts the process; exactly one of entry and copy."""
+                 copy: AlphaComplex | None = None, shared: SharedTable | None = None) -> None:
+        """Start the thread, which starts the process; exactly one of entry and copy. With
+        `shared` (and entry) the process maps the table from that shared folder, holding it
+        until it has, and rewrites entry once the build process has written it."""
         if (entry is None) == (copy is None):
             raise ValueError("a topology process reads either a cache entry or a copy")
+        if shared is not None and entry is None:
+            raise ValueError("a shared table is handed over with its cache entry")
+        self._release = shared.folder.hold() if shared is not None else _nothing
         self.started = time.perf_counter()  # when the pass began (the topology's seconds)
         self._lock = threading.Lock()
         self._flags: list[CancelFlag] = [cancel]
@@ -65,7 +73,7 @@ class TopologyChild:
         self._target: Path | None = None
         self._written: Path | None = None
         self._error: BaseException | None = None
-        self._thread = threading.Thread(target=self._follow, args=(entry, copy),
+        self._thread = threading.Thread(target=self._follow, args=(entry, copy, shared),
                                         name="alphascoop-topology-follower", daemon=True)
         self._thread.start()
 
@@ -127,33 +135,41 @@ class TopologyChild:
         """The child's progress (follower thread): queue it for parts(); at HANDED_OVER the
         result is ready."""
         self._stages.put((fraction, stage))
+        if stage == READ:
+            self._release()  # mapped: the shared folder may go
         if stage == HANDED_OVER:
             self._written = self._target
             self._handed.set()
 
-    def _follow(self, entry: Path | None, copy: AlphaComplex | None) -> None:
+    def _follow(self, entry: Path | None, copy: AlphaComplex | None,
+                shared: SharedTable | None) -> None:
         """Thread body: run the process to its end (or until stopped), then keep its folder
         until the result was read or is no longer wanted."""
         try:
             with scratch(f"{NAME}-") as folder:
                 try:
-                    table = entry
+                    table, saving = entry, None
+                    if shared is not None:
+                        table, saving = shared.folder.path, str(shared.saving)
                     if copy is not None:
                         table = Path(folder) / "table.npz"
                         copy.save(table)
                     self._target = Path(folder) / "topology.npz"
                     run_in_child(topology_in_child,
-                                 (str(table), copy is None, str(self._target)),
+                                 (str(table), None if entry is None else str(entry),
+                                  str(self._target), saving),
                                  self._note, self, NAME)
                 except BaseException as error:
                     self._keep(error)
                 finally:
+                    self._release()  # the process ended or was stopped
                     self._handed.set()
                     while not self._consumed.wait(POLL_SECONDS) and not self.is_set():
                         pass
                     with self._reading:
                         self._gone = True
         except BaseException as error:  # the scratch folder could not be made (disk full)
+            self._release()
             self._keep(error)
             self._handed.set()
 
@@ -165,3 +181,7 @@ class TopologyChild:
         elif not isinstance(error, Cancelled):
             print(f"alphascoop: the topology process failed after its hand-over ({error}); "
                   "the topology may not be in the cache", file=sys.stderr)
+
+
+def _nothing() -> None:
+    """The release of a process that holds no shared folder."""

@@ -6,7 +6,8 @@ load job hands the dataset over as soon as the slider can use it (the table and 
 the topology job (signatures, optimal alpha, persistence) follows in a runner of its own (in
 a child process of its own for big sets: app.topology_process), so a newer open cancels it
 and drops its result like any stale request. For a table the build process wrote to the
-cache, the load job starts that topology process as soon as the entry is written, so it runs
+cache, the load job starts that topology process as soon as the table is handed over (in
+shared memory, before the entry is written; or as the entry once written), so it runs
 while the window loads the table and makes its cursor; the dataset carries it
 (`Dataset.topology_child`) to the topology job. A load that is cancelled, superseded or fails
 stops it before it reports its outcome.
@@ -22,6 +23,7 @@ from pathlib import Path
 from app import build_process, topology_process
 from app.dataset import Dataset, ImportOptions, load_dataset, with_parts, with_topology
 from app.jobs import Job, Progress
+from app.shared_folder import SharedTable
 from app.topology_child import TopologyChild, start_topology
 from core.errors import AlphaScoopError, Cancelled
 from core.modes import Mode
@@ -37,9 +39,9 @@ def load_job(path: str | Path, mode: Mode | None = None,
     def work(progress: Progress, cancel: threading.Event) -> Dataset:
         started: list[TopologyChild] = []
 
-        def on_saved(entry: Path, n_points: int) -> None:
+        def on_saved(entry: Path, n_points: int, shared: SharedTable | None) -> None:
             if n_points >= topology_process.IN_THREAD_BELOW:
-                started.append(TopologyChild(entry, cancel))
+                started.append(TopologyChild(entry, cancel, shared=shared))
 
         runner = build_process.ChildRunner(cancel, on_saved=on_saved)
         try:

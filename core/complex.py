@@ -185,8 +185,9 @@ class AlphaComplex:
 
     @classmethod
     def load(cls, path: str | os.PathLike, *, verify: bool = True) -> AlphaComplex:
-        """Read a table written by `save`; FileFormatError if it is not one. verify=False
-        skips most checks: only for a file this program has just written (core.storage)."""
+        """Read a table written by `save` (or the folder of `storage.save_mapped`: mapped, not
+        read); FileFormatError if it is not one. verify=False skips most checks: only for a
+        file this program has just written (core.storage)."""
         saved = storage.load(path, verify=verify)
         return cls(saved.points, saved.input_index, saved.index, saved.frame, saved.ambient_dim,
                    saved.mode, saved.weights, build_info=saved.build_info,

@@ -78,10 +78,12 @@ class BuildRequest:
 class HandOver:
     """What a runner found beside the complex it built, so that its caller need not: the
     quick opening alpha (core.opening.opening_alpha_of) and the slider's cursor; None for
-    what it did not find."""
+    what it did not find. `saving`: the runner's process still writes the complex's cache
+    entry (it handed the complex over first)."""
 
     opening_alpha: float | None = None
     cursor: ShapeCursor | None = None
+    saving: bool = False
 
 
 class Runner(Protocol):
@@ -117,7 +119,8 @@ run_here = BuildHere()
 @dataclass(frozen=True, eq=False)
 class Obtained:
     """A complex and where it came from ("built", "cache" or "rebuilt"); `entry` is its cache
-    file (None when the cache was not used or could not be written)."""
+    file (None when the cache was not used or could not be written; a runner may still be
+    writing it: HandOver.saving)."""
 
     complex: AlphaComplex
     source: Source
@@ -161,8 +164,9 @@ def obtain(points: object, *, weights: object = None, mode: Mode | None = None,
         ac = None  # the same table, but the caller asked for the other backend's build
     if ac is None:
         built = runner(replace(request, save_to=path), progress)
+        saving = runner.handed_over(built).saving  # then the entry is on its way
         return Obtained(built, "rebuilt" if damaged else "built",
-                        path if entry_exists(path) else None)
+                        path if saving or entry_exists(path) else None)
     if progress is not None:
         progress(1.0, "loaded from cache")
     obtained = Obtained(ac, "cache", path)

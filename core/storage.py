@@ -39,6 +39,7 @@ from .atomic import atomic_write
 from .build import BuildInfo
 from .errors import FileFormatError, InputError
 from .index import TableIndex
+from .mapped import map_arrays, write_arrays
 from .modes import Mode, make_mode
 from .npz import read_npz
 from .opening import opening_alpha_of
@@ -209,10 +210,18 @@ def save(ac: Saveable, path: str | os.PathLike) -> None:
     atomic_write(path, lambda handle: np.savez(handle, **_arrays(ac)))
 
 
+def save_mapped(ac: Saveable, folder: str | os.PathLike) -> bool:
+    """Write `ac`'s arrays as `save` names them, one raw .npy each, into folder (core.mapped:
+    for other processes to map, as `load` of that folder does); False, with nothing
+    written, when the folder's file system lacks the room."""
+    return write_arrays(folder, _arrays(ac))
+
+
 def _read(path: Path, trusted: bool = False) -> dict[str, np.ndarray]:
-    """The archive's arrays (declared sizes checked first), if it is one of our tables
-    (`trusted`: core.npz.read_npz's, for a file this program has just written)."""
-    arrays = read_npz(path, trusted=trusted)
+    """The archive's arrays (declared sizes checked first), or the folder's mapped arrays
+    (save_mapped), if it is one of our tables (`trusted`: core.npz.read_npz's, for a file
+    this program has just written)."""
+    arrays = map_arrays(path) if path.is_dir() else read_npz(path, trusted=trusted)
     check = Checker(path)
     check.that(str(arrays.get("format", "")) == FORMAT, "missing format tag")
     check.that(arrays.get("version", np.array(-1)).shape == ()
@@ -221,8 +230,10 @@ def _read(path: Path, trusted: bool = False) -> dict[str, np.ndarray]:
 
 
 def load(path: str | os.PathLike, *, verify: bool = True) -> Saved:
-    """Read a table written by `save`; every array is checked (core.table_checks) so that a
-    damaged or crafted file is a FileFormatError, never a wrong shape or a crash later.
+    """Read a table written by `save` (or the folder written by `save_mapped`, whose arrays
+    are mapped read-only, not read: core.mapped); every array is checked (core.table_checks)
+    so that a damaged or crafted file is a FileFormatError, never a wrong shape or a crash
+    later.
 
     verify=False skips the table's array checks and the zip's CRC pass (not the archive's
     sizes, the format tag and the saved topology's checks): only for a file this program

@@ -340,6 +340,18 @@ def _facet_spheres(points: np.ndarray, simplices: np.ndarray, weights: np.ndarra
     return signed_sqrt(power), obtuse, power_test
 
 
+def _attach_bits(bits: np.ndarray, cell: np.ndarray, vertex: np.ndarray) -> np.ndarray:
+    """(n,) bool bit `vertex` of the attach bits of `cell` (its vertex opposite the facet
+    lies inside the facet's smallest sphere), in halves."""
+    out = np.empty(len(cell), dtype=bool)
+
+    def part(lo: int, hi: int) -> None:
+        out[lo:hi] = (np.take(bits, cell[lo:hi]) >> vertex[lo:hi]) & 1
+
+    halves(part, len(cell), PASSES)
+    return out
+
+
 def _facet_enter(points: np.ndarray, cells: Level, det: np.ndarray, simplices: np.ndarray,
                  weights: np.ndarray | None, exact: list[int] | None, side0: tuple,
                  side1: tuple, near_flat: np.ndarray, regular: np.ndarray, bits: np.ndarray
@@ -351,8 +363,7 @@ def _facet_enter(points: np.ndarray, cells: Level, det: np.ndarray, simplices: n
     t0, i0, e0 = side0
     has1, t1h, j1, e1h = side1
     radius, obtuse, global_test = _facet_spheres(points, simplices, weights, exact)
-    inside0 = ((take(bits, t0) >> i0) & 1).astype(bool)
-    inside1 = ((take(bits, t1h) >> j1) & 1).astype(bool)
+    inside0, inside1 = _attach_bits(bits, t0, i0), _attach_bits(bits, t1h, j1)
     if weights is None and exact is not None:  # doubtful float decisions made exact
         sides = [(slice(None), t0, i0, inside0, e0), (has1, t1h, j1, inside1, e1h)]
         attached, n_exact = settle_facets(points, cells.simplices, cells.enter, det, simplices,
@@ -394,34 +405,25 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
         j1 = take(take(mirror.ravel(), slot0), has1).astype(np.int64)
 
     det0, det1 = take(det, t0), take(det, t1h)
-    near_flat = det0 == 0
-    near_flat[has1] |= det1 == 0
+    near_flat = _near_flat(det0, det1, has1)
     obtuse = None
     if radii:
         e0, e1h = take(cells.enter, t0), take(cells.enter, t1h)
-        e1 = np.full(len(t0), np.inf)
-        e1[has1] = e1h
-        regular = np.minimum(e0, e1)
-        interior = np.maximum(e0, e1)
+        regular, interior = _bounds(e0, e1h, has1)
         enter, obtuse = _facet_enter(points, cells, det, simplices, weights, exact,
                                      (t0, i0, e0), (has1, t1h, j1, e1h), near_flat, regular,
                                      bits)
-        del e0, e1, e1h
+        del e0, e1h
     else:  # a mode supplies all its faces' values (core/modes.py)
         enter = regular = interior = np.empty(0)  # (0,): no values
     order = _order_beside(enter, sort)  # while the facets' orientation and ids are found
 
-    flip = (i0 & 1).astype(bool) ^ (det0 < 0)
-    better = np.abs(det1) > np.abs(take(det0, has1))
-    flip_other = ~((j1 & 1).astype(bool) ^ (det1 < 0))
-    flip[has1[better]] = flip_other[better]
-    del det0, det1, better, flip_other
+    flip = _flips(i0, det0, j1, det1, has1)
+    del det0, det1
     hull = np.flatnonzero(t1 < 0)
     flip[hull] = _faces_centre(points, simplices[hull])
 
-    cell_faces = np.full((n_cells, width), -1, dtype=np.int32)
-    cell_faces.ravel()[slot0] = np.arange(len(t0), dtype=np.int32)
-    cell_faces.ravel()[t1h.astype(np.int64) * width + j1] = has1
+    cell_faces = _cell_faces(n_cells, width, slot0, t1h, j1, has1)
     del slot0, t1h, j1
     level = Level(simplices.astype(np.int32, copy=False), enter, regular, interior)
     facet_cells = np.empty((len(t0), 2), dtype=np.int32)
@@ -435,6 +437,77 @@ def _facets(points: np.ndarray, cells: Level, neighbors: np.ndarray, det: np.nda
     cells.face_ids = take(inverse, cell_faces.ravel()).reshape(cell_faces.shape)
     return (level, take(facet_cells, order), take(flip, order), take(near_flat, order),
             None if obtuse is None else take(obtuse, order))
+
+
+def _by_facets(part: Callable[[int, int, int, int], None], has1: np.ndarray, n: int) -> None:
+    """part(lo, hi, k0, k1) over the facets [lo, hi) in halves, with has1[k0:k1] (the
+    ascending facets that have a second cell) exactly those in [lo, hi)."""
+    def run(lo: int, hi: int) -> None:
+        k0, k1 = np.searchsorted(has1, (lo, hi))
+        part(lo, hi, int(k0), int(k1))
+
+    halves(run, n, PASSES)
+
+
+def _near_flat(det0: np.ndarray, det1: np.ndarray, has1: np.ndarray) -> np.ndarray:
+    """(f,) bool: a facet's first cell (det0) or its second (det1, for the facets has1)
+    is flat."""
+    out = np.empty(len(det0), dtype=bool)
+
+    def part(lo: int, hi: int, k0: int, k1: int) -> None:
+        np.equal(det0[lo:hi], 0, out=out[lo:hi])
+        out[has1[k0:k1]] |= det1[k0:k1] == 0
+
+    _by_facets(part, has1, len(det0))
+    return out
+
+
+def _bounds(e0: np.ndarray, e1h: np.ndarray, has1: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """(f,) regular and interior of the facets: the least and greatest enter of their
+    cells (e0 the first's; e1h the second's, for the facets has1; none is inf)."""
+    regular, interior = np.empty(len(e0)), np.empty(len(e0))
+
+    def part(lo: int, hi: int, k0: int, k1: int) -> None:
+        e1 = np.full(hi - lo, np.inf)
+        e1[has1[k0:k1] - lo] = e1h[k0:k1]
+        np.minimum(e0[lo:hi], e1, out=regular[lo:hi])
+        np.maximum(e0[lo:hi], e1, out=interior[lo:hi])
+
+    _by_facets(part, has1, len(e0))
+    return regular, interior
+
+
+def _flips(i0: np.ndarray, det0: np.ndarray, j1: np.ndarray, det1: np.ndarray,
+           has1: np.ndarray) -> np.ndarray:
+    """(f,) bool: reverse the facet's last two vertices to face out of its first cell,
+    read from the better conditioned of its cells (vertex i0/j1 left out, signs det0/det1)."""
+    flip = np.empty(len(i0), dtype=bool)
+
+    def part(lo: int, hi: int, k0: int, k1: int) -> None:
+        np.not_equal((i0[lo:hi] & 1).astype(bool), det0[lo:hi] < 0, out=flip[lo:hi])
+        second = has1[k0:k1]
+        better = np.abs(det1[k0:k1]) > np.abs(det0[second])
+        flip_other = ~((j1[k0:k1] & 1).astype(bool) ^ (det1[k0:k1] < 0))
+        flip[second[better]] = flip_other[better]
+
+    _by_facets(part, has1, len(i0))
+    return flip
+
+
+def _cell_faces(n_cells: int, width: int, slot0: np.ndarray, t1h: np.ndarray,
+                j1: np.ndarray, has1: np.ndarray) -> np.ndarray:
+    """(c, w) int32 facet id opposite each vertex of every cell: facet f at slot0[f] of its
+    first cell and, for the facets has1, at column j1 of their second cell t1h."""
+    cell_faces = np.full((n_cells, width), -1, dtype=np.int32)
+    flat = cell_faces.ravel()
+
+    def part(lo: int, hi: int, k0: int, k1: int) -> None:
+        flat[slot0[lo:hi]] = np.arange(lo, hi, dtype=np.int32)
+        flat[t1h[k0:k1].astype(np.int64) * width + j1[k0:k1]] = has1[k0:k1]
+
+    _by_facets(part, has1, len(slot0))
+    return cell_faces
 
 
 def _drop_vertex(simplices: np.ndarray, rows: np.ndarray, drop: np.ndarray) -> np.ndarray:

@@ -17,6 +17,7 @@ import numpy as np
 
 from .exact import exact_radii
 from .geometry import edge_vectors
+from .parallel import nonzero, rows_cols
 from .predicates import diametral_formula, diametral_signs, filtered_signs, orientations
 from .tolerances import EXACT_RADIUS_SHAPE, NEAR_SPHERE_RTOL, SLIVER_RTOL
 
@@ -62,7 +63,7 @@ def settle_obtuse(points: np.ndarray, triangles: np.ndarray, bits: np.ndarray,
     """The (n,) uint8 obtuse bits of (n, 3) triangles (bit j: vertex j strictly inside the
     diametral sphere of the opposite edge) with the (n, 3) `doubt` corners decided exactly
     (core.geometry.facet_radii2 with exact=True gives bits and doubt); and how many."""
-    rows, corner = np.nonzero(doubt)
+    rows, corner = rows_cols(nonzero(lambda lo, hi: doubt[lo:hi], len(doubt)), 3)
     for j in range(3):
         ids = rows[corner == j]
         rest = [i for i in range(3) if i != j]
@@ -70,6 +71,21 @@ def settle_obtuse(points: np.ndarray, triangles: np.ndarray, bits: np.ndarray,
                                   triangles[ids][:, rest])
         bits[ids] = (bits[ids] & ~np.uint8(1 << j)) | ((signs < 0).astype(np.uint8) << j)
     return bits, len(rows)
+
+
+def _in_doubt(radius: np.ndarray, rows: np.ndarray | slice, cell: np.ndarray,
+              enter: np.ndarray, sliver: np.ndarray) -> np.ndarray:
+    """(k,) int64 positions in one side's list (settle_facets) of the decisions in doubt:
+    the facet's sphere nearly the cell's (r_f² >~ r_c²) or the cell a sliver; in halves."""
+    whole = isinstance(rows, slice)
+
+    def near(lo: int, hi: int) -> np.ndarray:
+        own = radius[lo:hi] if whole else np.take(radius, rows[lo:hi])
+        out = own >= (1.0 - 0.5 * NEAR_SPHERE_RTOL) * enter[lo:hi]
+        out |= np.take(sliver, cell[lo:hi])
+        return out
+
+    return nonzero(near, len(cell))
 
 
 def settle_facets(points: np.ndarray, cells: np.ndarray, cell_enter: np.ndarray,
@@ -99,9 +115,7 @@ def settle_facets(points: np.ndarray, cells: np.ndarray, cell_enter: np.ndarray,
         radius[ids] = exact_radii(points, facets[ids])
         total += len(ids)
     for rows, cell, k, inside, enter in sides:
-        near = radius[rows] >= (1.0 - 0.5 * NEAR_SPHERE_RTOL) * enter  # r_f² >~ r_c²
-        near |= sliver[cell]
-        ids = np.flatnonzero(near)
+        ids = _in_doubt(radius, rows, cell, enter, sliver)
         decided = inside.copy()
         if len(ids):
             at = ids if isinstance(rows, slice) else rows[ids]

@@ -142,8 +142,9 @@ def test_an_opening_alpha_the_child_cannot_find_is_left_to_the_window(tmp_path, 
         str(tmp_path / "points.npy"), str(tmp_path / "table.npz"), job, never,
         lambda text: handed.append(json.loads(text))))
     assert answer == {"opening_alpha": None}
-    assert handed == [{"table": str(tmp_path / "table.npz"),
-                       "orders": str(tmp_path / build_process.ORDERS_NAME)}]
+    assert handed == [{"table": str(tmp_path / "table.npz"), "mapped": False,
+                       "orders": str(tmp_path / build_process.ORDERS_NAME),
+                       "saving": str(tmp_path / build_process.SAVING_NAME)}]
     assert len(AlphaComplex.load(handed[0]["table"]).simplices(3)) == len(
         AlphaComplex.from_points(points).simplices(3))
 
@@ -165,14 +166,15 @@ def test_the_handed_over_cursor_equals_the_tables_own(in_process):
 
 
 def test_a_child_killed_while_it_saves_leaves_no_partial_entry(in_process):
-    """Cancel a moment after the child starts writing the table (a few hundred ms of
-    writes at this size): the entry is absent or whole (atomic write), never damaged, and
-    the next lookup removes the killed writer's temporary file."""
+    """Cancel a moment after the child handed the table over in shared memory and started
+    writing the entry (a few hundred ms of writes at this size): the entry is absent or
+    whole (atomic write), never damaged, and the next lookup removes the killed writer's
+    temporary file."""
     points = np.random.default_rng(8).random((120_000, 3))
     cancel = threading.Event()
 
     def progress(_fraction: float, stage: str) -> None:
-        if stage == "saving the table":
+        if stage == "loading the table":
             threading.Timer(0.05, cancel.set).start()
 
     with pytest.raises(Cancelled):
@@ -198,9 +200,12 @@ def test_a_child_that_dies_after_the_hand_over_leaves_the_table(tmp_path, monkey
     build_process.build_in_child(str(tmp_path / "points.npy"), str(tmp_path / "table.npz"),
                                  job, never, handed.append)
 
-    def dies_after_handing_over(_work, _args, _progress, _cancel, _name, hand) -> str:
-        hand(handed[0])
-        raise AlphaScoopError("the background process stopped without a result")
+    def dies_after_handing_over(_work, _args, _progress, _cancel, _name, hand, finish) -> str:
+        try:
+            hand(handed[0])
+            raise AlphaScoopError("the background process stopped without a result")
+        finally:
+            finish()
 
     monkeypatch.setattr(build_process, "IN_THREAD_BELOW", 0)
     monkeypatch.setattr(build_process, "run_in_child", dies_after_handing_over)

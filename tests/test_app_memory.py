@@ -55,6 +55,15 @@ def two_files(tmp_path):
     return paths
 
 
+def shared_mappings(but: frozenset[str] = frozenset()) -> list[str]:
+    """This process's mappings of tables handed over in shared memory (app.shared_folder),
+    but those of the folders in `but`, as the folder of each."""
+    folders = (line.partition(" /")[2].rpartition("/")[0]
+               for line in Path("/proc/self/maps").read_text().splitlines()
+               if "/alphascoop-shared-" in line)
+    return [f"/{folder}" for folder in folders if f"/{folder}" not in but]
+
+
 def open_then_cancel(qtbot, window, path) -> None:
     """Open path, cancel once the build has reported progress, wait for the cancellation."""
     with qtbot.waitSignal(window.loader.progress, timeout=BUILD_TIMEOUT_MS):
@@ -71,7 +80,8 @@ def test_cancelled_opens_and_reopens_keep_memory_flat(window, qtbot, two_files) 
         open_then_cancel(qtbot, window, two_files[0])
         assert window.model.dataset is None
     qtbot.waitUntil(lambda: not multiprocessing.active_children(), timeout=5_000)
-    resident, alive = [], []
+    resident, alive, shared = [], [], []
+    earlier = frozenset(shared_mappings())  # tables other tests' objects still hold
     for i in range(REOPENS):
         with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
             window.open_path(two_files[i % 2])
@@ -79,9 +89,12 @@ def test_cancelled_opens_and_reopens_keep_memory_flat(window, qtbot, two_files) 
         qtbot.wait(SETTLE_MS)
         alive.append(weakref.ref(window.model.dataset))
         resident.append(memory.rss_bytes())
+        shared.append(len(shared_mappings(earlier)))
     gc.collect()  # no build or topology process left (the last may still rewrite its entry)
     qtbot.waitUntil(lambda: not multiprocessing.active_children(), timeout=BUILD_TIMEOUT_MS)
     assert [ref() is not None for ref in alive] == [False] * (REOPENS - 1) + [True]
+    # the first torus and cube came through shared memory; their mappings went with them
+    assert shared[0] > 0 and shared[-1] == 0 and shared_mappings(earlier) == []
     growth = max(resident) / resident[0]
     figures = ", ".join(f"{r / 2**20:.0f}" for r in resident)
     assert growth <= MAX_GROWTH, f"RSS grew {growth:.2f}x over the re-opens (MiB: {figures})"

@@ -136,7 +136,7 @@ def test_the_child_hands_over_before_it_rewrites_the_entry(tmp_path):
     def progress(_fraction: float, stage: str) -> None:
         seen.append((stage, target.is_file(), load_cached(points).has_signatures))
 
-    topology_process.topology_in_child(str(entry), True, str(target), progress)
+    topology_process.topology_in_child(str(entry), str(entry), str(target), None, progress)
     stages = [stage for stage, _, _ in seen]
     handed, saving = stages.index(topology_process.HANDED_OVER), stages.index(
         topology_process.SAVING)

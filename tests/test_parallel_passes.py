@@ -224,3 +224,35 @@ def test_edge_pass_reads_triangles_packed_or_not_the_same() -> None:
         columns = _table_arrays(build_complex(points))
     for name, array in packed.items():
         np.testing.assert_array_equal(array, columns[name], err_msg=name)
+
+
+@pytest.mark.parametrize("n", [1, 2, 7, 1001])
+def test_gmsh_relinked_rows_in_halves(n: int) -> None:
+    """The rows of gmsh's neighbour table that the restoration changed, found in halves:
+    the same as a whole-table compare, changes in either half seen."""
+    from core import backends
+
+    rng = np.random.default_rng(n)
+    own = rng.integers(-1, 50, (n, 4)).astype(np.int32)
+    whole = np.concatenate((own, rng.integers(-1, 50, (3, 4)).astype(np.int32)))
+    whole[:n][rng.random(n) < 0.2, rng.integers(0, 4)] += 1
+    whole[n - 1, 3] += 1  # a change in the last row of the second half
+    out = np.ones(n + 3, dtype=bool)
+    with everything_split():
+        backends._relinked(whole, own, out)
+    np.testing.assert_array_equal(out[:n], (whole[:n] != own).any(axis=1))
+    assert out[n:].all()
+
+
+def test_backend_check_counts_points_in_no_cell_in_halves() -> None:
+    """The backend check marks the vertices of the cells in halves: one point left out of
+    every cell is counted exactly once, whichever half its cells were in."""
+    from core.backends.certify import why_not_delaunay
+    from core.delaunay import triangulate
+
+    points = np.random.default_rng(8).random((300, 3))
+    tri = triangulate(points)
+    for v in (int(tri.cells[0, 0]), int(tri.cells[-1, -1])):
+        cells = np.where(tri.cells == v, (v + 1) % 300, tri.cells)
+        with everything_split():
+            assert why_not_delaunay(points, cells, tri.neighbors) == "1 points are in no cell"

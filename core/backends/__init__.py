@@ -16,7 +16,7 @@ import numpy as np
 
 from ..delaunay import Triangulation, regular_triangulate, triangulate
 from ..errors import InputError
-from ..parallel import both
+from ..parallel import PASSES, both, halves
 from . import gmsh as gmsh_backend
 from . import split as split_backend
 from .certify import why_not_delaunay, why_not_locally_delaunay
@@ -70,12 +70,24 @@ def _by_gmsh(points: np.ndarray) -> Triangulation | str:
     if reason:
         return reason
     near = np.ones(len(cells), dtype=bool)  # the restored cells and those relinked to them
-    near[:len(own)] = (whole[:len(own)] != nbrs).any(axis=1)
+    _relinked(whole, nbrs, near)
     reason = why_not_delaunay(points, cells, whole, near=near)
     if reason:
         return reason
     vertex_of_point = np.arange(len(points), dtype=np.int64)
     return Triangulation(cells, whole, vertex_of_point, vertex_of_point.copy(), mirror)
+
+
+def _relinked(whole: np.ndarray, own: np.ndarray, out: np.ndarray) -> None:
+    """out[:len(own)] = whether each row of the neighbour table `own` differs from its row
+    in `whole` (one compare per column, the rows in halves)."""
+    def part(lo: int, hi: int) -> None:
+        mine = out[lo:hi]
+        np.not_equal(whole[lo:hi, 0], own[lo:hi, 0], out=mine)
+        for c in range(1, own.shape[1]):
+            mine |= whole[lo:hi, c] != own[lo:hi, c]
+
+    halves(part, len(own), PASSES)
 
 
 def delaunay(points: np.ndarray, backend: str | None = None) -> tuple[Triangulation, Choice]:

@@ -17,7 +17,7 @@ from scipy.spatial import ConvexHull, QhullError
 
 from ..delaunay import interior_facets
 from ..geometry import CACHE_CHUNK
-from ..parallel import halves, slot_of
+from ..parallel import PASSES, halves, nonzero, rows_cols, slot_of
 from ..tolerances import BACKEND_CERTAIN_RTOL
 
 
@@ -137,8 +137,8 @@ def _outer_facets_are_hull(points: np.ndarray, cells: np.ndarray,
                            neighbors: np.ndarray) -> bool:
     """The facets with no cell across are exactly the (triangulated) convex hull facets of
     their own vertices, i.e. the union of the cells is convex."""
-    t, i = np.nonzero(neighbors < 0)
     width = cells.shape[1]
+    t, i = rows_cols(nonzero(lambda lo, hi: neighbors[lo:hi] < 0, len(neighbors)), width)
     columns = np.array([[j for j in range(width) if j != k] for k in range(width)])
     outer = np.take_along_axis(cells[t], columns[i], axis=1)
     corners = np.unique(outer)
@@ -208,7 +208,12 @@ def why_not_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarra
     `mirror`: the neighbours' columns that point back (core.backends.facets.paired), if known.
     """
     used = np.zeros(len(points), dtype=bool)
-    used[cells.ravel()] = True
+    flat = cells.ravel()
+
+    def mark(lo: int, hi: int) -> None:
+        used[flat[lo:hi]] = True  # both halves only ever set True
+
+    halves(mark, len(flat), PASSES)
     if hidden is not None:
         if (used & hidden).any():
             return f"{int(np.count_nonzero(used & hidden))} hidden points are vertices"
