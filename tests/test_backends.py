@@ -335,3 +335,84 @@ def test_a_mirror_that_does_not_fit_the_neighbours_is_refused():
         replace(tri, cells=cells[order], neighbors=renumbered)  # the old mirror kept
     assert replace(tri, cells=cells[order], neighbors=renumbered, mirror=mirror[order]).mirror \
         is not None
+
+
+def near_cospherical(seed: int, d: int) -> tuple[np.ndarray, np.ndarray, int]:
+    """3000 prepared uniform points with the vertex across one facet of a central Delaunay
+    cell moved onto that cell's circumsphere, 1e-14 (relative) outside: the float check
+    cannot settle that facet, its exact sign is strict. Also the cell and the vertex."""
+    points = prepared(np.random.default_rng(seed).uniform(size=(3000, d)))
+    ref = triangulate(points)
+    t = int(np.argmin(np.linalg.norm(points[ref.cells].mean(axis=1) - points.mean(axis=0),
+                                     axis=1)))
+    q = int(np.setdiff1d(ref.cells[ref.neighbors[t, 0]], ref.cells[t])[0])
+    corners = points[ref.cells[t]]
+    centre = np.linalg.solve(2 * (corners[1:] - corners[0]),
+                             (corners[1:] ** 2).sum(axis=1) - (corners[0] ** 2).sum())
+    radius = np.linalg.norm(corners[0] - centre)
+    away = points[q] - centre
+    points[q] = centre + away / np.linalg.norm(away) * radius * (1 + 1e-14)
+    return points, ref.cells[t], q
+
+
+def exact_delaunay_cells(points: np.ndarray) -> np.ndarray:
+    """The unique Delaunay cells of points in general position: Qhull's, certified exactly
+    (what gmsh returns when its own predicates get every near-cospherical facet right, which
+    depends on its internal state; standing in for it keeps these tests deterministic)."""
+    from core.certify import certified_triangulation
+
+    certified = certified_triangulation(points, triangulate(points))
+    assert certified.uncertified == 0
+    return np.sort(certified.triangulation.cells, axis=1).astype(np.int32)
+
+
+@needs_gmsh
+@pytest.mark.parametrize(("d", "seed"), [(2, 1), (2, 3), (3, 0), (3, 5)])
+def test_near_cospherical_facets_are_settled_exactly(d: int, seed: int, monkeypatch) -> None:
+    """The float check leaves the facet at 0, the exact in-sphere sign says strictly outside:
+    the exact Delaunay cells are accepted, and Qhull's own cells, which its floating point
+    triangulates otherwise for these seeds, are refused (a wrong exact sign)."""
+    from core.backends.certify import exact_sides, in_sphere, orientations
+
+    points, cell, q = near_cospherical(seed, d)
+    sign = orientations(points, cell[None])
+    assert in_sphere(points, cell[None], np.array([q]), sign)[0] == 0
+    assert exact_sides(points, cell[None], np.array([q]), sign)[0] == 1
+    exact = exact_delaunay_cells(points)
+    qhulls = triangulate(points).cells
+    assert not np.array_equal(cell_set(exact), cell_set(qhulls))
+    monkeypatch.setattr(backends.gmsh_backend, "gmsh_cells", lambda _: exact.copy())
+    tri, choice = backends.delaunay(points, "gmsh")
+    assert choice == backends.Choice("gmsh")
+    assert np.array_equal(cell_set(tri.cells), cell_set(exact))
+    monkeypatch.setattr(backends.gmsh_backend, "gmsh_cells",
+                        lambda _: np.sort(qhulls, axis=1).astype(np.int32))
+    with pytest.raises(InputError, match="facets are not certainly Delaunay"):
+        backends.delaunay(points, "gmsh")
+
+
+@needs_gmsh
+@pytest.mark.parametrize(("d", "seed"), [(2, 1), (3, 0)])
+def test_near_cospherical_tables_equal_bit_for_bit(d: int, seed: int, monkeypatch) -> None:
+    """Qhull's differing cells are flipped by core.certify into the same unique cells."""
+    from core import AlphaComplex
+
+    points, _, _ = near_cospherical(seed, d)
+    monkeypatch.setattr(backends.gmsh_backend, "gmsh_cells", exact_delaunay_cells)
+    by_gmsh = AlphaComplex.from_points(points, backend="gmsh")
+    assert by_gmsh.build_info.backend == "gmsh"
+    by_qhull = AlphaComplex.from_points(points, backend="qhull")
+    assert by_qhull.build_info.flips > 0
+    assert_same_table(by_gmsh, by_qhull)
+
+
+@needs_gmsh
+def test_exactly_cospherical_facets_still_fall_back() -> None:
+    """A unit square of a lattice is exactly cocircular (exact sign 0): two Delaunay
+    triangulations, so gmsh's is refused."""
+    from core.backends.certify import exact_sides
+
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
+    assert exact_sides(square, np.array([[0, 1, 2]]), np.array([3]), np.array([1]))[0] == 0
+    with pytest.raises(InputError, match=r"facets are not certainly Delaunay \(cospherical"):
+        backends.delaunay(prepared(lattice(25, 2)), "gmsh")

@@ -3,11 +3,22 @@
 A set of cells is the Delaunay triangulation of the points when it is a triangulation of
 their convex hull (every point a vertex, every cell properly oriented, the two cells of every
 inner facet on opposite sides, the outer facets exactly the hull's) and every inner facet is
-locally Delaunay (the Delaunay lemma). Each sign is accepted only when it exceeds a margin
+locally Delaunay (the Delaunay lemma). A sign is settled in float64 when it exceeds a margin
 relative to the magnitude of its terms (tolerances.BACKEND_CERTAIN_RTOL, 1e-12: some 300x
-Shewchuk's float64 error bounds for these determinants), so the triangulation is also unique
-by a wide margin, and Qhull returns the same cells (tested on random, clustered, surface and
-real-scan sets, tests/test_backends.py).
+Shewchuk's float64 error bounds for these determinants); the few rows within the margin (2 of
+12M facets on the 1M bunny scan) are settled exactly on the same float64 values
+(core.predicates: exact integers), unweighted only. A facet is accepted only when its vertex
+across is strictly outside (exactly): then every cell's circumsphere is strictly empty, the
+triangulation is the unique Delaunay one, and every exact triangulator returns it.
+
+Qhull, in floating point, may triangulate such a near-cospherical group otherwise; the table
+never sees that difference: core.certify checks every facet of either backend's cells with
+the same exact predicates (ties broken by one symbolic perturbation, which leaves strict signs
+as they are) and flips until all hold, so Qhull's cells become these same unique cells, and
+the table passes (which sort the cells) give the same arrays bit for bit. Exactly cospherical
+facets (sign 0: more than one Delaunay triangulation), exactly flat cells and wrong signs are
+refused, and weighted points with an undecided power test too: the caller falls back to Qhull.
+Tested on random, clustered, surface and real-scan sets (tests/test_backends.py).
 """
 
 from __future__ import annotations
@@ -18,6 +29,8 @@ from scipy.spatial import ConvexHull, QhullError
 from ..delaunay import interior_facets
 from ..geometry import CACHE_CHUNK
 from ..parallel import PASSES, halves, nonzero, rows_cols, slot_of
+from ..predicates import filtered_signs, insphere_formula, row_sum_bound
+from ..predicates import orientations as exact_orientations
 from ..tolerances import BACKEND_CERTAIN_RTOL
 
 
@@ -162,8 +175,12 @@ def _oriented(points: np.ndarray, cells: np.ndarray, pairs: tuple[np.ndarray, ..
     t, i, u, j = pairs
     sign = np.zeros(len(cells), dtype=np.int8)
     sign[some] = orientations(points, cells[some])
+    doubt = np.flatnonzero(sign == 0)
+    if isinstance(some, np.ndarray):
+        doubt = np.intersect1d(doubt, some)
+    sign[doubt] = exact_orientations(points, cells[doubt])[0]
     if not sign[some].all():
-        return f"{int(np.count_nonzero(sign[some] == 0))} cells are (nearly) flat", sign
+        return f"{int(np.count_nonzero(sign[some] == 0))} cells are flat", sign
     same_side = ((i + j) % 2 == 1) == (sign[t] != sign[u])
     if same_side.any():
         return f"{int(np.count_nonzero(same_side))} pairs of cells overlap", sign
@@ -176,10 +193,26 @@ def _spheres_empty(points: np.ndarray, cells: np.ndarray, pairs: tuple[np.ndarra
     t's circumsphere (power test with `weights`), else the reason."""
     t, _, u, j = pairs
     side = in_sphere(points, cells[t], cells[u, j], sign[t], weights)
+    doubt = np.flatnonzero(side == 0)
+    if len(doubt) and weights is None:
+        side[doubt] = exact_sides(points, cells[t[doubt]], cells[u[doubt], j[doubt]],
+                                  sign[t[doubt]])
     if (side <= 0).any():
         return (f"{int(np.count_nonzero(side <= 0))} facets are not certainly Delaunay "
-                "(near-cospherical points)")
+                "(cospherical points)")
     return ""
+
+
+def exact_sides(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
+                orientation: np.ndarray) -> np.ndarray:
+    """in_sphere's (n,) int8 answer settled exactly (core.predicates on the same float64
+    values): +1 outside, -1 inside, 0 exactly on the circumsphere; for the few rows in_sphere
+    leaves at 0."""
+    signs, _ = filtered_signs(insphere_formula, points, query, cells,
+                              lambda vectors: row_sum_bound(vectors, lifted=True))
+    # insphere_formula is det([p_i - q, |p_i - q|²]): > 0 outside a tetrahedron of positive
+    # orientation, < 0 outside a triangle of positive orientation (core.predicates.in_sphere)
+    return (signs * orientation * (1 if points.shape[1] == 3 else -1)).astype(np.int8)
 
 
 def why_not_locally_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
