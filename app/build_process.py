@@ -8,11 +8,13 @@ cursor's sort orders (core.cursor.cursor_orders, found in a thread beside) as ra
 them. Then it sends the table's quick opening alpha (core.opening, found in a thread beside
 those writes; not with the signatures) and only then writes the cache entry (atomic:
 core.cache), at a lower priority, holding a lock the topology process waits for before it
-rewrites that entry with the signatures. The caller does not wait for that write: it is
-left to the child (HandOver.saving), which a newer open still kills (the load's cancel;
-the entry is then absent, never damaged). Without /dev/shm, or with too little room in it,
-the child writes the cache entry (or a temporary file when the cache cannot be written or is
-not used) first and hands that file over, with the orders in a scratch file, as before.
+rewrites that entry with the signatures. The caller does not wait for that write: it is left
+to the child (HandOver.saving), which a newer open or closing the window still kills (the
+load's cancel; the entry is then absent, never damaged, and that file is built again on its
+next open: nothing runs on behind the user's next action). Without /dev/shm, or with too
+little room in it, the child writes the cache entry (or a temporary file when the cache
+cannot be written or is not used) first and hands that file over, with the orders in a
+scratch file, as before.
 
 The caller maps (or loads, without re-checking the file its own child wrote a moment ago) the
 table it was handed and makes the cursor from those orders while the child still works; the
@@ -90,8 +92,8 @@ class ChildRunner:
         report = progress or (lambda _fraction, _stage: None)
         if len(request.points) < IN_THREAD_BELOW:
             return run_here(request, progress)
-        shared = SharedFolder.make()
         folder, lock = make_scratch("alphascoop-build-")
+        shared = SharedFolder.make()  # after the scratch folder: none left if that failed
 
         def remove() -> None:  # once the child has ended (it may outlive this call)
             lock.close()
@@ -236,8 +238,9 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress,
                                   "saving": str(saving)}))
             finder()
             hand_over(json.dumps({"opening_alpha": float(opening[0]) if opening else None}))
-            with contextlib.suppress(OSError):  # the cores go to the window and the topology
-                os.nice(SAVE_NICENESS)
+            if not request.signatures and request.save_to is not None:
+                with contextlib.suppress(OSError):  # left to write alone: the cores go to
+                    os.nice(SAVE_NICENESS)  # the window and the topology process
             request.save(ac)  # unreported: the window is past this stage already
         else:
             written = request.save(ac, progress)

@@ -17,7 +17,7 @@ import numpy as np
 from .alpha import table_value, threshold
 from .arrays import readonly
 from .errors import InputError
-from .index import TableIndex
+from .index import TableIndex, facing_out
 from .parallel import PASSES, halves, in_chunks, place, select, take, together
 from .shape import AlphaShape, Known
 from .table import argsort_radii
@@ -343,7 +343,7 @@ def _rank_array(by_lo: np.ndarray, n: int) -> np.ndarray:
 
 def _oriented_rows(index: TableIndex, ids: np.ndarray) -> np.ndarray:
     """(len(ids), dim) int32 facets as the shape orients them while REGULAR (as
-    core.index.facing_out would turn them).
+    core.index.facing_out turns them, chunk by chunk).
 
     In its REGULAR interval a facet bounds exactly one cell: the one entered first (cells
     are sorted by enter), which is cell 1 when that is real and lower. Chunk by chunk, in
@@ -358,11 +358,8 @@ def _oriented_rows(index: TableIndex, ids: np.ndarray) -> np.ndarray:
         chunk, block = ids[start:stop], rows[start:stop]
         np.take(facets, chunk, axis=0, out=block)
         pair = np.take(cells, chunk, axis=0)
-        reverse = np.take(flip, chunk)
-        reverse ^= (pair[:, 1] >= 0) & (pair[:, 1] < pair[:, 0])  # inside its cell 1
-        last = block[:, -1].copy()
-        np.copyto(block[:, -1], block[:, -2], where=reverse)
-        np.copyto(block[:, -2], last, where=reverse)
+        inside_second = (pair[:, 1] >= 0) & (pair[:, 1] < pair[:, 0])
+        facing_out(block, np.take(flip, chunk), inside_second, out=block)
 
     in_chunks(part, len(ids), ROW_CHUNK)
     return rows

@@ -30,7 +30,9 @@ def facing_out(facets: np.ndarray, flip: np.ndarray, inside_second: np.ndarray |
     if out is not facets:
         out[:] = facets
     reverse = flip ^ inside_second
-    out[reverse, -2:] = out[reverse][:, [-1, -2]]
+    last = out[:, -1].copy()  # the last two columns swapped where reverse, without a gather
+    np.copyto(out[:, -1], out[:, -2], where=reverse)
+    np.copyto(out[:, -2], last, where=reverse)
     return out
 
 

@@ -52,13 +52,13 @@ def write_arrays(folder: str | os.PathLike, arrays: Mapping[str, np.ndarray]) ->
         lighter = loads.index(min(loads))  # biggest first onto the lighter thread
         shares[lighter].append(name)
         loads[lighter] += np.asarray(arrays[name]).nbytes
-    errors: list[OSError] = []
+    errors: list[BaseException] = []
 
     def write(names: list[str]) -> None:
         try:
             for name in names:
                 np.save(Path(folder) / f"{name}{SUFFIX}", arrays[name], allow_pickle=False)
-        except OSError as error:
+        except BaseException as error:  # raised in the caller: never a file silently missing
             errors.append(error)
 
     helper = threading.Thread(target=write, args=(shares[1],), name="alphascoop-map-write")

@@ -54,9 +54,12 @@ from .progress import Progress
 from .table_signs import settle_cells, settle_facets, settle_obtuse
 from .tolerances import FOLD_CANDIDATE_RTOL, ILL_CONDITIONED_RTOL
 
-#: Points up to which the edge pass packs each triangle's first two vertices and attach bits
-#: into one int64 (29 bits for the second vertex), read by one gather per incidence.
-WORDS_UP_TO = 1 << 29
+#: The edge pass packs each triangle's first vertex, second vertex and 3 attach bits into
+#: one int64 (first << FIRST_SHIFT | second << 3 | bits), read by one gather per incidence,
+#: for tables of up to WORDS_UP_TO points (the second vertex's VERTEX_BITS bits).
+VERTEX_BITS = 29
+FIRST_SHIFT = VERTEX_BITS + 3
+WORDS_UP_TO = 1 << VERTEX_BITS
 
 
 @dataclass
@@ -153,7 +156,8 @@ def argsort_radii(values: np.ndarray) -> np.ndarray:
 
 def _key_cut(packed: np.ndarray) -> int:
     """A position near the middle of the sorted (key << 32 | index) array where the key
-    changes (0 where the middle key runs to the end, or for short arrays)."""
+    changes: n where the middle key runs to the end, 0 for the largest key or short arrays
+    (either means one part)."""
     n = len(packed)
     if n < PARALLEL_ABOVE:
         return 0
@@ -593,8 +597,8 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
                 inside[lo:hi] = (bits[t] >> local) & 1
         else:  # one random gather per incidence instead of three
             word = np.take(words, t)
-            local = np.where(a != word >> 32, 0,
-                             np.where(b == (word >> 3) & ((1 << 29) - 1), 2, 1))
+            local = np.where(a != word >> FIRST_SHIFT, 0,
+                             np.where(b == (word >> 3) & (WORDS_UP_TO - 1), 2, 1))
             if inside is not None:
                 inside[lo:hi] = (word >> local) & 1
         edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
@@ -605,14 +609,15 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
 
 
 def _triangle_words(tris: np.ndarray, bits: np.ndarray | None) -> np.ndarray:
-    """(t,) int64 first vertex << 32 | second vertex << 3 | attach bits of every triangle
-    (vertices below 2**29), so an incidence reads its triangle in one gather; in halves."""
+    """(t,) int64 first vertex << FIRST_SHIFT | second vertex << 3 | attach bits of every
+    triangle (vertices below WORDS_UP_TO), so an incidence reads its triangle in one gather;
+    in halves."""
     words = np.empty(len(tris), dtype=np.int64)
 
     def part(lo: int, hi: int) -> None:
         out = words[lo:hi]
         out[:] = tris[lo:hi, 0]
-        out <<= 29
+        out <<= VERTEX_BITS
         out += tris[lo:hi, 1]
         out <<= 3
         if bits is not None:
