@@ -2,7 +2,8 @@
 
 gmsh.algorithm.tetrahedralize / triangulate return Delaunay cells without neighbours and
 without some cells near the hull; core.backends.restore completes them and
-core.backends.certify decides whether the result is exactly Qhull's triangulation.
+core.backends.certify decides whether the result is certainly the unique Delaunay
+triangulation (the one the table then gets from Qhull too).
 """
 
 from __future__ import annotations
