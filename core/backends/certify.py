@@ -198,8 +198,9 @@ def _spheres_empty(points: np.ndarray, cells: np.ndarray, pairs: tuple[np.ndarra
         side[doubt] = exact_sides(points, cells[t[doubt]], cells[u[doubt], j[doubt]],
                                   sign[t[doubt]])
     if (side <= 0).any():
+        near = "cospherical" if weights is None else "near-cospherical"  # weighted: float only
         return (f"{int(np.count_nonzero(side <= 0))} facets are not certainly Delaunay "
-                "(cospherical points)")
+                f"({near} points)")
     return ""
 
 
