@@ -175,10 +175,10 @@ def _oriented(points: np.ndarray, cells: np.ndarray, pairs: tuple[np.ndarray, ..
     t, i, u, j = pairs
     sign = np.zeros(len(cells), dtype=np.int8)
     sign[some] = orientations(points, cells[some])
-    doubt = np.flatnonzero(sign == 0)
-    if isinstance(some, np.ndarray):
-        doubt = np.intersect1d(doubt, some)
-    sign[doubt] = exact_orientations(points, cells[doubt])[0]
+    # the rows the float margin left undecided, among those computed (`some`: ids or all)
+    doubt = np.flatnonzero(sign == 0) if isinstance(some, slice) else some[sign[some] == 0]
+    if len(doubt):
+        sign[doubt] = exact_orientations(points, cells[doubt])[0]
     if not sign[some].all():
         return f"{int(np.count_nonzero(sign[some] == 0))} cells are flat", sign
     same_side = ((i + j) % 2 == 1) == (sign[t] != sign[u])
