@@ -3,6 +3,7 @@ pick a start alpha; `with_topology` completes its topology afterwards."""
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
@@ -14,8 +15,10 @@ from app.camera import Z_UP, ViewFrame, frame_for
 from app.topology_child import TopologyChild
 from app.topology_file import TopologyParts, attach
 from core import AlphaComplex
+from core.build import check_backend
 from core.complex import at_value
 from core.cursor import ShapeCursor
+from core.errors import InputError
 from core.io import LoadReport, read_points
 from core.modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
@@ -29,6 +32,7 @@ from core.suggest import AlphaRange
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 POINTS_READ = "points read"  # the stage reported once the file was read, before the table
 N_SUGGESTIONS = 5  # suggested alphas shown (slider ticks, the signature plots' ▼ markers)
+BACKEND_VARIABLE = "ALPHASCOOP_BACKEND"  # the window's backend: qhull, gmsh, unset = automatic
 SOURCE_WORDS = {"built": "built", "cache": "loaded from cache",
                 "rebuilt": "rebuilt (its cached table was damaged)"}
 
@@ -130,10 +134,12 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     the dataset is returned as soon as the slider can use it (the table and its cursor); the
     window then completes it with with_topology in the background. A cached table that holds
     its topology is always returned complete. The stage POINTS_READ is reported once the
-    file was read and checked for the mode, before the table is built or loaded.
+    file was read and checked for the mode, before the table is built or loaded. The
+    triangulation backend is chosen automatically unless $ALPHASCOOP_BACKEND forces one.
     """
     mode = mode or Mode()
     path = Path(path)
+    backend = window_backend()
     started = time.perf_counter()
     progress(0.0, "reading")
     pointset = read_points(path, **(options or ImportOptions()).read_kwargs())
@@ -145,7 +151,8 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     normals = file_normals(mode, pointset.attributes, path.name)
     progress(READ_SHARE, POINTS_READ)  # the window lets its shown dataset go now
     obtained = obtain(pointset.points, weights=pointset.weights, mode=mode, normals=normals,
-                      signatures=topology, runner=runner, progress=build_progress)
+                      signatures=topology, backend=backend, runner=runner,
+                      progress=build_progress)
     ac = obtained.complex
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
@@ -171,6 +178,19 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
         dataset = with_topology(dataset)
     progress(1.0, "done")
     return dataset
+
+
+def window_backend() -> str | None:
+    """The triangulation backend $ALPHASCOOP_BACKEND forces on the window's builds ("qhull"
+    or "gmsh", as the command line's --backend), None when it is unset, empty or "auto";
+    InputError naming the variable when it asks for something else."""
+    value = os.environ.get(BACKEND_VARIABLE, "").strip().lower()
+    if value in ("", "auto"):
+        return None
+    try:
+        return check_backend(value)
+    except InputError as error:
+        raise InputError(f"{BACKEND_VARIABLE}={value}: {error}") from None
 
 
 def quick_alpha(ac: AlphaComplex) -> float:

@@ -1,21 +1,25 @@
 """Benchmark of a first open in the window (issue 15), against gudhi's bare build, in one run.
 
     xvfb-run -a python benchmarks/bench_first_open.py [--n 1000000] [--seed 0]
-        [--steps scipy,gudhi,qhull,gmsh,window] [--soak | --soak-cycles N] [--json out.json]
+        [--set torus|bunny] [--steps scipy,gudhi,qhull,gmsh,window,window-qhull]
+        [--soak | --soak-cycles N] [--json out.json]
 
 Each step runs in its own fresh process (isolate.run_isolated), so its peak memory is its
 own: scipy's Delaunay alone, gudhi's `AlphaComplex(precision="fast").create_simplex_tree()`,
 our core build with each backend (`from_points(backend=...)`: Qhull, and gmsh when it is
 installed), and a first open in a real MainWindow with an empty table cache: file -> slider
 live (the window has the dataset) -> first frame drawn -> topology done (signatures, optimal
-alpha). The window's peak is its own process's and, apart, its build and topology processes'
-own. With --soak the same window then opens and cancels a third file 10 times and re-opens a
-cube and the torus alternately 10 times (RSS after each); --soak-cycles N does N of each (a
-bounded soak at 1M). --steps picks the steps and their order (the window's ratios need gudhi
-and scipy; put the step that matters first when a timeout bounds the run). Each step's line
-is printed as soon as it ends (and the JSON rewritten), so a run stopped by `timeout` still
-reports what it measured. Ratios are against gudhi fast (time) and scipy Delaunay (peak
-memory).
+alpha); `window-qhull` is the same first open with the window's backend forced to Qhull
+($ALPHASCOOP_BACKEND=qhull; reported, no goal). The window's peak is its own process's and,
+apart, its build and topology processes' own. --set picks the points: the noisy torus
+(default) or `bunny`, a scan-like sample of the Stanford bunny (datasets.bunny_scan, needs
+shared/data/bunny.ply). With --soak the same window then opens and cancels a third file
+(another sample of the set) 10 times and re-opens a cube and the set alternately 10 times
+(RSS after each); --soak-cycles N does N of each (a bounded soak at 1M). --steps picks the
+steps and their order (the window's ratios need gudhi and scipy; put the step that matters
+first when a timeout bounds the run). Each step's line is printed as soon as it ends (and
+the JSON rewritten), so a run stopped by `timeout` still reports what it measured. Ratios
+are against gudhi fast (time) and scipy Delaunay (peak memory).
 """
 
 from __future__ import annotations
@@ -31,20 +35,25 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import numpy as np
-from datasets import noisy_torus, write_points
+from datasets import bunny_scan, noisy_torus, write_points
 from isolate import Probe, run_isolated
 from measure import gudhi_alpha, scipy_delaunay
 from report import write_json
 from window_open import CANCELS, REOPENS, first_open
 
-GOALS = (  # (figure, reference, goal, at most?)
+GOALS = (  # (figure, reference, goal: at most; None: reported only)
     ("window: slider live", "gudhi fast", 0.6),
     ("window: first frame", "gudhi fast", 0.6),
     ("window: topology done", "gudhi fast", 0.9),
+    ("window, qhull: slider live", "gudhi fast", None),
+    ("window, qhull: first frame", "gudhi fast", None),
+    ("window, qhull: topology done", "gudhi fast", None),
     ("core build, gmsh", "gudhi fast", 0.5),
     ("core build, qhull", "gudhi fast", 0.8),
 )
-STEPS = ("scipy", "gudhi", "qhull", "gmsh", "window")
+STEPS = ("scipy", "gudhi", "qhull", "gmsh", "window", "window-qhull")
+DEFAULT_STEPS = ("scipy", "gudhi", "qhull", "gmsh", "window")
+SETS = {"torus": noisy_torus, "bunny": bunny_scan}
 PEAK_GOAL = 2.5  # first open's peak (either process) / scipy Delaunay's peak
 SOAK_GOAL = 1.2  # RSS after each re-open / RSS after the first open
 
@@ -52,11 +61,13 @@ SOAK_GOAL = 1.2  # RSS after each re-open / RSS after the first open
 def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     """Command-line options."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--n", type=int, default=1_000_000, help="torus points")
-    parser.add_argument("--seed", type=int, default=0, help="torus sample seed")
-    parser.add_argument("--steps", default=",".join(STEPS),
+    parser.add_argument("--n", type=int, default=1_000_000, help="points")
+    parser.add_argument("--seed", type=int, default=0, help="sample seed")
+    parser.add_argument("--set", default="torus", choices=sorted(SETS),
+                        help="the point set: noisy torus (default) or scan-like bunny")
+    parser.add_argument("--steps", default=",".join(DEFAULT_STEPS),
                         help=f"comma-separated steps to run in that order, of {','.join(STEPS)} "
-                             "(default all, in this order)")
+                             f"(default {','.join(DEFAULT_STEPS)})")
     parser.add_argument("--soak", action="store_true",
                         help=f"after the window's first open: {CANCELS} cancelled opens and "
                              f"{REOPENS} re-opens")
@@ -91,6 +102,15 @@ def core_build(points_path: str, backend: str) -> dict:
     return probe.result(backend=ac.build_info.backend, cells=len(ac.simplices(3)))
 
 
+def window_with_backend(backend: str, *args: object) -> dict:
+    """window_open.first_open with the window's triangulation backend forced (its build
+    processes inherit the variable)."""
+    from app.dataset import BACKEND_VARIABLE
+
+    os.environ[BACKEND_VARIABLE] = backend
+    return first_open(*args)
+
+
 def _step(name: str, fn: object, *fn_args: object) -> dict:
     """Run one isolated measurement, logging its name and wall time to stderr and its
     figures to stdout as soon as it ends."""
@@ -108,18 +128,21 @@ def _step(name: str, fn: object, *fn_args: object) -> dict:
 def measure(args: argparse.Namespace, folder: str, save=lambda _results: None) -> dict:
     """The chosen steps, each in its own process; {name: result}. save(results) is called
     after each step (the JSON of a run stopped early)."""
-    torus, cube, other = (os.path.join(folder, f"{name}.npy") for name in ("torus", "cube",
-                                                                            "cancelled"))
-    write_points(noisy_torus(args.n, args.seed), torus)
+    sample = SETS[args.set]
+    main, cube, other = (os.path.join(folder, f"{name}.npy") for name in (args.set, "cube",
+                                                                           "cancelled"))
+    write_points(sample(args.n, args.seed), main)
     if args.cycles:
         write_points(np.random.default_rng(args.seed + 1).random((args.n, 3)), cube)
-        write_points(noisy_torus(args.n, args.seed + 2), other)
+        write_points(sample(args.n, args.seed + 2), other)
     have_gmsh = importlib.util.find_spec("gmsh") is not None
-    steps = {"scipy": ("scipy Delaunay", scipy_delaunay, torus),
-             "gudhi": ("gudhi fast", gudhi_alpha, torus),
-             "qhull": ("core build, qhull", core_build, torus, "qhull"),
-             "gmsh": ("core build, gmsh", core_build, torus, "gmsh"),
-             "window": ("window", first_open, torus, cube, other, args.cycles)}
+    steps = {"scipy": ("scipy Delaunay", scipy_delaunay, main),
+             "gudhi": ("gudhi fast", gudhi_alpha, main),
+             "qhull": ("core build, qhull", core_build, main, "qhull"),
+             "gmsh": ("core build, gmsh", core_build, main, "gmsh"),
+             "window": ("window", first_open, main, cube, other, args.cycles),
+             "window-qhull": ("window, qhull", window_with_backend, "qhull", main, cube, other,
+                              0)}
     results: dict = {}
     for step in args.steps:
         if step == "gmsh" and not have_gmsh:
@@ -127,18 +150,22 @@ def measure(args: argparse.Namespace, folder: str, save=lambda _results: None) -
         name, fn, *fn_args = steps[step]
         results[name] = _step(name, fn, *fn_args)
         save(results)
-    window = results.get("window", {})
-    if window and "error" not in window:
-        for key, name in (("live", "slider live"), ("frame", "first frame"),
-                          ("topology", "topology done")):
-            results[f"window: {name}"] = {"seconds": window[f"{key}_seconds"],
-                                          "cpu_seconds": window[f"{key}_cpu_seconds"]}
+    for window_step in ("window", "window, qhull"):
+        window = results.get(window_step, {})
+        if window and "error" not in window:
+            for key, name in (("live", "slider live"), ("frame", "first frame"),
+                              ("topology", "topology done")):
+                results[f"{window_step}: {name}"] = {
+                    "seconds": window[f"{key}_seconds"],
+                    "cpu_seconds": window[f"{key}_cpu_seconds"]}
     return results
 
 
-def ratio_rows(results: dict) -> list[tuple[str, float, float, float, float, bool]]:
+def ratio_rows(results: dict) -> list[tuple[str, float, float, float, float | None,
+                                             bool | None]]:
     """(figure / reference, value, reference value, ratio, goal, goal met) for every goal
-    that both sides of were measured; time goals on the wall and on the CPU clock."""
+    that both sides of were measured; time goals on the wall and on the CPU clock (goal and
+    met None: a figure reported without a goal)."""
     rows = []
     for figure, reference, goal in GOALS:
         for clock in ("seconds", "cpu_seconds"):
@@ -163,38 +190,43 @@ def ratio_rows(results: dict) -> list[tuple[str, float, float, float, float, boo
             if again:
                 rows.append((f"soak: worst RSS after a re-open of the {name} / after its first "
                              "(MiB)", max(again), firsts, max(again) / firsts, SOAK_GOAL))
-    return [(name, v, r, q, goal, q <= goal) for name, v, r, q, goal in rows]
+    return [(name, v, r, q, goal, None if goal is None else q <= goal)
+            for name, v, r, q, goal in rows]
 
 
-def format_report(n: int, results: dict) -> str:
+def format_report(n: int, results: dict, point_set: str = "torus") -> str:
     """Markdown tables: the steps, then the goal ratios."""
-    lines = [f"### n = {n:,}", "", "| step | wall s | cpu s | peak MiB | note |",
+    lines = [f"### n = {n:,}, {point_set}", "", "| step | wall s | cpu s | peak MiB | note |",
              "|---|---|---|---|---|"]
     for name, res in results.items():
-        if name == "window" or name.startswith("window:") or "error" in res:
+        if name.startswith("window") or "error" in res:
             if "error" in res:
                 lines.append(f"| {name} | | | | {res['error']} |")
             continue
         note = f"backend {res['backend']}" if "backend" in res else ""
         lines.append(f"| {name} | {res['seconds']:.2f} | {res['cpu_seconds']:.2f} | "
                      f"{res['peak_mib']:.0f} | {note} |")
-    window = results.get("window", {})
-    children = ", ".join(f"{name} {mib:.0f}"
-                         for name, mib in window.get("child_peaks_mib", {}).items())
-    if "live_seconds" in window:
-        lines.append(f"| window: slider live | {window['live_seconds']:.2f} | "
-                     f"{window['live_cpu_seconds']:.2f} | {window['peak_mib']:.0f} | backend "
-                     f"{window['backend']}; children's own peaks (MiB): {children}; CPU "
-                     "includes the children |")
-        lines.append(f"| window: first frame drawn | {window['frame_seconds']:.2f} | "
-                     f"{window['frame_cpu_seconds']:.2f} | | the event loop free again |")
-        lines.append(f"| window: topology done | {window['topology_seconds']:.2f} | "
-                     f"{window['topology_cpu_seconds']:.2f} | | |")
+    for step in ("window", "window, qhull"):
+        window = results.get(step, {})
+        children = ", ".join(f"{name} {mib:.0f}"
+                             for name, mib in window.get("child_peaks_mib", {}).items())
+        if "live_seconds" in window:
+            lines.append(f"| {step}: slider live | {window['live_seconds']:.2f} | "
+                         f"{window['live_cpu_seconds']:.2f} | {window['peak_mib']:.0f} | "
+                         f"backend {window['backend']}; children's own peaks (MiB): "
+                         f"{children}; CPU includes the children |")
+            lines.append(f"| {step}: first frame drawn | {window['frame_seconds']:.2f} | "
+                         f"{window['frame_cpu_seconds']:.2f} | | the event loop free again |")
+            lines.append(f"| {step}: topology done | {window['topology_seconds']:.2f} | "
+                         f"{window['topology_cpu_seconds']:.2f} | | |")
     lines += ["", "| figure | value | reference | ratio | goal | met |",
               "|---|---|---|---|---|---|"]
     for name, value, ref, ratio, goal, met in ratio_rows(results):
-        lines.append(f"| {name} | {value:.4g} | {ref:.4g} | {ratio:.3g} | <= {goal} | "
-                     f"{'yes' if met else 'NO'} |")
+        target, verdict = ("", "reported") if goal is None else (
+            f"<= {goal}", "yes" if met else "NO")
+        lines.append(f"| {name} | {value:.4g} | {ref:.4g} | {ratio:.3g} | {target} | "
+                     f"{verdict} |")
+    window = results.get("window", {})
     soak = window.get("soak")
     if soak:
         lines += ["", "soak RSS MiB after each cancelled open: "
@@ -221,17 +253,17 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     def save(results: dict) -> None:
         if args.json:
-            write_json(args.json, {"n": args.n, "seed": args.seed, "steps": args.steps,
-                                   "soak_cycles": args.cycles, "load_average": os.getloadavg(),
-                                   "results": results})
+            write_json(args.json, {"n": args.n, "seed": args.seed, "set": args.set,
+                                   "steps": args.steps, "soak_cycles": args.cycles,
+                                   "load_average": os.getloadavg(), "results": results})
 
-    print(f"n = {args.n:,}, steps {','.join(args.steps)}, soak cycles {args.cycles}, "
+    print(f"n = {args.n:,} ({args.set}), steps {','.join(args.steps)}, soak cycles {args.cycles}, "
           f"{load_text()} at the start", flush=True)
     with tempfile.TemporaryDirectory(prefix="alphascoop-bench-") as folder:
         results = measure(args, folder, save)
     save(results)
     print(f"{load_text()} at the end", flush=True)
-    print(format_report(args.n, results), flush=True)
+    print(format_report(args.n, results, args.set), flush=True)
     return 0
 
 

@@ -223,6 +223,14 @@ def test_first_open_ratios_on_both_clocks_and_memory():
     assert not any(name.startswith("core build") for name in rows)  # not measured: no row
     assert "| window: slider live / gudhi fast (time) | 40 | 80 | 0.5 | <= 0.6 | yes |" in (
         format_report(1000, results))
+    assert not any(name.startswith("window, qhull") for name in rows)
+    results["window, qhull: slider live"] = {"seconds": 56.0, "cpu_seconds": 70.0}
+    qhull = {name: (ratio, goal, met) for name, _, _, ratio, goal, met in ratio_rows(results)}
+    assert qhull["window, qhull: slider live / gudhi fast (time)"] == (0.7, None, None)
+    report = format_report(1000, results, "bunny")
+    assert report.startswith("### n = 1,000, bunny")
+    assert "| window, qhull: slider live / gudhi fast (time) | 56 | 80 | 0.7 |  | reported |" in (
+        report)
 
 
 def test_first_open_steps_and_soak_cycles_are_chosen_on_the_command_line():
@@ -234,7 +242,10 @@ def test_first_open_steps_and_soak_cycles_are_chosen_on_the_command_line():
     assert args.steps == ["window", "gudhi"] and args.cycles == 2
     assert parse_args(["--soak"]).cycles == 10 and parse_args([]).cycles == 0
     assert parse_args(["--skip-gudhi"]).steps == ["scipy", "qhull", "gmsh", "window"]
-    for wrong in (["--steps", "window,cgal"], ["--steps", ","], ["--soak-cycles", "0"]):
+    assert parse_args(["--steps", "window-qhull,gudhi"]).steps == ["window-qhull", "gudhi"]
+    assert parse_args([]).set == "torus" and parse_args(["--set", "bunny"]).set == "bunny"
+    for wrong in (["--steps", "window,cgal"], ["--steps", ","], ["--soak-cycles", "0"],
+                  ["--set", "dragon"]):
         with pytest.raises(SystemExit):
             parse_args(wrong)
 

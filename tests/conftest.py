@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 
 os.environ["QT_API"] = "pyside6"
+os.environ.pop("ALPHASCOOP_BACKEND", None)  # the window's automatic backend choice is tested
 
 import shutil
 import subprocess
