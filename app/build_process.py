@@ -18,14 +18,16 @@ scratch file, as before.
 
 The caller maps (or loads, without re-checking the file its own child wrote a moment ago) the
 table it was handed and makes the cursor from those orders while the child still works; the
-runner keeps both (`handed_over`). `on_saved(entry, n_points, shared)` is told as soon as the
-child has handed over a table without signatures that is in its cache entry or in shared
-memory on its way there, before this process maps or loads it (the window starts the topology
-process then: app.worker). The shared folder is removed once this process and the topology
-process have mapped it (or gave up): app.shared_folder. Cancel kills the child at once, so a
-newer open or closing the window never waits for a Delaunay triangulation to finish. Small
-sets build in the caller's thread: under IN_THREAD_BELOW points a build takes a few seconds at
-most, and a process would add about one (its start and the table's trip through a file).
+runner keeps both (`handed_over`). `on_saved(entry, n_points, shared)` is told once this
+process has mapped (or loaded) a table without signatures that the child handed over in its
+cache entry or in shared memory on its way there, and made its cursor (the window starts the
+topology process then: app.worker; started earlier, it slowed the cursor and so the slider
+going live, without finishing sooner). The shared folder is removed once this process and
+the topology process have mapped it (or gave up): app.shared_folder. Cancel kills the child
+at once, so a newer open or closing the window never waits for a Delaunay triangulation to
+finish. Small sets build in the caller's thread: under IN_THREAD_BELOW points a build takes a
+few seconds at most, and a process would add about one (its start and the table's trip
+through a file).
 """
 
 from __future__ import annotations
@@ -75,8 +77,8 @@ class ChildRunner:
         """cancel: set it (from any thread) to stop the build; Cancelled is then raised.
         on_saved(entry, n_points, shared): called once the child handed over a table without
         signatures that is in its cache entry (shared None), or in shared memory and about
-        to be written there (`shared`, to be held while it is mapped), before it is
-        loaded here."""
+        to be written there (`shared`, to be held while it is mapped), after it was loaded
+        here and its cursor made."""
         self.cancel = cancel
         self.on_saved = on_saved
         self._built: AlphaComplex | None = None  # the complex its child last handed over
@@ -167,20 +169,26 @@ class ChildRunner:
               report: Progress) -> tuple[AlphaComplex, HandOver]:
         """The table a child handed over ({"table": its file or shared folder, "mapped":
         whether it is that folder, "orders": the cursor's orders (file or folder) or None})
-        and the cursor made from those orders; on_saved is told first when the table is, or
+        and the cursor made from those orders; on_saved is told then when the table is, or
         is about to be written to, the cache entry without signatures."""
-        if self.cancel.is_set():  # no topology process for a table nobody will load
-            raise Cancelled("build cancelled")
+        self._check_cancel()  # no load for a table nobody will use
         mapped = bool(answer["mapped"]) and shared is not None
+        taken = _load_handed(answer, mapped, report)
+        self._check_cancel()  # nor a topology process
         if (self.on_saved is not None and not request.signatures
                 and request.save_to is not None
                 and (mapped or answer["table"] == str(request.save_to))):
             self.on_saved(request.save_to, len(request.points),
                           SharedTable(shared, Path(answer["saving"])) if mapped else None)
-        taken = _load_handed(answer, mapped, report)
         if shared is not None:
             shared.release()  # mapped here: only the topology process may still need it
         return taken
+
+
+    def _check_cancel(self) -> None:
+        """Cancelled when `cancel` is set."""
+        if self.cancel.is_set():
+            raise Cancelled("build cancelled")
 
 
 def _load_handed(answer: dict, mapped: bool, report: Progress

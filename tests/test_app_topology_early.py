@@ -1,7 +1,7 @@
-"""The window starts the topology process as soon as the build process has written the cache
-entry, while it still loads the table (issue 15): the topology arrives as before, the entry
-gets the signatures for the next open, and a load cancelled, superseded or failed after that
-start leaves no process, no scratch folder and no topology behind."""
+"""The window starts the topology process as soon as it has the table the build process
+handed over and its cursor, while the load still goes on (issue 15): the topology arrives as
+before, the entry gets the signatures for the next open, and a load cancelled, superseded or
+failed after that start leaves no process, no scratch folder and no topology behind."""
 
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ from core import AlphaComplex
 from core.cache import load_cached
 
 HOLD_S = 60
-TABLE_LOADING = "loading the table"  # the build runner's stage once the child wrote the table
+TOPOLOGY_STARTED = "choosing alpha"  # the load's stage after the build runner returned
 
 
 @pytest.fixture(autouse=True)
@@ -64,13 +64,13 @@ def files(tmp_path) -> dict[str, Path]:
 
 
 def hold_first_load(monkeypatch, then) -> threading.Event:
-    """The first load stops once its table is written (the topology process started) and
-    calls then(runner) there; the returned event is set when it got there."""
+    """The first load stops once its build runner returned (the topology process started)
+    and calls then(runner) there; the returned event is set when it got there."""
     real, reached = app.worker.load_dataset, threading.Event()
 
     def load(path, progress, runner, **kwargs):
         def held(fraction: float, stage: str) -> None:
-            if stage == TABLE_LOADING and not reached.is_set():
+            if stage == TOPOLOGY_STARTED and not reached.is_set():
                 reached.set()
                 then(runner)
             progress(fraction, stage)
@@ -118,7 +118,7 @@ def test_the_topology_process_runs_before_the_dataset_arrives(window, qtbot, fil
     assert len(started) == 1 and "topology from cache" in window.status.text()
 
 
-def test_cancel_while_the_window_loads_the_table_stops_the_topology_process(
+def test_cancel_while_the_window_still_loads_stops_the_topology_process(
         window, qtbot, files, started, monkeypatch):
     reached = hold_first_load(monkeypatch, lambda runner: runner.cancel.wait(HOLD_S))
     window.open_path(files["first"])
