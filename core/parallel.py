@@ -190,19 +190,6 @@ def searchsorted_ascending(ascending: np.ndarray, values: np.ndarray, side: str 
     return out
 
 
-def sort(values: np.ndarray) -> None:
-    """values.sort() in place: long arrays as two halves at once, then one merge pass
-    (numpy's stable sort merges two sorted runs in linear time)."""
-    if len(values) < PARALLEL_ABOVE or _inside(PASSES):
-        values.sort()
-        return
-    half = len(values) // 2
-    other = _pool(PASSES).submit(values[half:].sort)
-    values[:half].sort()
-    other.result()
-    values.sort(kind="stable")
-
-
 def argsort_stable(values: np.ndarray) -> np.ndarray:
     """np.argsort(values, kind="stable") as (n,) intp: long arrays as two halves sorted at
     once, then merged (ties keep the first half first, so the order is the same)."""

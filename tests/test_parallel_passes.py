@@ -1,4 +1,4 @@
-"""The build's and topology's split passes (core.parallel: in_chunks, take, sort, searchsorted,
+"""The build's and topology's split passes (core.parallel: in_chunks, take, searchsorted,
 reduce_segments) give exactly what the plain numpy calls give, and the table and signatures
 built with every pass split (tiny thresholds and chunks) equal the ones built without."""
 
@@ -22,7 +22,6 @@ from core.parallel import (
     reduce_segments,
     rows_cols,
     searchsorted,
-    sort,
     take,
     together,
 )
@@ -52,10 +51,6 @@ def test_split_passes_equal_numpy() -> None:
         for side in ("left", "right"):
             np.testing.assert_array_equal(searchsorted(ascending, values, side),
                                           np.searchsorted(ascending, values, side))
-        keys = rng.integers(0, 2**60, 999, dtype=np.uint64)
-        mine = keys.copy()
-        sort(mine)
-        np.testing.assert_array_equal(mine, np.sort(keys))
         starts = np.flatnonzero(np.r_[True, rng.random(1000) < 0.2])
         for ufunc in (np.minimum, np.maximum, np.add):
             got = reduce_segments(ufunc, lambda lo, hi: values[lo:hi], starts, len(values),
