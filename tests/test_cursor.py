@@ -108,6 +108,22 @@ def test_shapes_handed_out_are_read_only_and_unchanged_by_later_moves():
     assert_same_as_fresh(ac, first, alpha)
 
 
+def test_a_cursor_shape_hands_out_the_cursors_own_rows():
+    """A slider step's SINGULAR and REGULAR rows are the cursor's own (no ids computed, no
+    gather from the table), read-only, and row for row the simplices of singular_ids."""
+    ac = AlphaComplex.from_points(np.random.default_rng(4).random((600, 3)))
+    cursor = ac.cursor()
+    shape = cursor.move(float(ac.spectrum()[len(ac.spectrum()) // 2]))
+    shared = 0
+    for k in range(3):
+        rows = shape.singular(k)
+        shared += len(rows) > 0 and np.shares_memory(rows, cursor.singular[k].rows)
+        assert not rows.flags.writeable
+        np.testing.assert_array_equal(rows, ac.simplices(k)[shape.singular_ids(k)])
+    assert shared == sum(len(shape.singular(k)) > 0 for k in range(3)) >= 2
+    assert np.shares_memory(shape.regular_facets, cursor.regular.rows)
+
+
 def test_bad_alpha_is_an_input_error_and_keeps_the_cursor():
     ac = AlphaComplex.from_points(np.random.default_rng(4).random((200, 2)))
     cursor = ac.cursor()
