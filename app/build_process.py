@@ -184,7 +184,6 @@ class ChildRunner:
             shared.release()  # mapped here: only the topology process may still need it
         return taken
 
-
     def _check_cancel(self) -> None:
         """Cancelled when `cancel` is set."""
         if self.cancel.is_set():

@@ -15,7 +15,7 @@ from app.camera import Z_UP, ViewFrame, frame_for
 from app.topology_child import TopologyChild
 from app.topology_file import TopologyParts, attach
 from core import AlphaComplex
-from core.build import check_backend
+from core.build import BACKENDS, check_backend
 from core.complex import at_value
 from core.cursor import ShapeCursor
 from core.errors import InputError
@@ -150,9 +150,15 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
 
     normals = file_normals(mode, pointset.attributes, path.name)
     progress(READ_SHARE, POINTS_READ)  # the window lets its shown dataset go now
-    obtained = obtain(pointset.points, weights=pointset.weights, mode=mode, normals=normals,
-                      signatures=topology, backend=backend, runner=runner,
-                      progress=build_progress)
+    try:
+        obtained = obtain(pointset.points, weights=pointset.weights, mode=mode,
+                          normals=normals, signatures=topology, backend=backend,
+                          runner=runner, progress=build_progress)
+    except InputError as error:
+        if backend is None:
+            raise
+        raise InputError(f"{error} (the backend was forced by {BACKEND_VARIABLE}={backend})"
+                         ) from None
     ac = obtained.complex
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
@@ -183,14 +189,19 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
 def window_backend() -> str | None:
     """The triangulation backend $ALPHASCOOP_BACKEND forces on the window's builds ("qhull"
     or "gmsh", as the command line's --backend), None when it is unset, empty or "auto";
-    InputError naming the variable when it asks for something else."""
-    value = os.environ.get(BACKEND_VARIABLE, "").strip().lower()
+    InputError naming the variable when it asks for something else or for a gmsh that is
+    not installed."""
+    given = os.environ.get(BACKEND_VARIABLE, "")
+    value = given.strip().lower()
     if value in ("", "auto"):
         return None
+    if value not in BACKENDS:
+        raise InputError(f"{BACKEND_VARIABLE}={given!r}: must be {', '.join(BACKENDS)}, auto "
+                         "or empty (automatic)")
     try:
         return check_backend(value)
     except InputError as error:
-        raise InputError(f"{BACKEND_VARIABLE}={value}: {error}") from None
+        raise InputError(f"{BACKEND_VARIABLE}={given!r}: {error}") from None
 
 
 def quick_alpha(ac: AlphaComplex) -> float:

@@ -1,11 +1,10 @@
 """The window's side of a topology process (app.topology_process): start it, follow it in a
 thread of its own, hand its result over, and stop it.
 
-The window starts it as soon as the build process has handed the table over (in shared
-memory, app.shared_folder, which the process maps and lets go of at once; or as its cache
-entry, written), while the window itself still maps or loads that table and makes the
-slider's cursor (app.worker.load_job);
-the topology job then takes it over (`hand_to`) and waits for its result (`parts`). Until taken
+The window starts it once it has mapped (or loaded) the table the build process handed over
+(in shared memory, app.shared_folder, which the process maps and lets go of at once; or as
+its cache entry, written) and made the slider's cursor (app.worker.load_job); the topology
+job then takes it over (`hand_to`) and waits for its result (`parts`). Until taken
 over it stops with the load (the load's cancel: a cancelled or superseded open), after that
 with the topology job (a newer open, the window closed); `stop` ends it in any case. The
 result comes once the child has written its hand-over file: the child then goes on rewriting

@@ -6,9 +6,10 @@ load job hands the dataset over as soon as the slider can use it (the table and 
 the topology job (signatures, optimal alpha, persistence) follows in a runner of its own (in
 a child process of its own for big sets: app.topology_process), so a newer open cancels it
 and drops its result like any stale request. For a table the build process wrote to the
-cache, the load job starts that topology process as soon as the table is handed over (in
-shared memory, before the entry is written; or as the entry once written), so it runs
-while the window loads the table and makes its cursor; the dataset carries it
+cache, the load job starts that topology process once the window has mapped (or loaded)
+the table handed over (in shared memory, before the entry is written; or as the entry once
+written) and made its cursor (started earlier, it competed with that set-up and the slider
+went live later); the dataset carries it
 (`Dataset.topology_child`) to the topology job. A load that is cancelled, superseded or fails
 stops it before it reports its outcome.
 """

@@ -220,6 +220,8 @@ def test_first_open_ratios_on_both_clocks_and_memory():
     assert rows["soak: worst RSS after a re-open of the torus / after its first (MiB)"] == (
         1.25, False)
     assert "soak: worst RSS after a re-open of the cube / after its first (MiB)" not in rows
+    assert "soak: worst RSS after a re-open of the bunny / after its first (MiB)" in {
+        row[0] for row in ratio_rows(results, "bunny")}
     assert not any(name.startswith("core build") for name in rows)  # not measured: no row
     assert "| window: slider live / gudhi fast (time) | 40 | 80 | 0.5 | <= 0.6 | yes |" in (
         format_report(1000, results))

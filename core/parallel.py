@@ -37,7 +37,11 @@ def _pool(role: str) -> ThreadPoolExecutor:
 
 def together(job: Callable[[], T]) -> Callable[[], T]:
     """Start job in a helper thread; returns a function that waits for its result (for
-    the caller to do other work meanwhile)."""
+    the caller to do other work meanwhile). In that helper itself the job runs at once
+    (waiting on itself would deadlock)."""
+    if _inside("jobs"):
+        value = job()
+        return lambda: value
     return _pool("jobs").submit(job).result
 
 

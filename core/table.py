@@ -802,11 +802,11 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
         step(0.55, "edges")
         levels.insert(0, _edges(points, facets, near_flat, obtuse, weights, sort))
     step(0.9, "vertices")
-    # the facets' interior order sorts (GIL released) while the vertices reduce (GIL held)
-    by_interior = (together(lambda: argsort_radii(facets.interior).astype(np.int32)) if sort
-                   else lambda: np.empty(0, dtype=np.int32))
+    # the facets' interior order sorts (GIL released) while the vertices reduce their edges
+    interior_order = (together(lambda: argsort_radii(facets.interior).astype(np.int32))
+                      if sort else lambda: np.empty(0, dtype=np.int32))
     levels.insert(0, _vertices(len(points), levels[0], points, weights))
-    by_interior = by_interior()
+    by_interior = interior_order()
     step(1.0, "done")
     return Table(levels, facet_cells, flip, measure, by_interior, sum(exact_counts or []))
 

@@ -55,8 +55,10 @@ def test_gmsh_is_forced_and_refused_where_it_cannot_build(tmp_path, points_file,
     assert _backend(points_file) == "gmsh"
     small = tmp_path / "lattice.npy"  # exactly cospherical: gmsh cannot promise Delaunay
     np.save(small, np.stack(np.meshgrid(*[np.arange(4.0)] * 3), axis=-1).reshape(-1, 3))
-    with pytest.raises(InputError):
+    with pytest.raises(InputError) as caught:
         load_dataset(small, lambda *_: None, topology=False)
+    assert "gmsh" in str(caught.value).split("(the backend")[0]  # gmsh's own reason
+    assert str(caught.value).endswith("(the backend was forced by ALPHASCOOP_BACKEND=gmsh)")
 
 
 def test_a_wrong_value_is_one_line_naming_the_variable(points_file, monkeypatch) -> None:
@@ -65,6 +67,6 @@ def test_a_wrong_value_is_one_line_naming_the_variable(points_file, monkeypatch)
     with pytest.raises(InputError) as caught:
         load_dataset(points_file, lambda fraction, stage: read.append(stage), topology=False)
     message = load_failure(points_file, caught.value)
-    assert message.startswith("ALPHASCOOP_BACKEND=cgal: backend must be one of")
+    assert message == "ALPHASCOOP_BACKEND='cgal': must be qhull, gmsh, auto or empty (automatic)"
     assert "\n" not in message
     assert read == []  # refused before the file is read

@@ -24,6 +24,7 @@ from core.cache import load_cached
 
 HOLD_S = 60
 TOPOLOGY_STARTED = "choosing alpha"  # the load's stage after the build runner returned
+TABLE_LOADING = "loading the table"  # the build runner maps the handed table, makes the cursor
 
 
 @pytest.fixture(autouse=True)
@@ -63,14 +64,15 @@ def files(tmp_path) -> dict[str, Path]:
     return paths
 
 
-def hold_first_load(monkeypatch, then) -> threading.Event:
-    """The first load stops once its build runner returned (the topology process started)
-    and calls then(runner) there; the returned event is set when it got there."""
+def hold_first_load(monkeypatch, then, at: str = TOPOLOGY_STARTED) -> threading.Event:
+    """The first load stops at the stage `at` (default: once its build runner returned, the
+    topology process started) and calls then(runner) there; the returned event is set when
+    it got there."""
     real, reached = app.worker.load_dataset, threading.Event()
 
     def load(path, progress, runner, **kwargs):
         def held(fraction: float, stage: str) -> None:
-            if stage == TOPOLOGY_STARTED and not reached.is_set():
+            if stage == at and not reached.is_set():
                 reached.set()
                 then(runner)
             progress(fraction, stage)
@@ -132,6 +134,26 @@ def test_cancel_while_the_window_still_loads_stops_the_topology_process(
     assert window.model.dataset is None
     window.topology.wait()
     assert window.model.dataset is None and not window.topology.is_busy()
+
+
+def test_no_topology_process_before_the_cursor_and_none_after_a_cancel_there(
+        window, qtbot, files, started, monkeypatch):
+    """The topology process waits for the window's table and cursor (it would compete with
+    them for the cores); cancelled while the window loads the table, none starts at all."""
+    seen: list[int] = []
+
+    def then(runner) -> None:
+        seen.append(len(started))
+        runner.cancel.wait(HOLD_S)
+
+    reached = hold_first_load(monkeypatch, then, at=TABLE_LOADING)
+    window.open_path(files["first"])
+    qtbot.waitUntil(reached.is_set, timeout=BUILD_TIMEOUT_MS)
+    with qtbot.waitSignal(window.loader.cancelled, timeout=BUILD_TIMEOUT_MS):
+        window.loader.cancel()
+    assert seen == [0] and started == []
+    no_child_left(qtbot)
+    assert window.model.dataset is None
 
 
 def test_a_superseded_load_stops_its_topology_process(window, qtbot, files, started,

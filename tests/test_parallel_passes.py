@@ -66,6 +66,8 @@ def test_split_passes_equal_numpy() -> None:
         together(lambda: in_chunks(mark, 1001, 10))()  # from a background job
         in_chunks(lambda lo, hi: in_chunks(mark, 1001, 10) if lo == 0 else None, 20, 10)
         assert (seen == 3).all()  # nested in the helper thread: no deadlock, nothing lost
+        nested = together(lambda: together(lambda: 7)() + 1)  # a job starting a job
+        assert nested() == 8
 
 
 def _everything(ac: AlphaComplex) -> dict:
