@@ -176,22 +176,33 @@ def orientations(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray,
     return signs, int(exact.sum())
 
 
+def in_sphere_sides(points: np.ndarray, cells: np.ndarray, queries: np.ndarray,
+                    cell_signs: np.ndarray) -> tuple[np.ndarray, int]:
+    """(n,) int8 exact side of query point i against the circumsphere of (n, d+1) cell i
+    (non-flat, of orientation sign `cell_signs`): -1 strictly inside, 0 exactly on it, +1
+    outside; and how many rows needed exact arithmetic."""
+    d = points.shape[1]
+    signs, exact = filtered_signs(insphere_formula, points, queries, cells,
+                                  lambda vectors: row_sum_bound(vectors, lifted=True))
+    # det([p_i - q, |p_i - q|²]) has the sign (-1)**d * orientation when q is inside
+    sides = signs.astype(np.int8) * np.asarray(cell_signs, dtype=np.int8)
+    return (sides if d % 2 else -sides).astype(np.int8), int(exact.sum())
+
+
 def in_sphere(points: np.ndarray, cells: np.ndarray, queries: np.ndarray,
               cell_signs: np.ndarray, tie_weights: np.ndarray) -> tuple[np.ndarray, int]:
     """(n,) bool: query point i lies inside the circumsphere of (n, d+1) cell i (non-flat, of
     orientation sign `cell_signs`), exactly cospherical cases decided by the symbolic
     perturbation of core.exact.perturbed_inside with the points' (m,) `tie_weights`; and how
     many rows needed exact arithmetic."""
-    d = points.shape[1]
-    signs, exact = filtered_signs(insphere_formula, points, queries, cells,
-                                  lambda vectors: row_sum_bound(vectors, lifted=True))
-    inside = signs == (-1) ** d * cell_signs
-    tie = np.flatnonzero(signs == 0)
+    sides, exact = in_sphere_sides(points, cells, queries, cell_signs)
+    inside = sides < 0
+    tie = np.flatnonzero(sides == 0)
     if len(tie):
         vectors = _exact_vectors(points, queries[tie], cells[tie])
         ids = np.column_stack((cells[tie], queries[tie]))
         inside[tie] = perturbed_inside(vectors, ids, tie_weights[ids])
-    return inside, int(exact.sum())
+    return inside, exact
 
 
 def diametral_signs(points: np.ndarray, simplices: np.ndarray,

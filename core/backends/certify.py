@@ -29,7 +29,7 @@ from scipy.spatial import ConvexHull, QhullError
 from ..delaunay import interior_facets
 from ..geometry import CACHE_CHUNK
 from ..parallel import PASSES, halves, nonzero, rows_cols, slot_of
-from ..predicates import filtered_signs, insphere_formula, row_sum_bound
+from ..predicates import in_sphere_sides
 from ..predicates import orientations as exact_orientations
 from ..tolerances import BACKEND_CERTAIN_RTOL
 
@@ -209,11 +209,7 @@ def exact_sides(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
     """in_sphere's (n,) int8 answer settled exactly (core.predicates on the same float64
     values): +1 outside, -1 inside, 0 exactly on the circumsphere; for the few rows in_sphere
     leaves at 0."""
-    signs, _ = filtered_signs(insphere_formula, points, query, cells,
-                              lambda vectors: row_sum_bound(vectors, lifted=True))
-    # insphere_formula is det([p_i - q, |p_i - q|²]): > 0 outside a tetrahedron of positive
-    # orientation, < 0 outside a triangle of positive orientation (core.predicates.in_sphere)
-    return (signs * orientation * (1 if points.shape[1] == 3 else -1)).astype(np.int8)
+    return in_sphere_sides(points, cells, query, orientation)[0]
 
 
 def why_not_locally_delaunay(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
