@@ -139,19 +139,27 @@ def test_cancel_while_the_window_still_loads_stops_the_topology_process(
 def test_no_topology_process_before_the_cursor_and_none_after_a_cancel_there(
         window, qtbot, files, started, monkeypatch):
     """The topology process waits for the window's table and cursor (it would compete with
-    them for the cores); cancelled while the window loads the table, none starts at all."""
+    them for the cores); cancelled once the table is loaded and the cursor made, but before
+    that start, none starts at all."""
     seen: list[int] = []
+    runners: list = []
+    real_load = build_process._load_handed
 
     def then(runner) -> None:
-        seen.append(len(started))
-        runner.cancel.wait(HOLD_S)
+        seen.append(len(started))  # the window is about to load the table
+        runners.append(runner)
 
-    reached = hold_first_load(monkeypatch, then, at=TABLE_LOADING)
-    window.open_path(files["first"])
-    qtbot.waitUntil(reached.is_set, timeout=BUILD_TIMEOUT_MS)
+    def load_then_cancel(*args, **kwargs):
+        taken = real_load(*args, **kwargs)
+        seen.append(len(started))  # loaded, cursor made: still none
+        runners[0].cancel.set()
+        return taken
+
+    hold_first_load(monkeypatch, then, at=TABLE_LOADING)
+    monkeypatch.setattr(build_process, "_load_handed", load_then_cancel)
     with qtbot.waitSignal(window.loader.cancelled, timeout=BUILD_TIMEOUT_MS):
-        window.loader.cancel()
-    assert seen == [0] and started == []
+        window.open_path(files["first"])
+    assert seen == [0, 0] and started == []
     no_child_left(qtbot)
     assert window.model.dataset is None
 

@@ -407,12 +407,15 @@ def test_near_cospherical_tables_equal_bit_for_bit(d: int, seed: int, monkeypatc
 
 
 @needs_gmsh
-def test_exactly_cospherical_facets_still_fall_back() -> None:
+def test_exactly_cospherical_facets_still_fall_back(monkeypatch) -> None:
     """A unit square of a lattice is exactly cocircular (exact sign 0): two Delaunay
-    triangulations, so gmsh's is refused."""
+    triangulations, so gmsh's is refused, and the automatic choice falls back to Qhull."""
     from core.backends.certify import exact_sides
 
     square = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
     assert exact_sides(square, np.array([[0, 1, 2]]), np.array([3]), np.array([1]))[0] == 0
     with pytest.raises(InputError, match=r"facets are not certainly Delaunay \(cospherical"):
         backends.delaunay(prepared(lattice(25, 2)), "gmsh")
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 0)  # the automatic choice would try it
+    _, choice = backends.delaunay(prepared(lattice(25, 2)))
+    assert choice.backend == "qhull" and "not certainly Delaunay" in choice.note

@@ -109,8 +109,8 @@ def test_shapes_handed_out_are_read_only_and_unchanged_by_later_moves():
 
 
 def test_a_cursor_shape_hands_out_the_cursors_own_rows():
-    """A slider step's SINGULAR and REGULAR rows are the cursor's own (no ids computed, no
-    gather from the table), read-only, and row for row the simplices of singular_ids."""
+    """A slider step's SINGULAR and REGULAR rows are the cursor's own (no gather from the
+    table), read-only, and row for row the simplices of singular_ids."""
     ac = AlphaComplex.from_points(np.random.default_rng(4).random((600, 3)))
     cursor = ac.cursor()
     shape = cursor.move(float(ac.spectrum()[len(ac.spectrum()) // 2]))
@@ -122,6 +122,7 @@ def test_a_cursor_shape_hands_out_the_cursors_own_rows():
         np.testing.assert_array_equal(rows, ac.simplices(k)[shape.singular_ids(k)])
     assert shared == sum(len(shape.singular(k)) > 0 for k in range(3)) >= 2
     assert np.shares_memory(shape.regular_facets, cursor.regular.rows)
+    assert not shape.regular_facets.flags.writeable
 
 
 def test_bad_alpha_is_an_input_error_and_keeps_the_cursor():

@@ -5,6 +5,7 @@ built with every pass split (tiny thresholds and chunks) equal the ones built wi
 from __future__ import annotations
 
 import contextlib
+from concurrent.futures import ThreadPoolExecutor
 from unittest import mock
 
 import numpy as np
@@ -66,8 +67,9 @@ def test_split_passes_equal_numpy() -> None:
         together(lambda: in_chunks(mark, 1001, 10))()  # from a background job
         in_chunks(lambda lo, hi: in_chunks(mark, 1001, 10) if lo == 0 else None, 20, 10)
         assert (seen == 3).all()  # nested in the helper thread: no deadlock, nothing lost
-        nested = together(lambda: together(lambda: 7)() + 1)  # a job starting a job
-        assert nested() == 8
+        with ThreadPoolExecutor(1) as outside:  # a regression fails here instead of hanging
+            nested = outside.submit(lambda: together(lambda: together(lambda: 7)() + 1)())
+            assert nested.result(timeout=30) == 8  # a job starting a job
 
 
 def _everything(ac: AlphaComplex) -> dict:

@@ -101,17 +101,18 @@ def test_median_spacing_equals_the_nearest_neighbours_of_its_definition(n):
 
 
 def spatial_order_by_definition(points: np.ndarray) -> np.ndarray:
-    """Morton order as it was defined in one piece: whole-array codes, numpy's stable sort."""
-    from core.points import _spread_bits
-
+    """Morton order as it is defined, in one piece: whole-array codes with the grid's bits
+    interleaved one by one (bit b of axis a at b * dim + a), numpy's stable sort."""
     dim = points.shape[1]
     bits = 32 if dim == 2 else 21
     low = points.min(axis=0)
     extent = float((points.max(axis=0) - low).max()) or 1.0
     grid = ((points - low) * ((2**bits - 1) / extent)).astype(np.uint64)
     code = np.zeros(len(points), dtype=np.uint64)
-    for axis in range(dim):
-        code |= _spread_bits(grid[:, axis], dim) << np.uint64(axis)
+    for axis in range(dim):  # bits and axes, not points
+        for b in range(bits):
+            bit = (grid[:, axis] >> np.uint64(b)) & np.uint64(1)
+            code |= bit << np.uint64(b * dim + axis)
     return np.argsort(code, kind="stable")
 
 
