@@ -3,6 +3,11 @@ Qhull's simplex for simplex, or the build falls back to Qhull (automatic) or ref
 
 from __future__ import annotations
 
+import os
+import signal
+import threading
+from pathlib import Path
+
 import numpy as np
 import pytest
 from reference import data_dir, read_scan
@@ -218,7 +223,7 @@ def test_gmsh_check_covers_own_and_restored_cells(where: str, monkeypatch) -> No
     own = np.delete(ref.cells, dropped, axis=0)
     assert np.isin(np.arange(len(points)), own).all()  # every point still in a cell
     monkeypatch.setattr(backends.gmsh_backend, "gmsh_cells", lambda _: own)
-    tri = backends._by_gmsh(points)
+    tri = backends._by_gmsh_whole(points)
     assert np.array_equal(cell_set(tri.cells), cell_set(ref.cells))
     if where == "restored cells":  # the restoration brings one edge back flipped
         missing = backends.restore._missing
@@ -228,7 +233,7 @@ def test_gmsh_check_covers_own_and_restored_cells(where: str, monkeypatch) -> No
         inner = np.flatnonzero((ref.neighbors >= 0).all(axis=1))
         far = inner[~np.isin(inner, np.unique(ref.neighbors[dropped]))][len(inner) // 2]
         own = np.delete(_flipped(ref.cells, ref.neighbors, int(far)), dropped, axis=0)
-    assert isinstance(backends._by_gmsh(points), str)
+    assert isinstance(backends._by_gmsh_whole(points), str)
 
 
 def test_certify_accepts_delaunay_and_rejects_the_rest() -> None:
@@ -419,3 +424,31 @@ def test_exactly_cospherical_facets_still_fall_back(monkeypatch) -> None:
     monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 0)  # the automatic choice would try it
     _, choice = backends.delaunay(prepared(lattice(25, 2)))
     assert choice.backend == "qhull" and "not certainly Delaunay" in choice.note
+
+
+@needs_gmsh
+@pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="needs /proc (Linux)")
+def test_gmsh_leaves_sigpipe_ignored() -> None:
+    """gmsh.initialize restores SIGPIPE's default (death); after a gmsh build in a thread
+    the process still ignores it, so a write to a closed pipe raises instead of killing
+    the window."""
+    def sigpipe_ignored() -> bool:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("SigIgn:"):
+                return bool(int(line.split()[1], 16) & (1 << (signal.SIGPIPE - 1)))
+        raise AssertionError("no SigIgn line")
+
+    assert sigpipe_ignored()
+    gmsh = backends.gmsh_backend._ready()
+    if gmsh.isInitialized():
+        gmsh.finalize()  # initialise again, in a thread, as a build does
+    worker = threading.Thread(target=backends.gmsh_backend.gmsh_cells,
+                              args=(np.random.default_rng(0).uniform(size=(50, 3)),))
+    worker.start()
+    worker.join()
+    assert sigpipe_ignored()
+    reader, writer = os.pipe()
+    os.close(reader)
+    with pytest.raises(BrokenPipeError):
+        os.write(writer, b"x")
+    os.close(writer)

@@ -34,7 +34,7 @@ class Choice:
     """Which backend made a triangulation, and why gmsh was not used where it was asked."""
 
     backend: str  # "qhull" | "gmsh"
-    note: str = ""  # "" or why gmsh was not used, and why Qhull was not split in halves
+    note: str = ""  # "" or why gmsh was not used, and why the triangulation was not split
 
 
 def check_backend(backend: object) -> str | None:
@@ -51,7 +51,20 @@ def check_backend(backend: object) -> str | None:
     return str(backend)
 
 
-def _by_gmsh(points: np.ndarray) -> Triangulation | str:
+def _by_gmsh(points: np.ndarray) -> tuple[Triangulation | str, str]:
+    """gmsh's triangulation completed and certified, or the reason it cannot be used; and
+    why it was not made in two halves ("" when it was, or was not tried). Large inputs are
+    triangulated in two halves at once (core.backends.split: one in a child process), else
+    (or where the halves fail) in one call (_by_gmsh_whole)."""
+    if not split_backend.worth_splitting(len(points), "gmsh"):
+        return _by_gmsh_whole(points), ""
+    tri = split_backend.split_triangulation(points, None, "gmsh")
+    if isinstance(tri, Triangulation):
+        return tri, ""
+    return _by_gmsh_whole(points), f"not split in two halves: {tri}"
+
+
+def _by_gmsh_whole(points: np.ndarray) -> Triangulation | str:
     """gmsh's triangulation completed and certified, or the reason it cannot be used. Its
     own cells are checked locally (every inner facet) on one thread while the cells it
     dropped near the hull are restored on the other (Qhull on the boundary vertices, one
@@ -100,13 +113,14 @@ def delaunay(points: np.ndarray, backend: str | None = None) -> tuple[Triangulat
     backend = check_backend(backend)
     auto = backend is None and gmsh_backend.installed() and len(points) >= GMSH_FROM_POINTS
     if backend == "gmsh" or auto:
-        tri = _by_gmsh(points)
+        tri, unsplit = _by_gmsh(points)
         if isinstance(tri, Triangulation):
-            return tri, Choice("gmsh")
+            return tri, Choice("gmsh", unsplit)
         if backend == "gmsh":
             raise InputError(f"the gmsh backend cannot promise Qhull's exact triangulation "
                              f"of these points ({tri}); use backend='qhull' or None")
-        return _by_qhull(points, None, f"gmsh not used: {tri}")
+        return _by_qhull(points, None, "; ".join(filter(None, (f"gmsh not used: {tri}",
+                                                                 unsplit))))
     return _by_qhull(points, None)
 
 

@@ -8,7 +8,9 @@ triangulation (the one the table then gets from Qhull too).
 
 from __future__ import annotations
 
+import ctypes
 import importlib.util
+import signal
 import threading
 
 import numpy as np
@@ -27,10 +29,26 @@ def _ready():
     import gmsh
 
     if not gmsh.isInitialized():
+        ignored = hasattr(signal, "SIGPIPE") and signal.getsignal(signal.SIGPIPE) == signal.SIG_IGN
         gmsh.initialize(readConfigFiles=False, interruptible=False)
+        if ignored:
+            _ignore_sigpipe()
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.Verbosity", 0)
     return gmsh
+
+
+def _ignore_sigpipe() -> None:
+    """Ignore SIGPIPE again, as Python does: gmsh.initialize restores its default (death),
+    so a write to a pipe whose reader has gone would kill this process instead of raising
+    BrokenPipeError. Done in C: signal.signal may only be called from the main thread."""
+    try:
+        libc = ctypes.CDLL(None)
+        libc.signal.argtypes = [ctypes.c_int, ctypes.c_void_p]
+        libc.signal.restype = ctypes.c_void_p
+        libc.signal(signal.SIGPIPE, signal.SIG_IGN.value)
+    except (OSError, AttributeError):
+        pass  # no C signal() to call: not a POSIX system, where SIGPIPE does not exist
 
 
 def gmsh_cells(points: np.ndarray) -> np.ndarray:

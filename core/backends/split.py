@@ -1,17 +1,20 @@
-"""Qhull's triangulation in two halves at once (Qhull releases the GIL), joined exactly.
+"""A triangulation in two halves at once, joined exactly: Qhull's (Qhull releases the GIL: two
+threads) or gmsh's (gmsh holds global state: the second half in a child process,
+core.backends.gmsh_half).
 
 The points are split at the median of their longest axis and both halves are triangulated
-at the same time on two threads (Delaunay; regular for weighted points). A half's cell whose
+at the same time (Delaunay; regular for weighted points, Qhull only). A half's cell whose
 circumsphere (orthosphere) a float test with a margin (SPLIT_EMPTY_RTOL) finds empty of the
 other half's points is kept as a cell of the whole triangulation. The band the kept cells
-leave around the split is restored as core.backends.restore restores gmsh's dropped cells:
-the triangulation of the kept union's boundary vertices and of the points in no kept cell,
-flooded from that boundary. The joined result is then checked (core.backends.certify): a
-triangulation of the hull, and every facet of a cell near the join locally Delaunay
-(regular) by a margin. A cell kept by mistake cannot pass: by the Delaunay lemma a
-triangulation that is not Delaunay has a locally non-Delaunay facet, and the facets inside
-one half are Qhull's own, so that facet lies at the join, where it is checked. The result is
-thus trusted exactly as far as one Qhull call is; on any doubt the caller makes that call.
+leave around the split (and, for gmsh, the cells it drops near each half's hull) is restored
+as core.backends.restore restores gmsh's dropped cells: the triangulation of the kept union's
+boundary vertices and of the points in no kept cell, flooded from that boundary. The joined
+result is then checked (core.backends.certify): a triangulation of the hull, and every facet
+of a cell near the join locally Delaunay (regular) by a margin. A cell kept by mistake cannot
+pass: by the Delaunay lemma a triangulation that is not Delaunay has a locally non-Delaunay
+facet, and the facets inside one half are Qhull's own (trusted as one Qhull call is) or
+gmsh's (each checked in its half), so that facet lies at the join, where it is checked. On
+any doubt the caller triangulates in one call.
 """
 
 from __future__ import annotations
@@ -28,8 +31,10 @@ from ..errors import InputError
 from ..geometry import CACHE_CHUNK, centre_terms, circumspheres, edge_vectors
 from ..power import orthospheres
 from ..tolerances import ILL_CONDITIONED_RTOL, SPLIT_EMPTY_RTOL
-from .certify import why_not_delaunay
-from .facets import neighbours
+from . import gmsh as gmsh_backend
+from .certify import why_not_delaunay, why_not_locally_delaunay
+from .facets import paired
+from .gmsh_half import GmshHalf
 from .restore import boundary_facets, joined, outside
 
 #: From this many points the Qhull backend triangulates in two halves. With a free second
@@ -38,24 +43,34 @@ from .restore import boundary_facets, joined, outside
 SPLIT_FROM_POINTS = 50_000
 
 
-def worth_splitting(n_points: int) -> bool:
-    """Whether to triangulate `n_points` points in halves: enough of them, and a second CPU
-    this process may run on."""
+#: From this many points the gmsh backend triangulates in two halves, one in a child process
+#: (its start costs about 0.4 s of the other core; gmsh takes some 1 s per 100k points).
+GMSH_SPLIT_FROM_POINTS = 200_000
+KD_LEAF = 64  # points per leaf of the other half's tree: big spheres search faster
+
+
+def worth_splitting(n_points: int, backend: str = "qhull") -> bool:
+    """Whether `backend` should triangulate `n_points` points in halves: enough of them, and
+    a second CPU this process may run on."""
     try:
         cpus = len(os.sched_getaffinity(0))
     except AttributeError:  # not on Linux
         cpus = os.cpu_count() or 1
-    return n_points >= SPLIT_FROM_POINTS and cpus >= 2
+    least = GMSH_SPLIT_FROM_POINTS if backend == "gmsh" else SPLIT_FROM_POINTS
+    return n_points >= least and cpus >= 2
 
 
 @dataclass(frozen=True)
 class _Half:
-    """One half's cells in point ids (rows ascending), their neighbour rows (-1 = none),
-    and which are kept as cells of the whole triangulation (empty of the other half)."""
+    """One half's cells kept as cells of the whole triangulation (empty of the other half)
+    in point ids (rows ascending), their neighbour rows among the kept cells (-1 = none, or
+    a cell not kept), their mirror (facets.paired; None when not known) and the half's
+    points its own triangulation left out (Qhull: hidden or dropped)."""
 
     cells: np.ndarray
     nbrs: np.ndarray
-    keep: np.ndarray
+    mirror: np.ndarray | None
+    out: np.ndarray
 
 
 def _cells(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray
@@ -108,11 +123,10 @@ def _spheres(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray
     return centres, size, ok
 
 
-def _half(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray,
-          other: np.ndarray, axis: int, ahead: bool) -> _Half:
-    """Triangulate points[ids]; keep the cells found empty of points[other], which lie
-    beyond ids along `axis` (ahead: at larger coordinates)."""
-    cells, nbrs = _cells(points, weights, ids)
+def _keep(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray,
+          other: np.ndarray, axis: int, ahead: bool) -> np.ndarray:
+    """(t,) bool: the cells found empty of points[other], which lie beyond the cells'
+    half along `axis` (ahead: at larger coordinates)."""
     centres, size, ok = _spheres(points, weights, cells)
     coords = points[other, axis]
     gap = coords.min() - centres[:, axis] if ahead else centres[:, axis] - coords.max()
@@ -128,38 +142,85 @@ def _half(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray,
         asked = centres[ask]
         if weights is not None:
             asked = np.column_stack((asked, np.zeros(len(asked))))
-        dist, _ = cKDTree(lifted).query(asked, k=1)
+        dist, _ = cKDTree(lifted, leafsize=KD_LEAF).query(asked, k=1)
         power = dist * dist - wmax
         keep[ask] = power - size[ask] > SPLIT_EMPTY_RTOL * (dist * dist + np.abs(size[ask]))
-    return _Half(cells, nbrs, keep)
+    return keep
 
 
-def _kept(halves: tuple[_Half, _Half]) -> tuple[np.ndarray, np.ndarray]:
-    """The kept cells of both halves and their neighbour table: the halves' own tables
-    renumbered, -1 across every facet to a cell that was not kept."""
-    cells, nbrs, start = [], [], 0
-    for half in halves:
-        new_id = np.full(len(half.keep) + 1, -1, dtype=np.int32)  # [-1] -> -1
-        new_id[:-1][half.keep] = start + np.arange(int(half.keep.sum()), dtype=np.int32)
-        cells.append(half.cells[half.keep])
-        nbrs.append(new_id[half.nbrs[half.keep]])
-        start += int(half.keep.sum())
-    return np.concatenate(cells), np.concatenate(nbrs)
+def _only_kept(cells: np.ndarray, nbrs: np.ndarray, mirror: np.ndarray | None,
+               keep: np.ndarray, out: np.ndarray) -> _Half:
+    """The kept cells of a half with their neighbour table renumbered (-1 across every
+    facet to a cell that was not kept, and the mirror there too)."""
+    new_id = np.full(len(keep) + 1, -1, dtype=np.int32)  # [-1] -> -1
+    new_id[:-1][keep] = np.arange(int(keep.sum()), dtype=np.int32)
+    kept_nbrs = new_id[nbrs[keep]]
+    kept_mirror = None
+    if mirror is not None:
+        kept_mirror = np.where(kept_nbrs >= 0, mirror[keep], -1).astype(np.int8)
+    return _Half(cells[keep], kept_nbrs, kept_mirror, out)
 
 
-def _matched_across(cells: np.ndarray, nbrs: np.ndarray, m: int
-                    ) -> tuple[np.ndarray, np.ndarray, bool]:
-    """`nbrs` with the open facets that kept cells of the two halves share matched (only
-    cells with an open facet are matched), the (t,) bool cells that gained a neighbour,
-    and whether no facet is in three cells."""
+def _half(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray,
+          other: np.ndarray, axis: int, ahead: bool) -> _Half:
+    """Qhull's triangulation of points[ids]; the cells found empty of points[other], which
+    lie beyond ids along `axis` (ahead: at larger coordinates)."""
+    cells, nbrs = _cells(points, weights, ids)
+    in_half = np.zeros(len(points), dtype=bool)
+    in_half[cells.ravel()] = True
+    out = ids[~in_half[ids]]
+    return _only_kept(cells, nbrs, None, _keep(points, weights, cells, other, axis, ahead), out)
+
+
+def gmsh_half(points: np.ndarray, ids: np.ndarray, other: np.ndarray, axis: int,
+              ahead: bool) -> _Half | str:
+    """gmsh's triangulation of points[ids] (unweighted), the cells found empty of
+    points[other] kept, every facet between two kept cells certified locally Delaunay
+    (gmsh's cells are checked, never trusted); or the reason it cannot be used. The cells
+    gmsh dropped near its half's hull are not kept: the band restores them."""
+    local = gmsh_backend.gmsh_cells(points[ids])
+    if not len(local):
+        return "gmsh found no cell in a half"
+    nbrs, mirror, manifold = paired(local, len(ids))
+    if not manifold:
+        return "a facet is in three cells of a half"
+    cells = np.take(ids, local).astype(np.int32)  # ids ascending: rows stay ascending
+    del local
+    keep = _keep(points, None, cells, other, axis, ahead)
+    half = _only_kept(cells, nbrs, mirror, keep, np.empty(0, dtype=np.int64))
+    del cells, nbrs, mirror, keep
+    reason = why_not_locally_delaunay(points, half.cells, half.nbrs, half.mirror)
+    return reason or half
+
+
+def _kept(halves: tuple[_Half, _Half]) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """The kept cells of both halves, their neighbour table (the halves' own, the second
+    renumbered after the first) and mirror (None unless both halves know theirs)."""
+    first, second = halves
+    shift = np.where(second.nbrs >= 0, np.int32(len(first.cells)), np.int32(0))
+    mirror = None
+    if first.mirror is not None and second.mirror is not None:
+        mirror = np.concatenate((first.mirror, second.mirror))
+    return (np.concatenate((first.cells, second.cells)),
+            np.concatenate((first.nbrs, second.nbrs + shift)), mirror)
+
+
+def _matched_across(cells: np.ndarray, nbrs: np.ndarray, mirror: np.ndarray | None, m: int
+                    ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray, bool]:
+    """`nbrs` (and `mirror`, when known) with the open facets that kept cells of the two
+    halves share matched (only cells with an open facet are matched), the (t,) bool cells
+    that gained a neighbour, and whether no facet is in three cells."""
     edge = np.flatnonzero((nbrs < 0).any(axis=1))
-    local, manifold = neighbours(cells[edge], m)
+    local, back, manifold = paired(cells[edge], m)
     fill = (nbrs[edge] < 0) & (local >= 0)
     nbrs = nbrs.copy()
     nbrs[edge] = np.where(fill, edge[np.maximum(local, 0)], nbrs[edge])
+    if mirror is not None:
+        mirror = mirror.copy()
+        mirror[edge] = np.where(fill, back, mirror[edge])
     gained = np.zeros(len(cells), dtype=bool)
     gained[edge[fill.any(axis=1)]] = True
-    return nbrs, gained, manifold
+    return nbrs, mirror, gained, manifold
 
 
 def _band(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray,
@@ -178,12 +239,17 @@ def _band(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray,
     return outside(points, cells, outer, behind, simplices, around)
 
 
-def _halves(points: np.ndarray, weights: np.ndarray | None) -> tuple[_Half, _Half]:
-    """Both halves, split at the median of the longest axis, triangulated on two threads."""
+def _halves(points: np.ndarray, weights: np.ndarray | None, backend: str
+            ) -> tuple[_Half, _Half] | str:
+    """Both halves, split at the median of the longest axis: Qhull's on two threads, gmsh's
+    in two processes (this one and a child: gmsh runs one call at a time per process); or
+    the reason a gmsh half cannot be used."""
     m = len(points)
     axis = int(np.argmax(np.ptp(points, axis=0)))
     order = np.argpartition(points[:, axis], m // 2)
     low, high = np.sort(order[:m // 2]), np.sort(order[m // 2:])
+    if backend == "gmsh":
+        return _gmsh_halves(points, low, high, axis)
     with ThreadPoolExecutor(1, thread_name_prefix="alphascoop-split") as pool:
         later = pool.submit(_half, points, weights, high, low, axis, False)
         try:
@@ -193,41 +259,67 @@ def _halves(points: np.ndarray, weights: np.ndarray | None) -> tuple[_Half, _Hal
     return first, second
 
 
-def split_triangulation(points: np.ndarray, weights: np.ndarray | None = None
-                        ) -> Triangulation | str:
-    """Qhull's Delaunay triangulation of (m, d) distinct, well-scaled points (regular, with
-    (m,) weights) made in two halves on two threads, or the reason it cannot promise the
-    same cells as one Qhull call on all points (the caller then makes that call)."""
+def _gmsh_halves(points: np.ndarray, low: np.ndarray, high: np.ndarray, axis: int
+                 ) -> tuple[_Half, _Half] | str:
+    """gmsh_half of `low` here and of `high` in a child process (GmshHalf), at once."""
+    try:
+        child = GmshHalf.start(points, high, low, axis, False)
+    except OSError as error:
+        return f"no process for the second half ({error})"
+    try:
+        first = gmsh_half(points, low, high, axis, True)
+    except BaseException:
+        child.stop()
+        raise
+    if isinstance(first, str):
+        child.stop()
+        return first
+    second = child.result()
+    if isinstance(second, str):
+        return second
+    none = np.empty(0, dtype=np.int64)
+    return first, _Half(second["cells"], second["nbrs"], second["mirror"], none)
+
+
+def split_triangulation(points: np.ndarray, weights: np.ndarray | None = None,
+                        backend: str = "qhull") -> Triangulation | str:
+    """The Delaunay triangulation of (m, d) distinct, well-scaled points (regular, with
+    (m,) weights: Qhull only) made in two halves at once by `backend` ("qhull": Qhull's,
+    the same cells as one Qhull call on all points; "gmsh": certified as the unique
+    Delaunay triangulation, core.backends.certify), or the reason it cannot promise that
+    (the caller then triangulates in one call)."""
     m, d = points.shape
     if m // 2 < d + 2:
         return "too few points to split"
     try:
-        halves = _halves(points, weights)
-        in_half = np.zeros(m, dtype=bool)
-        for half in halves:
-            in_half[half.cells.ravel()] = True
-        if weights is None and not in_half.all():
-            return f"Qhull left {int(np.count_nonzero(~in_half))} points of a half out"
-        hidden = ~in_half  # hidden in a half: hidden among all points
-        cells, nbrs = _kept(halves)
-        del halves  # the halves' full tables: only the kept cells are needed from here
+        halves = _halves(points, weights, backend)
+        if isinstance(halves, str):
+            return halves
+        out = np.concatenate([half.out for half in halves])
+        if weights is None and len(out):
+            return f"Qhull left {len(out)} points of a half out"
+        hidden = np.zeros(m, dtype=bool)
+        hidden[out] = True  # hidden in a half: hidden among all points
+        cells, nbrs, mirror = _kept(halves)
+        del halves  # the halves' own arrays: the kept ones are joined from here
         if not len(cells):
             return "no cell of a half is found empty of the other half"
-        nbrs, near, manifold = _matched_across(cells, nbrs, m)
+        nbrs, mirror, near, manifold = _matched_across(cells, nbrs, mirror, m)
         if not manifold:
             return "a facet is in three kept cells"
         extra = _band(points, weights, cells, nbrs, hidden)
     except InputError as exc:
         return str(exc)
-    cells, nbrs, _, manifold = joined(points, cells, nbrs, extra)
+    cells, nbrs, mirror, manifold = joined(points, cells, nbrs, extra, mirror)
     if not manifold:
         return "a facet is in three cells after the band was restored"
     near = np.concatenate((near, np.ones(len(extra), dtype=bool)))
     reason = why_not_delaunay(points, cells, nbrs, weights=weights,
-                              hidden=None if weights is None else hidden, near=near)
+                              hidden=None if weights is None else hidden, near=near,
+                              mirror=mirror)
     if reason:
         return reason
     if weights is None:
         every = np.arange(m, dtype=np.int64)
-        return Triangulation(cells, nbrs, every, every.copy())
+        return Triangulation(cells, nbrs, every, every.copy(), mirror)
     return compacted(cells, nbrs, m)

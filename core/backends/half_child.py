@@ -1,0 +1,46 @@
+"""The body of a split gmsh triangulation's child process (core.backends.gmsh_half):
+`python -m core.backends.half_child <parent pid>` reads the points on stdin and writes the
+half's kept cells (core.backends.split.gmsh_half) to stdout."""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import signal
+import sys
+
+from .gmsh_half import receive_arrays, send_arrays
+from .split import gmsh_half
+
+PR_SET_PDEATHSIG = 1
+
+
+def _die_with_parent(parent: int) -> None:
+    """Be killed when the thread that started this process ends (Linux); exit at once if
+    the parent is gone already."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):
+        pass  # not Linux: the parent's stop() is all there is
+    if os.getppid() != parent:
+        sys.exit(1)
+
+
+def main() -> int:
+    """The process's body: read the inputs, triangulate the half, write its kept cells."""
+    _die_with_parent(int(sys.argv[1]))
+    fields, arrays = receive_arrays(sys.stdin.buffer)
+    half = gmsh_half(arrays["points"], arrays["ids"], arrays["other"], int(fields["axis"]),
+                     bool(fields["ahead"]))
+    out = sys.stdout.buffer
+    if isinstance(half, str):
+        send_arrays(out, {}, reason=half)
+    else:
+        send_arrays(out, {"cells": half.cells, "nbrs": half.nbrs, "mirror": half.mirror},
+                    reason="")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
