@@ -18,7 +18,7 @@ from .alpha import table_value, threshold
 from .arrays import readonly
 from .errors import InputError
 from .index import TableIndex, facing_out
-from .parallel import PASSES, halves, in_chunks, place, select, take, together
+from .parallel import PASSES, halves, in_chunks, place, select, take, together, unsplit
 from .shape import AlphaShape, Known
 from .table import argsort_radii
 
@@ -217,7 +217,7 @@ class ShapeCursor:
             def singular_sets() -> dict[int, IntervalSet]:
                 return {k: _singular_set(index, k, *orders.singular[k])
                         for k in range(index.dim)}
-        singular = together(lambda: (singular_sets(), index.spectrum()))
+        singular = together(lambda: unsplit(lambda: (singular_sets(), index.spectrum())))
         self.regular = _regular_set(index, _regular_order(index) if orders is None
                                     else orders.regular)
         self.singular: dict[int, IntervalSet] = singular()[0]

@@ -129,6 +129,15 @@ class TableIndex:
         the vertices' values)."""
         return self._spectrum
 
+    def last_value(self) -> float:
+        """The spectrum's last (largest) value, without sorting all values for it."""
+        if self.known_spectrum is not None:
+            return float(self.known_spectrum[-1])
+        levels = self.table.levels
+        tops = [float(np.max(lv.enter)) for lv in levels[0 if self.weighted else 1:]
+                if len(lv.enter)]
+        return max(tops, default=0.0) if self.weighted else max([0.0, *tops])
+
     @cached_property
     def _spectrum(self) -> np.ndarray:
         if self.known_spectrum is not None:
@@ -136,7 +145,7 @@ class TableIndex:
         levels = self.table.levels
         first = [levels[0].enter] if self.weighted else [[0.0]]
         values = np.concatenate(first + [lv.enter for lv in levels[1:]])
-        values.sort()
+        values.sort(kind="stable")  # levels k >= 1 are sorted by enter: a merge of runs
         keep = np.empty(len(values), dtype=bool)
         keep[0] = True
         np.not_equal(values[1:], values[:-1], out=keep[1:])

@@ -112,9 +112,13 @@ def triangle_forest(index: TableIndex, n_points: int
     """
     triangles = index.face_ids(2)
     first = index.first_cofaces(2)
-    new = first[triangles] == np.arange(len(triangles), dtype=np.int32)[:, None]
-    not_last = np.cumsum(new, axis=1) < new.sum(axis=1, keepdims=True)
-    flat = np.flatnonzero(new & not_last)
+    row = np.arange(len(triangles), dtype=np.int32)
+    new = [np.take(first, triangles[:, c]) == row for c in range(3)]
+    # a new edge that is not the triangle's last new one: edge 0 when 1 or 2 is new too,
+    # edge 1 when 2 is, never edge 2 (column by column: a cumsum over rows is slow)
+    candidate = np.column_stack((new[0] & (new[1] | new[2]), new[1] & new[2]))
+    flat = np.flatnonzero(candidate)
+    flat = flat // 2 * 3 + flat % 2  # back to slots of the (t, 3) rows
     ends = index.simplices(1)[triangles.ravel()[flat]]
     joined = ordered_forest(n_points, ends[:, 0], ends[:, 1])
     return (ends[joined, 0].astype(np.int64), ends[joined, 1].astype(np.int64),
@@ -127,7 +131,7 @@ def opening_alpha_of(index: TableIndex, n_points: int) -> float:
 
     Ties between edges of equal first-triangle enter may merge in another order than
     `opening_alpha`'s, which changes no merge's weight of the first that reaches the share."""
-    last = float(index.spectrum()[-1])
+    last = index.last_value()
     triangle_enter = index.level(2).enter
     if len(triangle_enter) == 0:
         return last

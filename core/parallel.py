@@ -21,6 +21,7 @@ HELPER = "alphascoop-helper"
 PASSES = "passes"  # the helper role of the build's and the topology's passes
 _lock = threading.Lock()
 _pools: dict[str, ThreadPoolExecutor] = {}
+_unsplit = threading.local()  # .on: this thread runs an `unsplit` job
 T = TypeVar("T")
 U = TypeVar("U")
 
@@ -59,8 +60,22 @@ def both(first: Callable[[], T], second: Callable[[], U]) -> tuple[T, U]:
     return mine, other.result()
 
 
+def unsplit(job: Callable[[], T]) -> T:
+    """job() with every pass in it run in this thread, none handed to a helper: for a job
+    run beside another that splits its own passes (the second core is taken; sharing the
+    passes' one helper would queue each job's halves behind the other's)."""
+    _unsplit.on = True
+    try:
+        return job()
+    finally:
+        _unsplit.on = False
+
+
 def _inside(role: str) -> bool:
-    """Whether this thread is `role`'s helper (waiting on itself would deadlock)."""
+    """Whether this thread is `role`'s helper (waiting on itself would deadlock), or runs
+    an `unsplit` job."""
+    if getattr(_unsplit, "on", False):
+        return True
     return threading.current_thread().name.startswith(f"{HELPER}-{role}")
 
 

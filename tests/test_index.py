@@ -69,3 +69,17 @@ def test_signatures_are_explicit_and_come_back_with_a_saved_table(ac, tmp_path, 
     last = float(fresh.spectrum()[-1])
     assert loaded.betti(alpha=last) == fresh.betti(alpha=last)
     np.testing.assert_array_equal(loaded.signatures().betti, fresh.signatures().betti)
+
+
+@pytest.mark.parametrize("weighted", [False, True])
+def test_the_last_value_is_the_spectrums_without_sorting(ac, weighted):
+    """last_value (the opening alpha's cap, found without the spectrum's sort) is the
+    spectrum's last value; weighted tables too, whose vertices enter at signed values."""
+    rng = np.random.default_rng(ac.dim)
+    if weighted:
+        ac = AlphaComplex.from_points(ac.points, weights=rng.uniform(0.0, 0.02, len(ac.points)))
+    fresh = TableIndex(ac.index.table, weighted=ac.index.weighted)
+    assert fresh.last_value() == float(ac.spectrum()[-1])
+    known = TableIndex(ac.index.table, weighted=ac.index.weighted,
+                       known_spectrum=np.array([0.0, 1.5]))
+    assert known.last_value() == 1.5

@@ -25,6 +25,7 @@ from core.parallel import (
     searchsorted,
     take,
     together,
+    unsplit,
 )
 
 
@@ -70,6 +71,32 @@ def test_split_passes_equal_numpy() -> None:
         with ThreadPoolExecutor(1) as outside:  # a regression fails here instead of hanging
             nested = outside.submit(lambda: together(lambda: together(lambda: 7)() + 1)())
             assert nested.result(timeout=30) == 8  # a job starting a job
+
+
+def test_an_unsplit_job_runs_every_pass_in_its_own_thread() -> None:
+    """Inside unsplit no pass is handed to a helper (so a job beside another never queues
+    behind the other's halves), the results are the same, and the flag ends with the job."""
+    import threading
+
+    rng = np.random.default_rng(4)
+    values, ids = rng.random(5000), rng.integers(0, 5000, 3000)
+    with everything_split():
+        threads: set[str] = set()
+
+        def mark(lo: int, hi: int) -> None:
+            threads.add(threading.current_thread().name)
+
+        core.parallel.halves(mark, 5000, core.parallel.PASSES)
+        assert len(threads) == 2  # split outside
+        threads.clear()
+        got = together(lambda: unsplit(lambda: (
+            core.parallel.halves(mark, 5000, core.parallel.PASSES),
+            in_chunks(mark, 5000, 100), take(values, ids))[2]))()
+        assert len(threads) == 1 and next(iter(threads)).startswith("alphascoop-helper-jobs")
+        np.testing.assert_array_equal(got, values[ids])
+        threads.clear()
+        together(lambda: core.parallel.halves(mark, 5000, core.parallel.PASSES))()
+        assert len(threads) == 2  # the job's flag ended with it: the next job splits
 
 
 def _everything(ac: AlphaComplex) -> dict:
