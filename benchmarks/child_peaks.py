@@ -1,5 +1,5 @@
-"""The peak memory of this process's children (the window's build and topology processes),
-sampled from a thread without ever waiting for them.
+"""The peak memory of this process's children (the window's build and topology processes, and
+the build's gmsh half process), sampled from a thread without ever waiting for them.
 
 The children are found in /proc (their parent pid), not through multiprocessing: its
 `active_children()` reaps the children that have exited, which races with the thread that
@@ -15,6 +15,7 @@ import threading
 SAMPLE_S = 0.1  # how often the children's peak memory is read
 COMM_CHARS = 15  # Linux keeps this many characters of a process's command name
 NAMES = ("alphascoop-build", "alphascoop-topology")  # app/build_process, app/topology_process
+HALF = "alphascoop-half"  # a build's second gmsh half (core/backends/half_child.py)
 
 
 def child_processes(parent: int | None = None) -> dict[int, str]:
@@ -39,17 +40,24 @@ def child_processes(parent: int | None = None) -> dict[int, str]:
 
 def passes(names: tuple[str, ...] = NAMES, parent: int | None = None) -> dict[int, str]:
     """{pid: name} of parent's children whose command name starts one of `names` (the build
-    and topology processes; not multiprocessing's resource tracker, for one)."""
+    and topology processes; not multiprocessing's resource tracker, for one), and their own
+    children named HALF (a build's second gmsh half)."""
     short = {name[:COMM_CHARS]: name for name in names}
-    return {pid: short[comm] for pid, comm in child_processes(parent).items() if comm in short}
+    found = {pid: short[comm] for pid, comm in child_processes(parent).items()
+             if comm in short}
+    for pid in list(found):  # a build's own child: its second gmsh half
+        found.update({half: HALF for half, comm in child_processes(pid).items()
+                      if comm == HALF[:COMM_CHARS]})
+    return found
 
 
 def cpu_seconds_of(pid: int) -> float:
-    """A process's CPU seconds so far (user + system, /proc/<pid>/stat); 0 when it is gone."""
+    """A process's CPU seconds so far (user + system, /proc/<pid>/stat), its waited-for
+    children's included (a build's gmsh half); 0 when it is gone."""
     try:
         with open(f"/proc/{pid}/stat", encoding="utf-8", errors="replace") as handle:
             fields = handle.read().rpartition(")")[2].split()  # state is field 3: index 0
-        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+        return sum(int(f) for f in fields[11:15]) / os.sysconf("SC_CLK_TCK")
     except (OSError, ValueError, IndexError):
         return 0.0
 

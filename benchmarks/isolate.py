@@ -34,21 +34,30 @@ class Probe:
         self.base_rss = rss_mib()
         self.base_peak = peak_rss_mib()
         self._wall = time.perf_counter()
-        self._cpu = time.process_time()
+        self._cpu = time.process_time() + _children_cpu()
 
     def result(self, **extra: Any) -> dict:
-        """Figures since creation: seconds, cpu_seconds, peak_mib (whole process), extra_mib."""
+        """Figures since creation: seconds, cpu_seconds (the waited-for children's included:
+        a gmsh build's second half), peak_mib (whole process), extra_mib, children_peak_mib
+        (the largest waited-for child's peak, 0 without one)."""
         wall = time.perf_counter() - self._wall
         peak = peak_rss_mib()
         return {
             "seconds": wall,
-            "cpu_seconds": time.process_time() - self._cpu,
+            "cpu_seconds": time.process_time() + _children_cpu() - self._cpu,
             "base_rss_mib": self.base_rss,
             "base_peak_mib": self.base_peak,
             "peak_mib": peak,
             "extra_mib": peak - self.base_rss,
+            "children_peak_mib": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024.0,
             **extra,
         }
+
+
+def _children_cpu() -> float:
+    """CPU seconds of this process's waited-for children so far."""
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return children.ru_utime + children.ru_stime
 
 
 class StageClock:

@@ -85,3 +85,37 @@ def test_a_running_childs_cpu_seconds_are_read_from_proc():
     finally:
         child.communicate("\n")
     assert cpu_seconds_of(child.pid) == 0.0
+
+
+HALF_PARENT = """
+import subprocess, sys
+open("/proc/self/comm", "w").write("alphascoop-build"[:15])
+half = subprocess.Popen([sys.executable, "-c", {child!r}], stdin=subprocess.PIPE,
+                        stdout=subprocess.PIPE, text=True)
+print(half.pid, half.stdout.readline().strip(), flush=True)
+sys.stdin.read()
+half.stdin.close()
+half.wait()
+"""
+HALF_CHILD = ALLOCATING_CHILD.replace('"alphascoop-topology"', '"alphascoop-half"')
+
+
+def test_a_builds_gmsh_half_is_sampled_by_its_name():
+    """The build's own child named alphascoop-half (core/backends/half_child.py) is found and
+    sampled apart: its peak is not the build's."""
+    peaks = ChildPeaks()
+    build = subprocess.Popen([sys.executable, "-c", HALF_PARENT.format(child=HALF_CHILD)],
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        half, ready = build.stdout.readline().split()
+        assert ready == "ready"
+        assert passes()[build.pid] == "alphascoop-build"
+        assert passes()[int(half)] == "alphascoop-half"
+        wait_for(lambda: peaks.peaks.get("alphascoop-half", 0.0) >= BLOCK_MIB)
+    finally:
+        build.stdin.close()
+        build.wait(LIVENESS_S)
+        build.stdout.close()
+    found = peaks.stop()
+    assert found["alphascoop-half"] >= BLOCK_MIB
+    assert found["alphascoop-build"] < found["alphascoop-half"]

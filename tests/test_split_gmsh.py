@@ -155,6 +155,17 @@ def test_the_half_process_dies_with_its_parent() -> None:
         while not (halves := child_pids(build.pid)) and time.monotonic() < deadline:
             time.sleep(0.05)
         assert halves, "the second half's process never started"
+
+        def named() -> bool:  # named once its death signal is set (the same prctl place)
+            try:
+                return all(Path(f"/proc/{pid}/comm").read_text().strip() == "alphascoop-half"
+                           for pid in halves)
+            except OSError:
+                return False
+
+        while not named() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert named(), "the half process never named itself"
         os.kill(build.pid, signal.SIGKILL)
         build.wait()
         deadline = time.monotonic() + 10
