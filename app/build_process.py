@@ -2,19 +2,19 @@
 
 ChildRunner is the window's runner for core.obtain. The child builds the table (and its
 signatures when asked) and hands it over at once through shared memory: a folder on /dev/shm
-the runner made (app.shared_folder) into which the child writes the table and the slider
-cursor's sort orders (core.cursor.cursor_orders, found in a thread beside) as raw arrays
-(core.mapped), which the caller and the topology process map, read-only, instead of reading
-them. Then it sends the table's quick opening alpha (core.opening, found in a thread beside
-those writes; not with the signatures) and only then writes the cache entry (atomic:
-core.cache), at a lower priority, holding a lock the topology process waits for before it
-rewrites that entry with the signatures. The caller does not wait for that write: it is left
-to the child (HandOver.saving), which a newer open or closing the window still kills (the
-load's cancel; the entry is then absent, never damaged, and that file is built again on its
-next open: nothing runs on behind the user's next action). Without /dev/shm, or with too
-little room in it, the child writes the cache entry (or a temporary file when the cache
-cannot be written or is not used) first and hands that file over, with the orders in a
-scratch file, as before.
+the runner made (app.shared_folder) into which the child writes the table, the slider
+cursor's sort orders (core.cursor.cursor_orders) and the table's spectrum (both found in a
+thread beside) as raw arrays (core.mapped), which the caller and the topology process map,
+read-only, instead of reading them. Then it sends the table's quick opening alpha
+(core.opening, found in a thread beside those writes; not with the signatures) and only then
+writes the cache entry (atomic: core.cache), at a lower priority, holding a lock the
+topology process waits for before it rewrites that entry with the signatures. The caller
+does not wait for that write: it is left to the child (HandOver.saving), which a newer open
+or closing the window still kills (the load's cancel; the entry is then absent, never
+damaged, and that file is built again on its next open: nothing runs on behind the user's
+next action). Without /dev/shm, or with too little room in it, the child writes the cache
+entry (or a temporary file when the cache cannot be written or is not used) first and hands
+that file over, with the orders in a scratch file, as before.
 
 The caller maps (or loads, without re-checking the file its own child wrote a moment ago) the
 table it was handed and makes the cursor from those orders while the child still works; the
@@ -59,8 +59,9 @@ from core.progress import Progress
 from core.storage import save_mapped
 
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
-ORDERS_NAME = "cursor.npz"  # the cursor's sort orders, beside the table in the scratch folder
+ORDERS_NAME = "cursor.npz"  # the cursor's orders and the spectrum, beside the table
 ORDERS_FOLDER = "cursor"  # the same in the shared folder, as core.mapped arrays
+SPECTRUM_NAME = "spectrum"  # the table's spectrum, beside the orders
 SAVING_NAME = "saving.lock"  # locked by the child until its cache entry is written
 SAVE_NICENESS = 10  # the entry's write after a shared hand-over yields the cores to others
 
@@ -194,11 +195,12 @@ def _load_handed(answer: dict, mapped: bool, report: Progress
                  ) -> tuple[AlphaComplex, HandOver]:
     """The table and cursor orders a child handed over, as a complex and its cursor."""
     report(1.0, "loading the table")
-    ac = AlphaComplex.load(answer["table"], verify=False)  # our child wrote it just now
     if answer["orders"] is None:
-        return ac, HandOver()
+        return AlphaComplex.load(answer["table"], verify=False), HandOver()
     arrays = (map_arrays(answer["orders"]) if mapped
               else read_npz(answer["orders"], trusted=True))
+    # our child wrote both just now: the table is not re-checked, its spectrum not re-sorted
+    ac = AlphaComplex.load(answer["table"], verify=False, spectrum=arrays.get(SPECTRUM_NAME))
     return ac, HandOver(cursor=ac.cursor(CursorOrders.from_arrays(arrays, ac.dim)))
 
 
@@ -236,7 +238,7 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress,
         # numpy's sorts and the file's writes leave the GIL: these run beside the writes
         finder = (_beside(lambda: opening.append(opening_alpha_of(ac.index, len(ac.points))),
                           "alphascoop-opening") if not request.signatures else lambda: None)
-        sorter = _beside(lambda: orders.append(cursor_orders(ac.index)), "alphascoop-orders")
+        sorter = _beside(lambda: orders.append(_orders_and_spectrum(ac)), "alphascoop-orders")
         shared = job.get("shared")
         if shared is not None and _share(ac, Path(shared), progress):
             sorter()
@@ -258,12 +260,18 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress,
             orders_file = None
             if orders:
                 orders_file = Path(target).with_name(ORDERS_NAME)
-                np.savez(orders_file, **orders[0].to_arrays())  # scratch: no atomic write
+                np.savez(orders_file, **orders[0])  # scratch: no atomic write
             hand_over(json.dumps({"table": str(written), "mapped": False,
                                   "orders": None if orders_file is None else str(orders_file),
                                   "saving": str(saving)}))
     finder()
     return json.dumps({"opening_alpha": float(opening[0]) if opening else None})
+
+
+def _orders_and_spectrum(ac: AlphaComplex) -> dict[str, np.ndarray]:
+    """The cursor's orders (CursorOrders.to_arrays) and the table's spectrum ("spectrum"),
+    which the window would otherwise sort itself while it makes the cursor."""
+    return {**cursor_orders(ac.index).to_arrays(), SPECTRUM_NAME: ac.index.spectrum()}
 
 
 def _share(ac: AlphaComplex, folder: Path, progress: Progress) -> bool:
@@ -281,14 +289,14 @@ def _share(ac: AlphaComplex, folder: Path, progress: Progress) -> bool:
     return False
 
 
-def _share_orders(orders: list[CursorOrders], folder: Path) -> str | None:
+def _share_orders(orders: list[dict[str, np.ndarray]], folder: Path) -> str | None:
     """The folder the cursor's orders were written to (None when there are none or they do
     not fit: the window then sorts them itself)."""
     if not orders:
         return None
     try:
         folder.mkdir()
-        if write_arrays(folder, orders[0].to_arrays()):
+        if write_arrays(folder, orders[0]):
             return str(folder)
     except OSError:
         pass

@@ -41,8 +41,8 @@ class BuildInfo:
 
     `backend`: the triangulation backend that made the cells ("qhull" for scipy/Qhull,
     "gmsh"); `backend_note`: why the automatic choice did not use gmsh ("" when it did, or
-    was not asked to: too few points, gmsh not installed, weights), and why a large Qhull
-    build was not split in two halves (core.backends.split; "" when it was, or was small).
+    was not asked to: too few points, gmsh not installed, weights), and why a large build
+    was not split in two halves (core.backends.split; "" when it was, or was small).
     `exact_predicates`: sign decisions (certification and table) that the floating-point
     filter could not settle and exact arithmetic decided; `flips`: cells the certification
     changed (flips and hull repairs, core/certify.py); `uncertified`: facets it could not

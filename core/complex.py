@@ -184,11 +184,14 @@ class AlphaComplex:
         storage.save(self, path)
 
     @classmethod
-    def load(cls, path: str | os.PathLike, *, verify: bool = True) -> AlphaComplex:
+    def load(cls, path: str | os.PathLike, *, verify: bool = True,
+             spectrum: np.ndarray | None = None) -> AlphaComplex:
         """Read a table written by `save` (or the folder of `storage.save_mapped`: mapped, not
         read); FileFormatError if it is not one. verify=False skips most checks: only for a
-        file this program has just written (core.storage)."""
-        saved = storage.load(path, verify=verify)
+        file this program has just written (core.storage). `spectrum`: the table's spectrum
+        as this program found it beside the table (a build process's hand-over), so it is
+        not sorted again (storage.load)."""
+        saved = storage.load(path, verify=verify, spectrum=spectrum)
         return cls(saved.points, saved.input_index, saved.index, saved.frame, saved.ambient_dim,
                    saved.mode, saved.weights, build_info=saved.build_info,
                    topology=saved.topology, signatures=saved.signatures)

@@ -229,7 +229,8 @@ def _read(path: Path, trusted: bool = False) -> dict[str, np.ndarray]:
     return arrays
 
 
-def load(path: str | os.PathLike, *, verify: bool = True) -> Saved:
+def load(path: str | os.PathLike, *, verify: bool = True,
+         spectrum: np.ndarray | None = None) -> Saved:
     """Read a table written by `save` (or the folder written by `save_mapped`, whose arrays
     are mapped read-only, not read: core.mapped); every array is checked (core.table_checks)
     so that a damaged or crafted file is a FileFormatError, never a wrong shape or a crash
@@ -238,7 +239,10 @@ def load(path: str | os.PathLike, *, verify: bool = True) -> Saved:
     verify=False skips the table's array checks and the zip's CRC pass (not the archive's
     sizes, the format tag and the saved topology's checks): only for a file this program
     wrote a moment ago, such as the table a build process hands over, never for a file that
-    waited on disk."""
+    waited on disk. `spectrum`: the table's (TableIndex.spectrum) as this program found it
+    beside the table, used instead of sorting the values again (checked cheaply: a 1-D
+    float64 array that ends at the table's last value; a table with its signatures keeps
+    theirs)."""
     path = Path(path)
     a = _read(path, trusted=not verify)
     check = Checker(path)
@@ -253,8 +257,13 @@ def load(path: str | os.PathLike, *, verify: bool = True) -> Saved:
         table = Table(levels, a["facet_cells"], a["facet_flip"], a["cell_measure"],
                       a["facet_interior_order"])
         saved = "sig_alphas" in a
-        spectrum = check_signature_arrays(check, a, dim) if saved else None
-        index = TableIndex(table, "weights" in a, spectrum)
+        known = check_signature_arrays(check, a, dim) if saved else None
+        index = TableIndex(table, "weights" in a, known)
+        if known is None and spectrum is not None:
+            check.that(isinstance(spectrum, np.ndarray) and spectrum.ndim == 1
+                       and spectrum.dtype == np.float64 and len(spectrum) > 0
+                       and float(spectrum[-1]) == index.last_value(), "handed spectrum")
+            index = TableIndex(table, "weights" in a, spectrum)
         topology, signatures = (_derived(index, len(a["points"]), a, check) if saved
                                 else (None, None))
         return Saved(a["points"], a["input_index"], index, frame, int(a["ambient_dim"]),

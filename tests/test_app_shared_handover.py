@@ -26,7 +26,7 @@ from app.topology_child import TopologyChild
 from app.topology_process import HANDED_OVER, topology_in_child
 from core import AlphaComplex, mapped
 from core.cache import entry_path, read_entry
-from core.errors import AlphaScoopError, Cancelled
+from core.errors import AlphaScoopError, Cancelled, FileFormatError
 from core.modes import Mode
 from core.obtain import obtain
 from core.opening import opening_alpha_of
@@ -107,6 +107,32 @@ def test_the_table_is_handed_over_in_shared_memory_before_the_entry_is_written(t
     assert AlphaComplex.load(entry).intervals(3).tobytes() == here.intervals(3).tobytes()
     orders = mapped.map_arrays(handed[0]["orders"])
     assert not orders["regular"].flags.writeable
+    assert orders["spectrum"].tobytes() == here.spectrum().tobytes()  # found beside
+
+
+@pytest.mark.parametrize("shared", [True, False])
+def test_the_window_takes_the_spectrum_its_child_found(tmp_path, shared, monkeypatch):
+    """The handed table's index knows its spectrum (mapped, or from the orders' file), the
+    same as a sort here; the window does not sort the table's values again."""
+    if not shared:
+        monkeypatch.setattr(child_process, "SHARED_ROOT", tmp_path / "no-shm")
+    points = np.random.default_rng(5).random((3000, 3))
+    runner = build_process.ChildRunner(threading.Event())
+    monkeypatch.setattr(build_process, "IN_THREAD_BELOW", 0)
+    ac = obtain(points, runner=runner, use_cache=False).complex
+    assert ac.index.known_spectrum is not None
+    assert ac.spectrum().tobytes() == AlphaComplex.from_points(points).spectrum().tobytes()
+    assert runner.handed_over(ac).cursor is not None
+
+
+def test_a_handed_spectrum_that_does_not_fit_the_table_is_refused(tmp_path):
+    here = AlphaComplex.from_points(np.random.default_rng(6).random((500, 3)))
+    here.save(tmp_path / "t.npz")
+    good = here.spectrum()
+    assert AlphaComplex.load(tmp_path / "t.npz", spectrum=good).index.known_spectrum is good
+    for bad in (good[:-1], good.astype(np.float32), good.reshape(1, -1)):
+        with pytest.raises(FileFormatError):
+            AlphaComplex.load(tmp_path / "t.npz", verify=False, spectrum=bad)
 
 
 def test_too_little_shared_memory_hands_the_entry_over_as_before(tmp_path, monkeypatch):

@@ -28,6 +28,7 @@ def _die_with_parent(parent: int) -> None:
         pass  # not Linux: the parent's stop() is all there is
     if os.getppid() != parent:
         sys.exit(1)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
 
 
 def main() -> int:

@@ -268,13 +268,13 @@ def _gmsh_halves(points: np.ndarray, low: np.ndarray, high: np.ndarray, axis: in
         return f"no process for the second half ({error})"
     try:
         first = gmsh_half(points, low, high, axis, True)
-    except BaseException:
+        if isinstance(first, str):
+            child.stop()
+            return first
+        second = child.result()
+    except BaseException:  # Ctrl-C, out of memory: the child goes too
         child.stop()
         raise
-    if isinstance(first, str):
-        child.stop()
-        return first
-    second = child.result()
     if isinstance(second, str):
         return second
     none = np.empty(0, dtype=np.int64)
