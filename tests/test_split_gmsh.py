@@ -208,3 +208,19 @@ def test_a_damaged_stream_is_refused(damage: str) -> None:
         data = data.replace(b"\n", b" ", 1)
     with pytest.raises(ValueError):
         gmsh_half.receive_arrays(io.BytesIO(data))
+
+
+def test_a_halfs_arrays_are_checked_before_they_are_joined() -> None:
+    """What the half's process sends must be int32 cells of the points with their neighbour
+    rows and int8 mirror, or the build falls back (never an index error later)."""
+    cells = np.array([[0, 1, 2, 3], [1, 2, 3, 4]], dtype=np.int32)
+    nbrs = np.array([[1, -1, -1, -1], [-1, -1, -1, 0]], dtype=np.int32)
+    mirror = np.array([[3, -1, -1, -1], [-1, -1, -1, 0]], dtype=np.int8)
+    good = {"cells": cells, "nbrs": nbrs, "mirror": mirror}
+    assert split._fits(good, 5, 4)
+    assert not split._fits(good, 4, 4)  # a point id out of range
+    assert not split._fits(good, 5, 3)  # the wrong dimension
+    assert not split._fits({**good, "nbrs": nbrs + 5}, 5, 4)  # a neighbour out of range
+    assert not split._fits({**good, "cells": cells.astype(np.int64)}, 5, 4)
+    assert not split._fits({**good, "mirror": mirror[:1]}, 5, 4)
+    assert not split._fits({"cells": cells, "nbrs": nbrs}, 5, 4)

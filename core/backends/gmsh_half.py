@@ -76,6 +76,8 @@ class GmshHalf:
         """Start triangulating points[ids] (core.backends.split.gmsh_half) in a new
         process; the points are written to it from a thread, so this returns at once.
         OSError when the process cannot start."""
+        if not sys.executable:
+            raise OSError("no Python executable to run it with")
         root = str(Path(__file__).resolve().parents[2])  # the folder holding `core`
         env = dict(os.environ)
         env["PYTHONPATH"] = os.pathsep.join(filter(None, (root, env.get("PYTHONPATH"))))

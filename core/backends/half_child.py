@@ -34,10 +34,11 @@ def _die_with_parent(parent: int) -> None:
 def main() -> int:
     """The process's body: read the inputs, triangulate the half, write its kept cells."""
     _die_with_parent(int(sys.argv[1]))
+    out = os.fdopen(os.dup(1), "wb")  # the answer's own channel: anything a library
+    os.dup2(2, 1)  # prints on standard output goes to standard error instead
     fields, arrays = receive_arrays(sys.stdin.buffer)
     half = gmsh_half(arrays["points"], arrays["ids"], arrays["other"], int(fields["axis"]),
                      bool(fields["ahead"]))
-    out = sys.stdout.buffer
     if isinstance(half, str):
         send_arrays(out, {}, reason=half)
     else:

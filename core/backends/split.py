@@ -277,8 +277,24 @@ def _gmsh_halves(points: np.ndarray, low: np.ndarray, high: np.ndarray, axis: in
         raise
     if isinstance(second, str):
         return second
+    if not _fits(second, len(points), points.shape[1] + 1):
+        return "the second half's process sent cells that do not fit"
     none = np.empty(0, dtype=np.int64)
     return first, _Half(second["cells"], second["nbrs"], second["mirror"], none)
+
+
+def _fits(arrays: dict[str, np.ndarray], m: int, width: int) -> bool:
+    """Whether a half's arrays from its process are (t, width) int32 cells of the m points
+    with their int32 neighbour rows and int8 mirror (cheap: the join's check does the rest)."""
+    cells, nbrs, mirror = (arrays.get(name) for name in ("cells", "nbrs", "mirror"))
+    if cells is None or nbrs is None or mirror is None:
+        return False
+    if cells.ndim != 2 or cells.shape[1] != width or not len(cells) or not (
+            cells.dtype == nbrs.dtype == np.int32 and mirror.dtype == np.int8
+            and nbrs.shape == mirror.shape == cells.shape):
+        return False
+    return bool(0 <= cells.min() and cells.max() < m and -1 <= nbrs.min()
+                and nbrs.max() < len(cells) and -1 <= mirror.min() and mirror.max() < width)
 
 
 def split_triangulation(points: np.ndarray, weights: np.ndarray | None = None,
