@@ -64,11 +64,12 @@ def unsplit(job: Callable[[], T]) -> T:
     """job() with every pass in it run in this thread, none handed to a helper: for a job
     run beside another that splits its own passes (the second core is taken; sharing the
     passes' one helper would queue each job's halves behind the other's)."""
+    before = getattr(_unsplit, "on", False)  # an unsplit job inside another stays unsplit
     _unsplit.on = True
     try:
         return job()
     finally:
-        _unsplit.on = False
+        _unsplit.on = before
 
 
 def _inside(role: str) -> bool:
