@@ -9,6 +9,7 @@ import os
 import signal
 import sys
 
+from ..errors import AlphaScoopError
 from .gmsh_half import receive_arrays, send_arrays
 from .split import gmsh_half
 
@@ -36,9 +37,13 @@ def main() -> int:
     _die_with_parent(int(sys.argv[1]))
     out = os.fdopen(os.dup(1), "wb")  # the answer's own channel: anything a library
     os.dup2(2, 1)  # prints on standard output goes to standard error instead
-    fields, arrays = receive_arrays(sys.stdin.buffer)
-    half = gmsh_half(arrays["points"], arrays["ids"], arrays["other"], int(fields["axis"]),
-                     bool(fields["ahead"]))
+    try:
+        fields, arrays = receive_arrays(sys.stdin.buffer)
+        half = gmsh_half(arrays["points"], arrays["ids"], arrays["other"],
+                         int(fields["axis"]), bool(fields["ahead"]))
+    except (ValueError, KeyError, MemoryError, AlphaScoopError) as error:
+        half = f"the second half failed ({type(error).__name__}: {error})"  # a reason, for
+        # the parent's note and its fallback, instead of a traceback on the user's terminal
     if isinstance(half, str):
         send_arrays(out, {}, reason=half)
     else:
