@@ -1,0 +1,116 @@
+"""One JSON result per benchmark run, the only source of the figures in the READMEs.
+
+A result holds where and when it was measured (commit, date, machine, CPU count) and its
+figures: each a measured value beside the anchor measured in the same run, like for like (end to
+end against end to end, wall against wall, CPU against CPU), the ratio between them and the goal
+it is held to. `benchmarks/report.py` turns the latest results into the READMEs' tables.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import os
+import platform
+import subprocess
+import tempfile
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+RESULTS = Path(__file__).resolve().parent / "results"
+SCHEMA = "alphascoop-benchmark-result/1"
+
+
+@dataclass(frozen=True)
+class Figure:
+    """One measured figure: `value` (in `unit`) against `anchor_value` of the same run.
+
+    `ratio` is value / anchor_value; `goal` is a comparison and a bound such as "<= 0.8" on the
+    ratio (or on the value when there is no anchor), `met` whether it holds (None: no goal).
+    """
+
+    name: str
+    label: str
+    value: float
+    unit: str
+    anchor: str | None = None
+    anchor_value: float | None = None
+    goal: str | None = None
+    ratio: float | None = field(default=None)
+    met: bool | None = field(default=None)
+
+    def __post_init__(self) -> None:
+        if self.anchor_value is not None and self.ratio is None and self.anchor_value != 0:
+            object.__setattr__(self, "ratio", self.value / self.anchor_value)
+        if self.goal is not None and self.met is None:
+            object.__setattr__(self, "met", goal_met(self.goal, self.checked()))
+
+    def checked(self) -> float:
+        """The number the goal is held to: the ratio when there is an anchor, else the value."""
+        return self.ratio if self.ratio is not None else self.value
+
+
+def goal_met(goal: str, number: float) -> bool:
+    """Whether `number` satisfies a goal written "<= 0.8", ">= 1.7", "< 2" or "> 20"."""
+    op, bound = goal.split()
+    limit = float(bound)
+    return {"<=": number <= limit, ">=": number >= limit, "<": number < limit,
+            ">": number > limit}[op]
+
+
+def _commit() -> tuple[str, bool]:
+    """The checked-out commit and whether the work tree differs from it."""
+    root = Path(__file__).resolve().parent.parent
+    try:
+        sha = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True,
+                             text=True, check=True).stdout.strip()
+        dirty = bool(subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                                    cwd=root, capture_output=True, text=True,
+                                    check=True).stdout.strip())
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown", True
+    return sha, dirty
+
+
+def machine() -> dict:
+    """Where the run happened: processor, CPU count, memory, Python."""
+    with open("/proc/meminfo") as handle:
+        total_kib = int(handle.readline().split()[1])
+    return {"processor": platform.processor() or platform.machine(), "cpu_count": os.cpu_count(),
+            "memory_gib": round(total_kib / 1024**2, 1), "python": platform.python_version(),
+            "system": platform.platform()}
+
+
+def save(benchmark: str, figures: list[Figure], *, tables: list[dict] | None = None,
+         notes: list[str] | None = None, folder: Path = RESULTS) -> Path:
+    """Write `folder/<benchmark>.json` atomically and return its path.
+
+    `tables` are extra detail tables ({"title", "columns", "rows"}); `notes` are sentences the
+    report prints under the benchmark's table (what was measured, on which input).
+    """
+    sha, dirty = _commit()
+    result = {"schema": SCHEMA, "benchmark": benchmark, "commit": sha, "dirty": dirty,
+              "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+              "machine": machine(), "figures": [asdict(f) for f in figures],
+              "tables": tables or [], "notes": notes or []}
+    folder.mkdir(parents=True, exist_ok=True)
+    target = folder / f"{benchmark}.json"
+    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".json.tmp")
+    try:
+        with os.fdopen(fd, "w") as stream:
+            json.dump(result, stream, indent=2, allow_nan=False)
+            stream.write("\n")
+        os.replace(tmp, target)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return target
+
+
+def load(benchmark: str, folder: Path = RESULTS) -> dict:
+    """The saved result of one benchmark (raises FileNotFoundError when it never ran)."""
+    with open(folder / f"{benchmark}.json") as handle:
+        result = json.load(handle)
+    if result.get("schema") != SCHEMA:
+        raise ValueError(f"{benchmark}.json is not a {SCHEMA} result")
+    return result
