@@ -60,8 +60,9 @@ def add_mode_options(parser: argparse.ArgumentParser) -> None:
 
 
 def mode_of(args: argparse.Namespace):
-    """The core.modes.Mode the options ask for; ValueError for options that need another."""
-    from core.modes import make_mode
+    """The core.modes.alpha_modes.Mode the options ask for; ValueError for options that need
+    another."""
+    from core.modes.alpha_modes import make_mode
 
     if args.combine is not None and args.density is None:
         raise ValueError("--combine needs --density K")

@@ -3,11 +3,11 @@
 ChildRunner is the window's runner for core.obtain. The child builds the table (and its
 signatures when asked) and hands it over at once through shared memory: a folder on /dev/shm
 the runner made (app.shared_folder) into which the child writes the table, the slider
-cursor's sort orders (core.cursor.cursor_orders) and the table's spectrum (both found in a
-thread beside) as raw arrays (core.mapped), which the caller and the topology process map,
+cursor's sort orders (core.query.cursor.cursor_orders) and the table's spectrum (both found in a
+thread beside) as raw arrays (core.storage.mapped), which the caller and the topology process map,
 read-only, instead of reading them. Then it sends the table's quick opening alpha
-(core.opening, found in a thread beside those writes; not with the signatures) and only then
-writes the cache entry (atomic: core.cache), at a lower priority, holding a lock the
+(core.topology.opening, found in a thread beside those writes; not with the signatures) and only
+then writes the cache entry (atomic: core.cache), at a lower priority, holding a lock the
 topology process waits for before it rewrites that entry with the signatures. The caller
 does not wait for that write: it is left to the child (HandOver.saving), which a newer open
 or closing the window still kills (the load's cancel; the entry is then absent, never
@@ -48,19 +48,19 @@ import numpy as np
 from app.child_process import LOCK_NAME, LeaveRunning, make_scratch, run_in_child
 from app.shared_folder import SharedFolder, SharedTable
 from core.complex import AlphaComplex
-from core.cursor import CursorOrders, cursor_orders
 from core.errors import AlphaScoopError, Cancelled
-from core.mapped import map_arrays, write_arrays
-from core.modes import Mode, make_mode
-from core.npz import read_npz
+from core.modes.alpha_modes import Mode, make_mode
 from core.obtain import SAVE_START, BuildRequest, HandOver, run_here
-from core.opening import opening_alpha_of
 from core.progress import Progress
-from core.storage import save_mapped
+from core.query.cursor import CursorOrders, cursor_orders
+from core.storage.mapped import map_arrays, write_arrays
+from core.storage.npz import read_npz
+from core.storage.tables import save_mapped
+from core.topology.opening import opening_alpha_of
 
 IN_THREAD_BELOW = 50_000  # points: about 3 s of build here
 ORDERS_NAME = "cursor.npz"  # the cursor's orders and the spectrum, beside the table
-ORDERS_FOLDER = "cursor"  # the same in the shared folder, as core.mapped arrays
+ORDERS_FOLDER = "cursor"  # the same in the shared folder, as core.storage.mapped arrays
 SPECTRUM_NAME = "spectrum"  # the table's spectrum, beside the orders
 SAVING_NAME = "saving.lock"  # locked by the child until its cache entry is written
 SAVE_NICENESS = 10  # the entry's write after a shared hand-over yields the cores to others
@@ -212,8 +212,8 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress,
 
     The hand-over is JSON {"table", "mapped", "orders", "saving"}: with a shared folder
     (job "shared") that has the room, the table and the cursor's orders are written there
-    (core.mapped) and handed over before the cache entry is written, while this process holds
-    a lock on the file "saving" (beside `target`) until that write is done; else (no shared
+    (core.storage.mapped) and handed over before the cache entry is written, while this process
+    holds a lock on the file "saving" (beside `target`) until that write is done; else (no shared
     memory, or too little) the table is handed over as the cache entry once written, or as
     `target` when it cannot be, with the orders in a file beside. "orders" is None when they
     could not be found.

@@ -20,8 +20,8 @@ from pathlib import Path
 import numpy as np
 
 from app.args import add_mode_options, count, mode_of, probe_radius, radius, squared_radius
-from core.classes import CLASSES
 from core.errors import AlphaScoopError, InputError
+from core.query.classes import CLASSES
 
 SIMPLEX_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
 SOURCE_TEXT = {"built": " (built in {seconds:.2f} s)", "cache": " (from cache)",
@@ -123,7 +123,7 @@ def _progress():
 
 def load(args) -> tuple:
     """(PointSet, Obtained (the complex and its source), seconds) for the file and options."""
-    from core.modes import file_normals
+    from core.modes.alpha_modes import file_normals
     from core.obtain import obtain
 
     mode = _mode(args)

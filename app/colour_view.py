@@ -22,7 +22,7 @@ from app.colouring import (
 )
 from app.model import ExplorerModel
 from app.scene import Scene
-from core.components import solid_labels
+from core.topology.components import solid_labels
 
 
 def legend_title(mode: ColourMode) -> str | None:

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.components import facet_labels, solid_labels
+from core.topology.components import facet_labels, solid_labels
 
 CELL_LAYERS = ("surface", "boundary", "interior", "singular_highlight", "singular_edges",
                "singular_points")

@@ -15,19 +15,19 @@ from app.camera import Z_UP, ViewFrame, frame_for
 from app.topology_child import TopologyChild
 from app.topology_file import TopologyParts, attach
 from core import AlphaComplex
-from core.build import BACKENDS, check_backend
 from core.complex import at_value
-from core.cursor import ShapeCursor
 from core.errors import InputError
 from core.io import LoadReport, read_points
-from core.modes import Mode, file_normals
+from core.modes.alpha_modes import Mode, file_normals
 from core.molecule.analysis import MoleculeMeasures, measure_molecule
 from core.obtain import Obtained, Runner, Source, add_topology, obtain, run_here
-from core.opening import opening_alpha_of
-from core.persistence import Persistence
+from core.pipeline import BACKENDS, check_backend
 from core.progress import Progress
-from core.signatures import Signatures
-from core.suggest import AlphaRange
+from core.query.cursor import ShapeCursor
+from core.topology.opening import opening_alpha_of
+from core.topology.persistence import Persistence
+from core.topology.signatures import Signatures
+from core.topology.suggest import AlphaRange
 
 READ_SHARE, BUILD_SHARE, INDEX_START = 0.1, 0.85, 0.95
 POINTS_READ = "points read"  # the stage reported once the file was read, before the table
@@ -206,8 +206,8 @@ def window_backend() -> str | None:
 
 def quick_alpha(ac: AlphaComplex) -> float:
     """Where a view opens before the topology is known: the opening rule alone (the smallest
-    alpha whose triangles join 99 % of the points, core.opening), which needs only the table.
-    ac.default_alpha() is the same value unless CGAL's optimal alpha, known with the
+    alpha whose triangles join 99 % of the points, core.topology.opening), which needs only the
+    table. ac.default_alpha() is the same value unless CGAL's optimal alpha, known with the
     topology, is smaller."""
     return float(opening_alpha_of(ac.index, len(ac.points)))
 

@@ -16,7 +16,7 @@ from app.settings import Preferences
 from core import AlphaComplex
 from core.complex import at_value
 from core.export import write_shape, write_table
-from core.georef import Georef
+from core.geometry.georef import Georef
 from core.io import READ_FORMATS
 
 

@@ -15,7 +15,7 @@ from PySide6.QtWidgets import QLabel, QSizePolicy, QVBoxLayout, QWidget
 
 from app.model import ExplorerModel
 from app.numbers import coordinate, plural, quantity, with_unit
-from core.classes import INTERIOR, REGULAR, SINGULAR
+from core.query.classes import INTERIOR, REGULAR, SINGULAR
 
 BETTI_NAMES = {2: ("component", "hole"), 3: ("component", "tunnel", "void")}
 WIDTH_CHARACTERS = 34  # the dock's width, in average character widths

@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.classes import CLASSES
-from core.spheres import find_simplex, simplex_sphere
+from core.query.classes import CLASSES
+from core.query.spheres import find_simplex, simplex_sphere
 
 KIND_NAMES = ("point", "edge", "triangle", "tetrahedron")
 
@@ -38,7 +38,7 @@ class Inspection:
         return int(np.count_nonzero(self.intervals <= alpha))
 
     def class_name(self, alpha: float) -> str:
-        """The class at alpha, by name (core.classes.CLASSES)."""
+        """The class at alpha, by name (core.query.classes.CLASSES)."""
         return CLASSES[self.class_index(alpha)]
 
 

@@ -40,7 +40,7 @@ from app.scene.interactive import interactive_scene
 from app.settings import Preferences
 from app.signatures_dock import SignaturesPanel
 from app.worker import load_job, topology_job
-from core.modes import Mode
+from core.modes.alpha_modes import Mode
 
 CLOSE_WAIT_MS = 2000  # how long closing waits for a running build before leaving it behind
 

@@ -1,4 +1,5 @@
-"""Mode dock: classic, density-scaled or anisotropic alpha (core.modes) and their parameters.
+"""Mode dock: classic, density-scaled or anisotropic alpha (core.modes.alpha_modes) and their
+parameters.
 
 Rebuild asks the window to build the open file again in the chosen mode; the build runs in
 the background like an open, and the current shape stays until the new table is ready.
@@ -17,7 +18,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.modes import Mode, make_mode
+from core.modes.alpha_modes import Mode, make_mode
 
 KINDS = ("Classic", "Density-scaled", "Anisotropic")
 DEFAULT_NEIGHBOURS, DEFAULT_TAU = 8, 0.5

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from app.dataset import ImportOptions
-from core.modes import Mode
+from core.modes.alpha_modes import Mode
 
 
 @dataclass(frozen=True)

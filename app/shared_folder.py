@@ -1,8 +1,8 @@
 """A table handed over in shared memory, and how long its files live.
 
 The window's build runner (app.build_process) makes a SharedFolder on /dev/shm; the build
-process writes the table into it (core.storage.save_mapped) and hands it over before it
-writes the cache entry; the window and the topology process map it (core.mapped: no copy, no
+process writes the table into it (core.storage.tables.save_mapped) and hands it over before it
+writes the cache entry; the window and the topology process map it (core.storage.mapped: no copy, no
 read). Each holder lets go once it has mapped the table (or given up: cancelled, superseded,
 failed), and the folder is removed when the last one has, so the pages live on only in those
 mappings and are returned when the last array over them is gone. A window killed before that

@@ -32,7 +32,7 @@ from app.signature_figure import (
     set_alpha_scale,
     symlog_threshold,
 )
-from core.persistence import Persistence
+from core.topology.persistence import Persistence
 
 MIN_PLOT_HEIGHT = 160  # pixels: tick labels, titles and a readable plot area
 BETTI_COLOURS = ("#4c9be8", "#e4572e", "#59b86a")

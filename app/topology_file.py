@@ -1,7 +1,7 @@
 """The topology of a complex as a small .npz (no pickles): how the topology process hands its
 results to the window, which attaches them to its own complex without copying the table.
 
-Arrays: the signatures and forests exactly as a saved table holds them (core/storage.py
+Arrays: the signatures and forests exactly as a saved table holds them (core/storage/tables.py
 `derived_arrays`, read back and checked against the window's table by `read_derived`; files
 from before `sig_alphas` was written load too); the persistence pairs `pers_components`,
 `pers_cavities` (n, 2) float64; `optimal_alpha` and `default_alpha` () float64; `entry_saved`
@@ -17,14 +17,14 @@ from pathlib import Path
 import numpy as np
 
 from core.arrays import readonly
-from core.atomic import atomic_write
 from core.complex import AlphaComplex
-from core.npz import read_npz
-from core.persistence import Persistence
-from core.signatures import Signatures
-from core.storage import derived_arrays, read_derived
-from core.table_checks import Checker
-from core.topology import Topology
+from core.storage.atomic import atomic_write
+from core.storage.checks import Checker
+from core.storage.npz import read_npz
+from core.storage.tables import derived_arrays, read_derived
+from core.topology.betti import Topology
+from core.topology.persistence import Persistence
+from core.topology.signatures import Signatures
 
 SUBJECT = "this table's topology"  # a file that does not fit: "{path}: not this table's ..."
 

@@ -9,8 +9,8 @@ dataset has no entry), computes the topology and writes it to the hand-over file
 (app.topology_file), which the window attaches to its own complex. Only then, after it said
 HANDED_OVER, does it rewrite the cache entry with the signatures (so the next open skips the
 pass): the window does not wait for that rewrite (about 7 s at 1M points). The rewrite is
-atomic (core.atomic), so a child killed in the middle of it (a newer open, the window closed)
-leaves the old entry as it was. (Chosen over a file of the topology beside the entry, which
+atomic (core.storage.atomic), so a child killed in the middle of it (a newer open, the window
+closed) leaves the old entry as it was. (Chosen over a file of the topology beside the entry, which
 the cache's reads, pruning and checks of which table it belongs to would have to treat as one
 with the entry.) A table handed over in shared memory is still being written to its entry by
 the build process: the rewrite waits for that write (a lock the build process holds; the
@@ -41,7 +41,7 @@ SAVING = "topology: saving the signatures to the cache"  # after HANDED_OVER, wh
 def topology_in_child(table: str, entry: str | None, target: str, saving: str | None,
                       progress: Progress) -> str:
     """Body of the topology process: read the table (a file, or a shared folder it maps:
-    core.mapped; it reports READ then), compute its topology, write it to target and report
+    core.storage.mapped; it reports READ then), compute its topology, write it to target and report
     HANDED_OVER; then, given the cache `entry`, wait until the build process no longer holds
     its lock on the file `saving` (it writes that entry meanwhile: app.build_process) and
     rewrite the entry with the signatures if it exists. Returns target."""

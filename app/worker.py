@@ -27,7 +27,7 @@ from app.jobs import Job, Progress
 from app.shared_folder import SharedTable
 from app.topology_child import TopologyChild, start_topology
 from core.errors import AlphaScoopError, Cancelled
-from core.modes import Mode
+from core.modes.alpha_modes import Mode
 
 
 def load_job(path: str | Path, mode: Mode | None = None,

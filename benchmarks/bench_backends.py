@@ -28,9 +28,9 @@ SETS = {"torus": noisy_torus, "bunny": bunny_scan}
 
 
 def _prepared(path: str) -> np.ndarray:
-    """The points as the build hands them to a backend (core.build stage 2 + centring)."""
-    from core.build import power_of_two_scale
-    from core.points import merge_duplicates, spatial_order
+    """The points as the build hands them to a backend (core.pipeline stage 2 + centring)."""
+    from core.build.points import merge_duplicates, spatial_order
+    from core.pipeline import power_of_two_scale
 
     points = np.load(path)
     unique, _ = merge_duplicates(points)

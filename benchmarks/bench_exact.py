@@ -28,8 +28,8 @@ GOAL = 1.10  # the certified build at most 10 % slower
 
 
 def build(path: str, certify: bool) -> dict:
-    """core.build.build_complex(points, certify=...) with the time of each build stage."""
-    from core.build import build_complex
+    """core.pipeline.build_complex(points, certify=...) with the time of each build stage."""
+    from core.pipeline import build_complex
 
     build_complex(noisy_torus(50, 1), certify=certify)  # first-call set-up, not timed
     points = np.load(path)

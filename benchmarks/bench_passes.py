@@ -31,8 +31,8 @@ def worker(n: int, seed: int) -> dict:
     from datasets import noisy_torus
 
     from core.complex import AlphaComplex
-    from core.signatures import compute_signatures
-    from core.topology import build_topology
+    from core.topology.betti import build_topology
+    from core.topology.signatures import compute_signatures
 
     points = noisy_torus(n, seed)
     AlphaComplex.from_points(points[:50]).signatures()  # imports and first calls: not timed

@@ -32,3 +32,13 @@ def owned_readonly(arr: np.ndarray) -> np.ndarray:
         arr = np.array(arr, order="C")
     arr.flags.writeable = False
     return arr
+
+
+def first_cofaces(face_ids: np.ndarray, n_faces: int) -> np.ndarray:
+    """(n_faces,) int32 lowest row of the (c, k + 1) `face_ids` (each coface's k + 1 face rows)
+    that holds each face; c for a face in no coface."""
+    first = np.full(n_faces, len(face_ids), dtype=np.int32)
+    rows = np.arange(len(face_ids), dtype=np.int32)
+    for column in range(face_ids.shape[1]):
+        np.minimum.at(first, face_ids[:, column], rows)
+    return first

@@ -22,10 +22,10 @@ from pathlib import Path
 
 import numpy as np
 
-from core.atomic import remove_stale_temporaries
 from core.complex import AlphaComplex
 from core.errors import AlphaScoopError
-from core.modes import Mode
+from core.modes.alpha_modes import Mode
+from core.storage.atomic import remove_stale_temporaries
 
 CACHE_VERSION = 2  # bump when the saved table layout or the build rules change
 MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this ($ALPHASCOOP_CACHE_LIMIT)
@@ -61,7 +61,8 @@ def cache_dir() -> Path:
 def points_key(points: np.ndarray, mode: Mode | None = None,
                normals: np.ndarray | None = None, weights: np.ndarray | None = None) -> str:
     """Hex digest of the points' shape and float64 bytes, the cache version, for a mode
-    (core/modes.py) its parameters and any given normals, and the weights of a weighted set."""
+    (core/modes/alpha_modes.py) its parameters and any given normals, and the weights of a weighted
+    set."""
     arr = np.ascontiguousarray(points, dtype=np.float64)
     digest = hashlib.blake2b(digest_size=20)
     digest.update(f"alphascoop-table-v{CACHE_VERSION}:{arr.shape}".encode())

@@ -1,6 +1,7 @@
-"""AlphaComplex: the queried result of a build (core/build.py) or a load (core/storage.py).
+"""AlphaComplex: the queried result of a build (core/pipeline.py) or a load
+(core/storage/tables.py).
 
-It holds the points and a frozen TableIndex (core/index.py) and answers every query from
+It holds the points and a frozen TableIndex (core/query/index.py) and answers every query from
 them; topology and signatures are computed on first use, or handed in when they were saved.
 """
 
@@ -10,26 +11,26 @@ import os
 
 import numpy as np
 
-from . import storage
-from . import topology as forests
-from .alpha import at_value, table_value, threshold
-from .arrays import readonly
-from .build import BuildInfo, build_complex
-from .classes import EXTERIOR, INTERIOR, REGULAR, SINGULAR
-from .cursor import CursorOrders, ShapeCursor
-from .errors import InputError
-from .index import TableIndex
-from .locate import Locator, contains
-from .locate import query_points as checked_queries
-from .modes import Mode
-from .persistence import Persistence, compute_persistence
-from .points import Frame
-from .power import signed_square
-from .progress import Progress
-from .shape import AlphaShape
-from .signatures import Signatures, compute_signatures
-from .suggest import AlphaRange, cover_alpha, optimal_alpha, suggest_alphas
-from .topology import Topology
+from core.arrays import readonly
+from core.build.points import Frame
+from core.errors import InputError
+from core.geometry.power import signed_square
+from core.modes.alpha_modes import Mode
+from core.pipeline import BuildInfo, build_complex
+from core.progress import Progress
+from core.query.alpha import at_value, table_value, threshold
+from core.query.classes import EXTERIOR, INTERIOR, REGULAR, SINGULAR
+from core.query.cursor import CursorOrders, ShapeCursor
+from core.query.index import TableIndex
+from core.query.locate import Locator, contains
+from core.query.locate import query_points as checked_queries
+from core.query.shape import AlphaShape
+from core.storage import tables as storage
+from core.topology import betti as forests
+from core.topology.betti import Topology
+from core.topology.persistence import Persistence, compute_persistence
+from core.topology.signatures import Signatures, compute_signatures
+from core.topology.suggest import AlphaRange, cover_alpha, optimal_alpha, suggest_alphas
 
 __all__ = ["EXTERIOR", "INTERIOR", "REGULAR", "SINGULAR", "AlphaComplex", "at_value",
            "table_value"]
@@ -58,9 +59,9 @@ class AlphaComplex:
         """The complex of (m, dim) `points` and its table `index`; `input_index` (n,) maps
         input rows to points (-1 = hidden). `topology` and `signatures`, when given (saved
         with a table), are used instead of being computed."""
-        #: The table and its lookups (core/index.py), shared with shapes and cursors.
+        #: The table and its lookups (core/query/index.py), shared with shapes and cursors.
         self.index = index
-        #: How the table was built (core/build.py): the triangulation backend, ...
+        #: How the table was built (core/pipeline.py): the triangulation backend, ...
         self.build_info = build_info or BuildInfo()
         self.mode = mode or Mode()
         self.points = readonly(points)
@@ -83,14 +84,14 @@ class AlphaComplex:
                     normals: object = None, backend: str | None = None) -> AlphaComplex:
         """Build from (n, 2) or (n, 3) points; duplicates merged, planar 3D built in 2D.
 
-        The pipeline is core/build.py. `progress(fraction, stage)` is called between stages;
+        The pipeline is core/pipeline.py. `progress(fraction, stage)` is called between stages;
         raising core.errors.Cancelled from it stops the build. Raises InputError for points
         that make no complex.
         `weights`: (n,) squared radii for a weighted complex (regular triangulation, power
         distance); None or all zeros build the classic complex. Points whose ball is hidden
         by the others get input_index -1.
-        Modes (core/modes.py; alpha is then in the mode's units): `density=k` divides radii
-        by the local spacing (distance to the k-th neighbour, `combine`d over a simplex's
+        Modes (core/modes/alpha_modes.py; alpha is then in the mode's units): `density=k` divides
+        radii by the local spacing (distance to the k-th neighbour, `combine`d over a simplex's
         vertices by "mean" or "max"); `anisotropy=tau` in [0, 1) compresses the alpha ball
         along the surface normal, taken from `normals` ((n, d) like the points) or estimated.
         `backend`: the triangulation backend, "qhull", "gmsh" (the optional `fast` extra,
@@ -164,7 +165,7 @@ class AlphaComplex:
     def cursor(self, orders: CursorOrders | None = None) -> ShapeCursor:
         """A ShapeCursor: shapes at one alpha after another, each step costing what changed
         (the explorer's slider); building it sorts the table once more, unless the
-        `orders` (core.cursor.cursor_orders of this table) were found already."""
+        `orders` (core.query.cursor.cursor_orders of this table) were found already."""
         return ShapeCursor(self.index, self.points, orders)
 
     def to_ambient(self, coords: np.ndarray) -> np.ndarray:
@@ -180,7 +181,8 @@ class AlphaComplex:
 
     # --- files -----------------------------------------------------------------------------
     def save(self, path: str | os.PathLike) -> None:
-        """Write the table to an .npz file atomically (see core/storage.py for the layout)."""
+        """Write the table to an .npz file atomically (see core/storage/tables.py for the
+        layout)."""
         storage.save(self, path)
 
     @classmethod
@@ -188,7 +190,7 @@ class AlphaComplex:
              spectrum: np.ndarray | None = None) -> AlphaComplex:
         """Read a table written by `save` (or the folder of `storage.save_mapped`: mapped, not
         read); FileFormatError if it is not one. verify=False skips most checks: only for a
-        file this program has just written (core.storage). `spectrum`: the table's spectrum
+        file this program has just written (core.storage.tables). `spectrum`: the table's spectrum
         as this program found it beside the table (a build process's hand-over), so it is
         not sorted again (storage.load)."""
         saved = storage.load(path, verify=verify, spectrum=spectrum)
@@ -199,9 +201,10 @@ class AlphaComplex:
     def __repr__(self) -> str:
         return f"AlphaComplex(dim={self.dim}, points={len(self.points)}, simplices={self.counts()})"
 
-    # --- topology (core.topology / core.signatures), computed on first use ---------------
+    # --- topology (core.topology.betti / core.topology.signatures), computed on first use
+    # ---------------
     def topology(self) -> Topology:
-        """The forests behind Betti numbers and solid components (core.topology), built on
+        """The forests behind Betti numbers and solid components (core.topology.betti), built on
         first use in O(n log n) or handed in with a saved table."""
         if self._topology is None:
             self._topology = forests.build_topology(self)
@@ -241,7 +244,7 @@ class AlphaComplex:
         return optimal_alpha(self.signatures(), self._cover_alpha, n_components)
 
     def default_alpha(self) -> float:
-        """The alpha a view opens at: where the shape looks like the object (core.opening).
+        """The alpha a view opens at: where the shape looks like the object (core.topology.opening).
 
         The smallest alpha at which the triangles (surface and solid) join at least 99 % of the
         points into one piece, and never more than `optimal_alpha()` (CGAL's rule for solids).

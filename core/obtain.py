@@ -16,12 +16,12 @@ from typing import Literal, Protocol
 
 import numpy as np
 
-from .cache import entry_exists, entry_path, read_entry, save_entry
-from .complex import AlphaComplex
-from .cursor import ShapeCursor
-from .modes import Mode
-from .points import as_points
-from .progress import Progress
+from core.build.points import as_points
+from core.cache import entry_exists, entry_path, read_entry, save_entry
+from core.complex import AlphaComplex
+from core.modes.alpha_modes import Mode
+from core.progress import Progress
+from core.query.cursor import ShapeCursor
 
 Source = Literal["built", "cache", "rebuilt"]
 SOURCES: tuple[Source, ...] = ("built", "cache", "rebuilt")
@@ -33,7 +33,7 @@ class BuildRequest:
     """What a runner builds: (n, d) float64 points, optional (n,) squared-radius `weights`,
     the alpha `mode` with its given (n, d) `normals`, whether to compute the `signatures` too,
     the cache entry to `save_to` (None: keep it in memory only) and the triangulation
-    `backend` ("qhull", "gmsh", None = automatic: core/build.py)."""
+    `backend` ("qhull", "gmsh", None = automatic: core/pipeline.py)."""
 
     points: np.ndarray
     weights: np.ndarray | None = None
@@ -77,7 +77,7 @@ class BuildRequest:
 @dataclass(frozen=True)
 class HandOver:
     """What a runner found beside the complex it built, so that its caller need not: the
-    quick opening alpha (core.opening.opening_alpha_of) and the slider's cursor; None for
+    quick opening alpha (core.topology.opening.opening_alpha_of) and the slider's cursor; None for
     what it did not find. `saving`: the runner's process still writes the complex's cache
     entry (it handed the complex over first)."""
 

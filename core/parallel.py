@@ -14,7 +14,7 @@ from typing import TypeVar
 
 import numpy as np
 
-from .arrays import ascends
+from core.arrays import ascends
 
 PARALLEL_ABOVE = 1 << 19  # elements: longer passes are split between two threads
 HELPER = "alphascoop-helper"

@@ -14,9 +14,9 @@ from app import build_process, child_process
 from core import AlphaComplex
 from core.cache import entry_path, read_entry
 from core.errors import AlphaScoopError, Cancelled, InputError
-from core.modes import Mode
+from core.modes.alpha_modes import Mode
 from core.obtain import BuildRequest, HandOver, obtain
-from core.opening import opening_alpha_of
+from core.topology.opening import opening_alpha_of
 
 
 @pytest.fixture

@@ -10,8 +10,8 @@ from conftest import image_contrast, open_and_wait
 from app.palette import LAYER_TITLES, default_styles
 from app.scene.overlay import merge_same_swatch
 from app.scene.painting import SCALARS
-from core.components import solid_labels
-from core.spheres import find_simplex
+from core.query.spheres import find_simplex
+from core.topology.components import solid_labels
 
 
 def scan_like(n: int = 1500, seed: int = 9) -> np.ndarray:

@@ -324,7 +324,7 @@ def test_newer_open_kills_a_big_build_in_its_triangulation(window, qtbot, points
 def test_reopening_loads_the_cached_table_and_says_so(window, qtbot, points_file,
                                                       monkeypatch) -> None:
     """The second open of the same points is a cache load, topology included."""
-    import core.topology
+    import core.topology.betti
 
     path = points_file(blobs_3d(700, seed=12), "again.npy")
     open_and_wait(qtbot, window, path)
@@ -334,7 +334,7 @@ def test_reopening_loads_the_cached_table_and_says_so(window, qtbot, points_file
     def no_topology_pass(ac):
         raise AssertionError("re-opening recomputed the topology")
 
-    monkeypatch.setattr(core.topology, "build_topology", no_topology_pass)
+    monkeypatch.setattr(core.topology.betti, "build_topology", no_topology_pass)
     open_and_wait(qtbot, window, path)
     second = window.model.dataset
     assert second.from_cache and "loaded from cache in" in window.status.text()
@@ -657,4 +657,4 @@ def test_info_dock_prints_for_people(opened) -> None:
     ]
     text = "\n".join(data_lines(opened.model))
     assert "e+0" not in text and "x " in text and "spacing" in text
-    assert "build: backend qhull" in text  # ac.build_info (core/build.py)
+    assert "build: backend qhull" in text  # ac.build_info (core/pipeline.py)

@@ -11,7 +11,7 @@ from PySide6.QtCore import QPoint, Qt
 
 from app.inspect import alpha_text
 from app.palette import default_styles
-from core.classes import CLASSES
+from core.query.classes import CLASSES
 
 
 def blobs(dim: int, n: int = 900, seed: int = 5) -> np.ndarray:
@@ -142,7 +142,7 @@ def test_class_follows_the_slider_and_clear_removes_the_highlight(opened, qtbot)
 def test_spoon_is_drawn_through_the_simplex(opened, qtbot) -> None:
     """Ticking "Show its spoon" draws a sphere (circle in 2D) of radius enter around the
     simplex's spoon centre; unticking removes it."""
-    from core.spheres import simplex_sphere
+    from core.query.spheres import simplex_sphere
 
     win = opened
     layer = win.scene.layers[surface(win)]

@@ -10,7 +10,7 @@ import pytest
 from conftest import BUILD_TIMEOUT_MS, open_and_wait
 
 from app.cli import main
-from core.modes import Mode, make_mode
+from core.modes.alpha_modes import Mode, make_mode
 
 
 @pytest.fixture(autouse=True)

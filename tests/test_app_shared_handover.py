@@ -1,4 +1,4 @@
-"""The build process hands its table over in shared memory (app.shared_folder, core.mapped):
+"""The build process hands its table over in shared memory (app.shared_folder, core.storage.mapped):
 before the cache entry is written, mapped by the window and the topology process, gone from
 /dev/shm once both mapped it (or on cancel, failure, a killed window), a file hand-over when
 shared memory is missing or too small, and the entry ends up whole, with the signatures."""
@@ -24,12 +24,13 @@ from app import build_process, child_process
 from app.shared_folder import SharedFolder, SharedTable
 from app.topology_child import TopologyChild
 from app.topology_process import HANDED_OVER, topology_in_child
-from core import AlphaComplex, mapped
+from core import AlphaComplex
 from core.cache import entry_path, read_entry
 from core.errors import AlphaScoopError, Cancelled, FileFormatError
-from core.modes import Mode
+from core.modes.alpha_modes import Mode
 from core.obtain import obtain
-from core.opening import opening_alpha_of
+from core.storage import mapped
+from core.topology.opening import opening_alpha_of
 
 ROOT = Path(__file__).resolve().parents[1]
 pytestmark = pytest.mark.skipif(not child_process.SHARED_ROOT.is_dir(), reason="no /dev/shm")
@@ -258,7 +259,7 @@ def test_the_topology_process_rewrites_the_entry_only_after_the_build_wrote_it(t
     shared, entry, saving = tmp_path / "shared", tmp_path / "entry.npz", tmp_path / "saving"
     shared.mkdir()
     AlphaComplex.from_points(points).save(entry)  # the build process's entry
-    from core.storage import save_mapped
+    from core.storage.tables import save_mapped
     assert save_mapped(ac, shared)
     stages: list[str] = []
     handed = threading.Event()
@@ -285,7 +286,7 @@ def test_an_entry_the_build_could_not_write_is_not_made_by_the_topology(tmp_path
     points = np.random.default_rng(8).random((2000, 3))
     shared, entry = tmp_path / "shared", tmp_path / "entry.npz"
     shared.mkdir()
-    from core.storage import save_mapped
+    from core.storage.tables import save_mapped
     assert save_mapped(AlphaComplex.from_points(points), shared)
     topology_in_child(str(shared), str(entry), str(tmp_path / "topology.npz"),
                       str(tmp_path / "gone.lock"), never)

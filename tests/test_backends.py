@@ -18,9 +18,9 @@ from core import parallel
 from core.backends import facets
 from core.backends.certify import why_not_delaunay
 from core.backends.facets import neighbours
-from core.delaunay import triangulate
+from core.build.delaunay import triangulate
+from core.build.points import check_spread, merge_duplicates, spatial_order
 from core.errors import InputError
-from core.points import check_spread, merge_duplicates, spatial_order
 
 needs_gmsh = pytest.mark.skipif(not backends.gmsh_backend.installed(),
                                 reason="the optional gmsh package is not installed")
@@ -326,7 +326,7 @@ def test_a_mirror_that_does_not_fit_the_neighbours_is_refused():
     from scipy.spatial import Delaunay
 
     from core.backends.facets import paired
-    from core.delaunay import Triangulation, mirror_fits
+    from core.build.delaunay import Triangulation, mirror_fits
 
     points = np.random.default_rng(3).random((400, 3))
     cells = np.sort(Delaunay(points).simplices, axis=1).astype(np.int32)
@@ -364,7 +364,7 @@ def exact_delaunay_cells(points: np.ndarray) -> np.ndarray:
     """The unique Delaunay cells of points in general position: Qhull's, certified exactly
     (what gmsh returns when its own predicates get every near-cospherical facet right, which
     depends on its internal state; standing in for it keeps these tests deterministic)."""
-    from core.certify import certified_triangulation
+    from core.build.certify import certified_triangulation
 
     certified = certified_triangulation(points, triangulate(points))
     assert certified.uncertified == 0
@@ -399,7 +399,7 @@ def test_near_cospherical_facets_are_settled_exactly(d: int, seed: int, monkeypa
 @needs_gmsh
 @pytest.mark.parametrize(("d", "seed"), [(2, 1), (3, 0)])
 def test_near_cospherical_tables_equal_bit_for_bit(d: int, seed: int, monkeypatch) -> None:
-    """Qhull's differing cells are flipped by core.certify into the same unique cells."""
+    """Qhull's differing cells are flipped by core.build.certify into the same unique cells."""
     from core import AlphaComplex
 
     points, _, _ = near_cospherical(seed, d)

@@ -1,4 +1,4 @@
-"""The build pipeline (core/build.py): backend choice and BuildInfo, saved with the table."""
+"""The build pipeline (core/pipeline.py): backend choice and BuildInfo, saved with the table."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from core import AlphaComplex, FileFormatError, InputError
-from core.build import BuildInfo, build_complex
+from core.pipeline import BuildInfo, build_complex
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""The certification's shared pass (core.cell_pass): the cell spheres are the table's bit for
+"""The certification's shared pass (core.build.cell_pass): the cell spheres are the table's bit for
 bit, and every orientation or in-sphere sign it settles in floating point is the exact sign
 (checked against exact integer arithmetic on every row of near-degenerate sets, where many
 rows are left to the exact path)."""
@@ -10,10 +10,10 @@ import pytest
 from scipy.spatial import Delaunay
 from test_exact_gudhi import cospherical, noisy_lattice, range_grid
 
-from core.cell_pass import first_pass
-from core.exact import exact_ints, exact_signs
-from core.geometry import cell_spheres
-from core.predicates import insphere_formula, orientation_formula
+from core.build.cell_pass import first_pass
+from core.geometry.circumspheres import cell_spheres
+from core.geometry.exact import exact_ints, exact_signs
+from core.geometry.predicates import insphere_formula, orientation_formula
 
 SETS = {
     "3d-lattice-1e-12": lambda: noisy_lattice(6, 3, 1e-12),

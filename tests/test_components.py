@@ -1,5 +1,5 @@
-"""core.components: per-cell solid component labels agree with the signatures' component count,
-join exactly the facet-adjacent cells, and come largest first."""
+"""core.topology.components: per-cell solid component labels agree with the signatures' component
+count, join exactly the facet-adjacent cells, and come largest first."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from core import AlphaComplex, InputError
-from core.components import facet_labels, solid_labels
+from core.topology.components import facet_labels, solid_labels
 
 
 @pytest.fixture(scope="module", params=[2, 3], ids=["2d", "3d"])

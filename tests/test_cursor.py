@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 
 from core import REGULAR, SINGULAR, AlphaComplex
 from core.complex import at_value
-from core.cursor import CursorOrders, cursor_orders
 from core.errors import InputError
+from core.query.cursor import CursorOrders, cursor_orders
 
 
 def lattice_3d(size: int) -> np.ndarray:
@@ -43,16 +43,16 @@ def assert_same_as_fresh(ac: AlphaComplex, shape, alpha: float) -> None:
 def strategy(request, monkeypatch):
     """Run a test with the cursor's own choice, or forcing delta steps or resets (with
     every pass split between two threads, as long ones are)."""
-    import core.cursor
     import core.parallel
+    import core.query.cursor
 
     if request.param != "cost model":
         force = "reset" in request.param
-        monkeypatch.setattr(core.cursor.IntervalSet, "_cheaper_to_reset",
+        monkeypatch.setattr(core.query.cursor.IntervalSet, "_cheaper_to_reset",
                             lambda self, c, n: force)
     if "halves" in request.param:
         monkeypatch.setattr(core.parallel, "PARALLEL_ABOVE", 2)
-        monkeypatch.setattr(core.cursor, "FEW", 0)
+        monkeypatch.setattr(core.query.cursor, "FEW", 0)
     return request.param
 
 
@@ -145,9 +145,9 @@ def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, halves, steps):
     import contextlib
     from unittest import mock
 
-    import core.cursor
     import core.parallel
-    from core.cursor import IntervalSet
+    import core.query.cursor
+    from core.query.cursor import IntervalSet
 
     rng = np.random.default_rng(seed)
     points = rng.integers(0, 5, (60, dim)).astype(float) if grid else rng.random((60, dim))
@@ -159,7 +159,7 @@ def test_any_walk_matches_fresh_shapes(seed, dim, grid, force, halves, steps):
               if force is not None else contextlib.nullcontext())
     split = contextlib.ExitStack()
     if halves:
-        split.enter_context(mock.patch.object(core.cursor, "FEW", 0))
+        split.enter_context(mock.patch.object(core.query.cursor, "FEW", 0))
         split.enter_context(mock.patch.object(core.parallel, "PARALLEL_ABOVE", 2))
     with choice, split:
         walk(ac, np.cumsum([len(ac.spectrum()) // 2, *steps]))
@@ -270,12 +270,12 @@ def test_set_up_in_chunks_and_halves_gives_the_shapes_row_for_row(dim, weighted,
     """The cursor's set-up (facets oriented chunk by chunk, ranks scattered in halves), with
     tiny chunks and every pass split, from handed orders or its own sorts: its shapes equal
     ac.shape's at many alphas (classic and weighted, 2D and 3D), and its oriented rows equal
-    core.index.facing_out's definition for every facet."""
-    import core.cursor
+    core.query.index.facing_out's definition for every facet."""
     import core.parallel
-    from core.index import facing_out
+    import core.query.cursor
+    from core.query.index import facing_out
 
-    monkeypatch.setattr(core.cursor, "ROW_CHUNK", 7)
+    monkeypatch.setattr(core.query.cursor, "ROW_CHUNK", 7)
     monkeypatch.setattr(core.parallel, "PARALLEL_ABOVE", 2)
     rng = np.random.default_rng(20 + dim)
     points = rng.random((700, dim))
@@ -286,7 +286,7 @@ def test_set_up_in_chunks_and_halves_gives_the_shapes_row_for_row(dim, weighted,
     cells = index.facet_cells()
     inside_second = (cells[:, 1] >= 0) & (cells[:, 1] < cells[:, 0])
     np.testing.assert_array_equal(
-        core.cursor._oriented_rows(index, facets[::-1].copy()),
+        core.query.cursor._oriented_rows(index, facets[::-1].copy()),
         facing_out(index.simplices(dim - 1), index.table.facet_flip, inside_second)[::-1])
     spectrum = ac.spectrum()
     stops = np.concatenate([rng.integers(0, len(spectrum), 30), [0, len(spectrum) - 1]])

@@ -1,4 +1,4 @@
-"""The forests with the edges that short cycles close left out (core/cycles.py) are the
+"""The forests with the edges that short cycles close left out (core/topology/cycles.py) are the
 forests of every edge, and the opening alpha from the triangle-order forest is the one from
 the sorted edges; on random, lattice (many ties), weighted and 2D inputs."""
 
@@ -8,15 +8,15 @@ import numpy as np
 import pytest
 
 from core import AlphaComplex
-from core.cycles import open_edges
-from core.opening import (
+from core.topology.betti import dual_forest, open_facets, vertex_spanning_forest
+from core.topology.cycles import open_edges
+from core.topology.opening import (
     lowest_enter_cofaces,
     opening_alpha,
     opening_alpha_of,
     reaching_alpha,
     triangle_forest,
 )
-from core.topology import dual_forest, open_facets, vertex_spanning_forest
 
 
 def lattice(side: int, dim: int) -> np.ndarray:

@@ -79,7 +79,7 @@ def test_range_grid_like_sets_equal_gudhi_exact(dim: int, jitter: float) -> None
 
 
 #: Seeds where Qhull folds slivers onto the nearly flat hull faces that no flip repairs (the
-#: local exact re-triangulation of core/rewrap.py does) and seeds where it does not.
+#: local exact re-triangulation of core/build/rewrap.py does) and seeds where it does not.
 SWEEP_SEEDS = range(8)
 
 

@@ -1,4 +1,5 @@
-"""core.predicates / core.exact against Fractions on adversarial (near-degenerate) inputs."""
+"""core.geometry.predicates / core.geometry.exact against Fractions on adversarial
+(near-degenerate) inputs."""
 
 from __future__ import annotations
 
@@ -8,8 +9,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from core.exact import exact_ints, exact_radii
-from core.predicates import diametral_signs, in_sphere, orientations
+from core.geometry.exact import exact_ints, exact_radii
+from core.geometry.predicates import diametral_signs, in_sphere, orientations
 
 SETTINGS = settings(max_examples=60, deadline=None)
 

@@ -6,7 +6,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from core.geometry import facet_radii2
+from core.geometry.circumspheres import facet_radii2
 
 
 def exact_radius2(corners: np.ndarray) -> Fraction:

@@ -1,4 +1,4 @@
-"""The public TableIndex (core/index.py): frozen, read-only, and facets it orients face out
+"""The public TableIndex (core/query/index.py): frozen, read-only, and facets it orients face out
 of their cell (checked against the cells' geometry, not against our own orientation code)."""
 
 from __future__ import annotations
@@ -8,9 +8,9 @@ import dataclasses
 import numpy as np
 import pytest
 
-import core.topology
+import core.topology.betti
 from core import AlphaComplex
-from core.index import TableIndex, oriented_facets
+from core.query.index import TableIndex, oriented_facets
 
 
 @pytest.fixture(scope="module", params=[2, 3])
@@ -62,7 +62,7 @@ def test_signatures_are_explicit_and_come_back_with_a_saved_table(ac, tmp_path, 
     fresh.signatures()
     assert fresh.has_signatures
     fresh.save(tmp_path / "t.npz")
-    monkeypatch.setattr(core.topology, "build_topology",
+    monkeypatch.setattr(core.topology.betti, "build_topology",
                         lambda _: pytest.fail("saved topology was recomputed"))
     loaded = AlphaComplex.load(tmp_path / "t.npz")
     assert loaded.has_signatures

@@ -1,5 +1,5 @@
-"""A table handed over as mapped .npy files (core.mapped, core.storage.save_mapped): the same
-arrays as the saved file, read-only, every query the same, and the mapping gone with the
+"""A table handed over as mapped .npy files (core.storage.mapped, core.storage.tables.save_mapped):
+the same arrays as the saved file, read-only, every query the same, and the mapping gone with the
 complex."""
 
 from __future__ import annotations
@@ -10,9 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from core import AlphaComplex, mapped, storage
-from core.cursor import cursor_orders
-from core.npz import read_npz
+from core import AlphaComplex
+from core.query.cursor import cursor_orders
+from core.storage import mapped
+from core.storage import tables as storage
+from core.storage.npz import read_npz
 
 
 def mapped_regions(folder: Path) -> list[str]:

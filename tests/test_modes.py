@@ -1,5 +1,5 @@
-"""Density-scaled and anisotropic alpha (core/modes.py): the tables are filtrations, match a
-brute force of their definitions, and are exactly the classic table when the mode is off."""
+"""Density-scaled and anisotropic alpha (core/modes/alpha_modes.py): the tables are filtrations,
+match a brute force of their definitions, and are exactly the classic table when the mode is off."""
 
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ from reference import (
 from core import AlphaComplex
 from core.cache import points_key
 from core.errors import FileFormatError, InputError
-from core.modes import Mode, make_mode
+from core.modes.alpha_modes import Mode, make_mode
 from core.obtain import obtain
 
 SETTINGS = settings(max_examples=30, deadline=None,
@@ -172,7 +172,7 @@ def _brute_anisotropic(points: np.ndarray, normals: np.ndarray, tau: float) -> d
 
 @pytest.mark.parametrize("dim", [2, 3])
 def test_anisotropic_table_matches_brute_force(dim):
-    """Every value and every attachment (the face passes of core/stretched.py, including the
+    """Every value and every attachment (the face passes of core/modes/stretched.py, including the
     3D edges tested from their triangles) against the definition."""
     pts = _cloud(11, 70, dim)
     normals = np.random.default_rng(12).normal(size=pts.shape)
@@ -313,8 +313,8 @@ def test_mode_describes_itself():
 def test_estimated_normals_face_out_of_a_sphere():
     """PCA normals oriented over the 8-neighbour spanning tree: on a sphere every normal is
     radial and all face the same way (outward: the root faces away from the centroid)."""
-    from core.modes import NORMAL_NEIGHBOURS, point_normals
-    from core.neighbourhood import neighbours
+    from core.geometry.neighbourhood import neighbours
+    from core.modes.alpha_modes import NORMAL_NEIGHBOURS, point_normals
 
     pts = np.random.default_rng(13).normal(size=(3000, 3))
     pts /= np.linalg.norm(pts, axis=1)[:, None]
@@ -323,7 +323,7 @@ def test_estimated_normals_face_out_of_a_sphere():
 
 
 def test_local_geometry_beside_the_table_is_the_same_and_raises_its_errors():
-    from core.modes import local_geometry, local_geometry_beside
+    from core.modes.alpha_modes import local_geometry, local_geometry_beside
 
     pts = _cloud(14, 500, 3)
     for mode in (make_mode(4), make_mode(None, "mean", 0.5), make_mode(6, "max", 0.3)):

@@ -1,4 +1,4 @@
-"""core/neighbourhood.py: the closed-form smallest eigenvectors of the PCA normals against
+"""core/geometry/neighbourhood.py: the closed-form smallest eigenvectors of the PCA normals against
 LAPACK's eigh, on random, flat (surface-like) and degenerate covariances; the orientation
 graph against scipy's own COO to CSR conversion."""
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.sparse import coo_matrix
 
-from core.neighbourhood import least_axes, orientation_graph
+from core.geometry.neighbourhood import least_axes, orientation_graph
 
 
 def _covariances(kind: str) -> np.ndarray:

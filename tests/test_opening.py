@@ -14,7 +14,7 @@ from scipy.spatial import cKDTree
 from surface_measure import surface_match
 
 from core import SINGULAR, AlphaComplex
-from core.opening import OPENING_SHARE
+from core.topology.opening import OPENING_SHARE
 
 DATA = data_dir()
 needs_data = pytest.mark.skipif(DATA is None, reason="shared real scans absent")

@@ -11,10 +11,9 @@ from unittest import mock
 import numpy as np
 import pytest
 
-import core.geometry
+import core.build.table
+import core.geometry.circumspheres
 import core.parallel
-import core.table
-from core.build import build_complex
 from core.complex import AlphaComplex
 from core.parallel import (
     cast,
@@ -27,6 +26,7 @@ from core.parallel import (
     together,
     unsplit,
 )
+from core.pipeline import build_complex
 
 
 @contextlib.contextmanager
@@ -34,10 +34,10 @@ def everything_split():
     """Split every pass of more than 2 items; chunks of 7 rows."""
     with contextlib.ExitStack() as stack:
         stack.enter_context(mock.patch.object(core.parallel, "PARALLEL_ABOVE", 2))
-        stack.enter_context(mock.patch.object(core.table, "PARALLEL_ABOVE", 2))
-        stack.enter_context(mock.patch.object(core.geometry, "CHUNK", 7))
-        stack.enter_context(mock.patch.object(core.geometry, "CACHE_CHUNK", 7))
-        stack.enter_context(mock.patch.object(core.table, "CACHE_CHUNK", 7))
+        stack.enter_context(mock.patch.object(core.build.table, "PARALLEL_ABOVE", 2))
+        stack.enter_context(mock.patch.object(core.geometry.circumspheres, "CHUNK", 7))
+        stack.enter_context(mock.patch.object(core.geometry.circumspheres, "CACHE_CHUNK", 7))
+        stack.enter_context(mock.patch.object(core.build.table, "CACHE_CHUNK", 7))
         yield
 
 
@@ -191,10 +191,10 @@ def test_split_argsort_radii_equals_a_stable_argsort(n: int) -> None:
     zeros = np.where(rng.random(n) < 0.5, -0.0, 0.0)
     with everything_split(), np.errstate(over="ignore"):
         for values in cases:
-            np.testing.assert_array_equal(core.table.argsort_radii(values),
+            np.testing.assert_array_equal(core.build.table.argsort_radii(values),
                                           np.argsort(values, kind="stable"))
         for values in [*cases, zeros]:
-            np.testing.assert_array_equal(core.table.argsort_radii(values),
+            np.testing.assert_array_equal(core.build.table.argsort_radii(values),
                                           _argsort_radii_whole(values))
 
 
@@ -203,9 +203,9 @@ def test_stable_fix_joins_its_parts_only_where_the_cut_is_sound() -> None:
     order = np.arange(6)
     want = np.argsort(values, kind="stable")
     for cut in range(7):  # most cuts are not sound here: the parts are not ordered
-        np.testing.assert_array_equal(core.table.stable_fix(values, order, cut), want)
+        np.testing.assert_array_equal(core.build.table.stable_fix(values, order, cut), want)
     values = np.array([2.0, 1.0, 1.0, 5.0, 4.0, 4.0])
-    np.testing.assert_array_equal(core.table.stable_fix(values, order, 3),
+    np.testing.assert_array_equal(core.build.table.stable_fix(values, order, 3),
                                   np.argsort(values, kind="stable"))
 
 
@@ -247,7 +247,7 @@ def test_edge_pass_reads_triangles_packed_or_not_the_same() -> None:
     column reads (larger point sets) give the same table."""
     points = np.random.default_rng(5).random((500, 3))
     packed = _table_arrays(build_complex(points))
-    with mock.patch.object(core.table, "WORDS_UP_TO", 0):
+    with mock.patch.object(core.build.table, "WORDS_UP_TO", 0):
         columns = _table_arrays(build_complex(points))
     for name, array in packed.items():
         np.testing.assert_array_equal(array, columns[name], err_msg=name)
@@ -275,7 +275,7 @@ def test_backend_check_counts_points_in_no_cell_in_halves() -> None:
     """The backend check marks the vertices of the cells in halves: one point left out of
     every cell is counted exactly once, whichever half its cells were in."""
     from core.backends.certify import why_not_delaunay
-    from core.delaunay import triangulate
+    from core.build.delaunay import triangulate
 
     points = np.random.default_rng(8).random((300, 3))
     tri = triangulate(points)

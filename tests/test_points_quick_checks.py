@@ -1,5 +1,5 @@
 """The quick paths of reading and checking points against their definitions: the spread
-decided without an SVD (core.points.clearly_spread) and the median spacing from a quicker
+decided without an SVD (core.build.points.clearly_spread) and the median spacing from a quicker
 tree give what the SVD and a brute-force nearest-neighbour search give."""
 
 from __future__ import annotations
@@ -11,9 +11,9 @@ from hypothesis import strategies as st
 from scipy.spatial import cKDTree
 from scipy.spatial.distance import cdist
 
+from core.build.points import Frame, check_spread, clearly_spread, flatness
 from core.errors import InputError
 from core.io.report import SPACING_SAMPLE, is_planar, median_spacing
-from core.points import Frame, check_spread, clearly_spread, flatness
 from core.tolerances import FLAT_RTOL
 
 
@@ -121,13 +121,13 @@ def spatial_order_by_definition(points: np.ndarray) -> np.ndarray:
 def test_spatial_order_in_chunks_and_halves_is_the_same_permutation(dim, split, monkeypatch):
     """Codes made chunk by chunk and sorted in two merged halves give the very permutation
     of the one-piece definition, ties (many points per grid cell, duplicates) in order."""
+    import core.build.points
     import core.parallel
-    import core.points
+    from core.build.points import spatial_order
     from core.parallel import argsort_stable
-    from core.points import spatial_order
 
     if split:
-        monkeypatch.setattr(core.points, "CODE_CHUNK", 5)
+        monkeypatch.setattr(core.build.points, "CODE_CHUNK", 5)
         monkeypatch.setattr(core.parallel, "PARALLEL_ABOVE", 2)
     rng = np.random.default_rng(dim)
     for points in (rng.random((3001, dim)), rng.integers(0, 4, (2000, dim)) * 1.0,

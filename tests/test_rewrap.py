@@ -1,4 +1,4 @@
-"""The local exact re-triangulation (core/rewrap.py, issue 14): cut out around cells and
+"""The local exact re-triangulation (core/build/rewrap.py, issue 14): cut out around cells and
 wrapped again, a Delaunay triangulation comes back cell for cell (Qhull's on general points,
 an independent reference); on the jittered lattices whose folds no flip repairs, certification
 with the repair gives gudhi's exact Delaunay cells where it failed without."""
@@ -8,10 +8,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import core.rewrap as rewrap_module
-from core.certify import certify, tie_weights
-from core.delaunay import triangulate
-from core.rewrap import grow, rewrap
+import core.build.rewrap as rewrap_module
+from core.build.certify import certify, tie_weights
+from core.build.delaunay import triangulate
+from core.build.rewrap import grow, rewrap
 
 
 def _cell_set(cells: np.ndarray) -> set:
@@ -77,8 +77,8 @@ def test_repair_certifies_folds_flips_cannot(seed: int) -> None:
 
 def test_nothing_new_runs_on_a_certified_build(monkeypatch) -> None:
     """The ordinary path: a triangulation that certifies never reaches the re-triangulation."""
-    import core.certify as certify_module
-    from core.build import build_complex
+    import core.build.certify as certify_module
+    from core.pipeline import build_complex
 
     def refuse(*args, **kwargs):
         raise AssertionError("a repair ran on a build that certifies")
@@ -97,7 +97,7 @@ def test_a_flat_cell_on_the_region_boundary_grows_the_region() -> None:
     a tiling of the convex hull, not gudhi's cells."""
     from scipy.spatial import ConvexHull
 
-    from core.build import build_complex
+    from core.pipeline import build_complex
 
     rng = np.random.default_rng(492)
     pts = np.unique(np.round(rng.uniform(size=(150, 3)), 1), axis=0)

@@ -9,7 +9,7 @@ import pytest
 from scipy.spatial import ConvexHull, Delaunay
 
 from core import AlphaComplex, InputError
-from core.suggest import stable_ranges
+from core.topology.suggest import stable_ranges
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 

@@ -1,4 +1,4 @@
-"""core.spheres against brute force: a simplex's spoon passes through its vertices, has its
+"""core.query.spheres against brute force: a simplex's spoon passes through its vertices, has its
 enter alpha as radius and holds no point; find_simplex inverts simplices(k)."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from core import AlphaComplex, InputError
-from core.spheres import find_simplex, simplex_sphere, spoon_simplex
+from core.query.spheres import find_simplex, simplex_sphere, spoon_simplex
 
 
 @pytest.fixture(scope="module", params=[2, 3], ids=["2d", "3d"])

@@ -12,7 +12,7 @@ from weighted_reference import gudhi_weighted_table
 import core.backends as backends
 import core.backends.split as split
 from core import AlphaComplex
-from core.delaunay import Triangulation, regular_triangulate, triangulate
+from core.build.delaunay import Triangulation, regular_triangulate, triangulate
 
 
 def assert_same_cells(tri: Triangulation, ref: Triangulation) -> None:
@@ -186,7 +186,7 @@ def test_weighted_certification_tells_regular_from_delaunay(d: int) -> None:
     """core.backends.certify with weights: Qhull's regular triangulation passes; the
     Delaunay triangulation of the same points (not regular for these weights) does not."""
     from core.backends.certify import why_not_delaunay
-    from core.delaunay import delaunay_cells, regular_cells
+    from core.build.delaunay import delaunay_cells, regular_cells
 
     rng = np.random.default_rng(40 + d)
     points = prepared(rng.uniform(size=(800, d)))

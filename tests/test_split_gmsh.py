@@ -23,7 +23,7 @@ import core.backends as backends
 import core.backends.gmsh_half as gmsh_half
 import core.backends.split as split
 from core import AlphaComplex
-from core.delaunay import Triangulation, triangulate
+from core.build.delaunay import Triangulation, triangulate
 
 pytestmark = pytest.mark.skipif(not backends.gmsh_backend.installed(),
                                 reason="the optional gmsh package is not installed")

@@ -167,9 +167,9 @@ def test_signatures_computed_before_saving_come_back_without_a_topology_pass(
     signatures = complex_.signatures()
     path = tmp_path / "with_signatures.npz"
     complex_.save(path)
-    import core.topology
+    import core.topology.betti
 
-    monkeypatch.setattr(core.topology, "build_topology",
+    monkeypatch.setattr(core.topology.betti, "build_topology",
                         lambda ac: pytest.fail("the saved topology was not used"))
     loaded = AlphaComplex.load(path)
     for name in ("alphas", "betti", "solid_components", "measure", "boundary_measure"):

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.spatial import Delaunay
 
-from core.table import _thin_pairs
+from core.build.table import _thin_pairs
 
 
 def _reference(neighbors: np.ndarray, thin: np.ndarray, flat: np.ndarray) -> set:

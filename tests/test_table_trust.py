@@ -12,9 +12,9 @@ import pytest
 from core import AlphaComplex
 from core.cache import entry_path
 from core.errors import FileFormatError
-from core.npz import read_npz
 from core.obtain import obtain
-from core.storage import FORMAT
+from core.storage.npz import read_npz
+from core.storage.tables import FORMAT
 
 
 @pytest.fixture(params=[2, 3, "weighted"])

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.spatial import Delaunay
 
-from core.table import Table, build_table
+from core.build.table import Table, build_table
 
 
 def _table(points: np.ndarray, **kwargs) -> Table:

@@ -13,9 +13,14 @@ import numpy as np
 import pytest
 
 from core import AlphaComplex
-from core.atomic import atomic_write, is_temporary, remove_stale_temporaries, temporary_name
 from core.cache import entry_path, is_cached, load_cached, prune, store
 from core.export import write_table
+from core.storage.atomic import (
+    atomic_write,
+    is_temporary,
+    remove_stale_temporaries,
+    temporary_name,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 HOUR = 3600.0

@@ -1,4 +1,4 @@
-"""The union-find helpers of core.forest against a plain Python union-find."""
+"""The union-find helpers of core.topology.union_find against a plain Python union-find."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from core.forest import ordered_forest, rank_forest, spanning_forest, younger_roots
+from core.topology.union_find import ordered_forest, rank_forest, spanning_forest, younger_roots
 
 
 @st.composite

@@ -12,7 +12,7 @@ from reference import SQ_RTOL  # noqa: E402
 from weighted_reference import gudhi_betti, gudhi_weighted_table, ours_by_input_rows  # noqa: E402
 
 from core import AlphaComplex  # noqa: E402
-from core.power import signed_square  # noqa: E402
+from core.geometry.power import signed_square  # noqa: E402
 
 
 def uniform(rng: np.random.Generator, n: int, dim: int) -> np.ndarray:

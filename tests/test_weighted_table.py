@@ -187,7 +187,7 @@ def test_classes_grow_monotonically_and_faces_come_first(data, values) -> None:
 
 @pytest.mark.parametrize("k", [1, 2, 3])
 def test_exact_power_equals_the_linear_algebra_reference(k: int) -> None:
-    from core.power import exact_power
+    from core.geometry.power import exact_power
 
     rng = np.random.default_rng(k)
     corners, w = rng.random((k + 1, 3)), rng.uniform(0, 0.1, k + 1)

@@ -33,7 +33,7 @@ from app.scene.layers import (
 from app.scene.overlay import Overlay
 from app.scene.painting import Painter
 from app.scene.picking import ViewPicker
-from core.atomic import atomic_path
+from core.storage.atomic import atomic_path
 
 
 class Scene:
@@ -214,7 +214,7 @@ class Scene:
         self._render()
 
     def save_png(self, path: Path) -> None:
-        """Write the view as a PNG image to path, atomically (core.atomic), whatever path's
+        """Write the view as a PNG image to path, atomically (core.storage.atomic), whatever path's
         extension."""
         from PIL import Image
 

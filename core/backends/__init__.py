@@ -14,14 +14,14 @@ from functools import partial
 
 import numpy as np
 
-from ..delaunay import Triangulation, regular_triangulate, triangulate
-from ..errors import InputError
-from ..parallel import PASSES, both, halves
-from . import gmsh as gmsh_backend
-from . import split as split_backend
-from .certify import why_not_delaunay, why_not_locally_delaunay
-from .facets import paired
-from .restore import restored
+from core.backends import gmsh as gmsh_backend
+from core.backends import split as split_backend
+from core.backends.certify import why_not_delaunay, why_not_locally_delaunay
+from core.backends.facets import paired
+from core.backends.restore import restored
+from core.build.delaunay import Triangulation, regular_triangulate, triangulate
+from core.errors import InputError
+from core.parallel import PASSES, both, halves
 
 BACKENDS = ("qhull", "gmsh")
 

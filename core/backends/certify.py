@@ -7,12 +7,12 @@ locally Delaunay (the Delaunay lemma). A sign is settled in float64 when it exce
 relative to the magnitude of its terms (tolerances.BACKEND_CERTAIN_RTOL, 1e-12: some 300x
 Shewchuk's float64 error bounds for these determinants); the few rows within the margin (2 of
 12M facets on the 1M bunny scan) are settled exactly on the same float64 values
-(core.predicates: exact integers), unweighted only. A facet is accepted only when its vertex
-across is strictly outside (exactly): then every cell's circumsphere is strictly empty, the
+(core.geometry.predicates: exact integers), unweighted only. A facet is accepted only when its
+vertex across is strictly outside (exactly): then every cell's circumsphere is strictly empty, the
 triangulation is the unique Delaunay one, and every exact triangulator returns it.
 
 Qhull, in floating point, may triangulate such a near-cospherical group otherwise; the table
-never sees that difference: core.certify checks every facet of either backend's cells with
+never sees that difference: core.build.certify checks every facet of either backend's cells with
 the same exact predicates (ties broken by one symbolic perturbation, which leaves strict signs
 as they are) and flips until all hold, so Qhull's cells become these same unique cells, and
 the table passes (which sort the cells) give the same arrays bit for bit. Exactly cospherical
@@ -26,12 +26,12 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from ..delaunay import interior_facets
-from ..geometry import CACHE_CHUNK
-from ..parallel import PASSES, halves, nonzero, rows_cols, slot_of
-from ..predicates import in_sphere_sides
-from ..predicates import orientations as exact_orientations
-from ..tolerances import BACKEND_CERTAIN_RTOL
+from core.build.delaunay import interior_facets
+from core.geometry.circumspheres import CACHE_CHUNK
+from core.geometry.predicates import in_sphere_sides
+from core.geometry.predicates import orientations as exact_orientations
+from core.parallel import PASSES, halves, nonzero, rows_cols, slot_of
+from core.tolerances import BACKEND_CERTAIN_RTOL
 
 
 def _orient(cols: list[np.ndarray], cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -136,7 +136,7 @@ def in_sphere(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
 
 def _near_pairs(neighbors: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, ...]:
     """Each inner facet of a cell in the (t,) bool mask `near` once (a facet between two
-    near cells once), as core.delaunay.interior_facets gives all: (t, i, u, j)."""
+    near cells once), as core.build.delaunay.interior_facets gives all: (t, i, u, j)."""
     rows = np.flatnonzero(near)
     row, i = np.nonzero(neighbors[rows] >= 0)
     t = rows[row]
@@ -206,7 +206,7 @@ def _spheres_empty(points: np.ndarray, cells: np.ndarray, pairs: tuple[np.ndarra
 
 def exact_sides(points: np.ndarray, cells: np.ndarray, query: np.ndarray,
                 orientation: np.ndarray) -> np.ndarray:
-    """in_sphere's (n,) int8 answer settled exactly (core.predicates on the same float64
+    """in_sphere's (n,) int8 answer settled exactly (core.geometry.predicates on the same float64
     values): +1 outside, -1 inside, 0 exactly on the circumsphere; for the few rows in_sphere
     leaves at 0."""
     return in_sphere_sides(points, cells, query, orientation)[0]

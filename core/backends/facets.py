@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ..parallel import PARALLEL_ABOVE, PASSES, both, halves
+from core.parallel import PARALLEL_ABOVE, PASSES, both, halves
 
 
 def _packed(cells: np.ndarray, columns: list[list[int]], base: int,

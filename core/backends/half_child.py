@@ -9,9 +9,9 @@ import os
 import signal
 import sys
 
-from ..errors import AlphaScoopError
-from .gmsh_half import receive_arrays, send_arrays
-from .split import gmsh_half
+from core.backends.gmsh_half import receive_arrays, send_arrays
+from core.backends.split import gmsh_half
+from core.errors import AlphaScoopError
 
 PR_SET_PDEATHSIG = 1
 PR_SET_NAME = 15

@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import Delaunay, QhullError
 
-from ..delaunay import sort_rows
-from .facets import paired
+from core.backends.facets import paired
+from core.build.delaunay import sort_rows
 
 
 def _row_of(rows: np.ndarray, table: np.ndarray) -> np.ndarray:

@@ -26,16 +26,16 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..delaunay import Triangulation, compacted, delaunay_cells, regular_cells
-from ..errors import InputError
-from ..geometry import CACHE_CHUNK, centre_terms, circumspheres, edge_vectors
-from ..power import orthospheres
-from ..tolerances import ILL_CONDITIONED_RTOL, SPLIT_EMPTY_RTOL
-from . import gmsh as gmsh_backend
-from .certify import why_not_delaunay, why_not_locally_delaunay
-from .facets import paired
-from .gmsh_half import GmshHalf
-from .restore import boundary_facets, joined, outside
+from core.backends import gmsh as gmsh_backend
+from core.backends.certify import why_not_delaunay, why_not_locally_delaunay
+from core.backends.facets import paired
+from core.backends.gmsh_half import GmshHalf
+from core.backends.restore import boundary_facets, joined, outside
+from core.build.delaunay import Triangulation, compacted, delaunay_cells, regular_cells
+from core.errors import InputError
+from core.geometry.circumspheres import CACHE_CHUNK, centre_terms, circumspheres, edge_vectors
+from core.geometry.power import orthospheres
+from core.tolerances import ILL_CONDITIONED_RTOL, SPLIT_EMPTY_RTOL
 
 #: From this many points the Qhull backend triangulates in two halves. With a free second
 #: core the halves take about 0.5-0.6x one call (200k weighted, 400k 2D); on a machine whose
@@ -87,7 +87,8 @@ def _solved(points: np.ndarray, weights: np.ndarray | None, part: np.ndarray
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Centres (n, d), powers (radii² without weights) and shapes (|det| over the product of
     the edge lengths: 0 flat .. 1) of (n, d+1) cells, by Cramer's rule
-    (core.geometry.centre_terms: the centre c solves 2 e_i . c = |e_i|² - (w_i - w_0))."""
+    (core.geometry.circumspheres.centre_terms: the centre c solves 2 e_i . c = |e_i|² - (w_i -
+    w_0))."""
     vec = edge_vectors(points, part)
     rhs, w0 = None, 0.0
     if weights is not None:
@@ -103,7 +104,8 @@ def _spheres(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Centres (t, d), radii² (weighted: powers, |c - p|² - w_p of a vertex) and (t,) bool
     flags of the cells whose sphere is well defined: the plain solve on well-shaped cells,
-    core.geometry's / core.power's careful one (extended precision) on the others."""
+    core.geometry.circumspheres's / core.geometry.power's careful one (extended precision) on the
+    others."""
     centres = np.empty((len(cells), points.shape[1]))
     size = np.empty(len(cells))
     poor = np.empty(len(cells), dtype=bool)

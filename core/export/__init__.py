@@ -15,7 +15,6 @@ from pathlib import Path
 
 import numpy as np
 
-from core.atomic import atomic_path, atomic_write_text
 from core.errors import AlphaScoopError, FileFormatError
 from core.export.complex_vtu import write_vtu
 from core.export.geographic import write_prj
@@ -24,8 +23,9 @@ from core.export.polygons import POLYGON_WRITERS, geographic_metadata
 from core.export.surface import SURFACE_WRITERS, manifold_meta, surface_arrays
 from core.export.table import TABLE_WRITERS
 from core.export.targets import refuse_source
-from core.georef import Georef
+from core.geometry.georef import Georef
 from core.progress import Progress
+from core.storage.atomic import atomic_path, atomic_write_text
 
 __all__ = ["SHAPE_FORMATS", "TABLE_FORMATS", "ExportReport", "write_shape", "write_table"]
 

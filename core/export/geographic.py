@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 import shapely
 
-from core.atomic import atomic_write_text
-from core.georef import WGS84, WGS84_NAME, Georef
+from core.geometry.georef import WGS84, WGS84_NAME, Georef
+from core.storage.atomic import atomic_write_text
 
 WORLD = shapely.box(-180.0, -90.0, 180.0, 90.0)
 CUT_SEGMENT_M = 1000.0  # edges crossing the antimeridian are split this finely before the cut

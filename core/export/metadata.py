@@ -37,7 +37,8 @@ def betti_numbers(ac, alpha: float) -> list[int] | None:
 
 
 def mode_metadata(ac) -> dict:
-    """The alpha mode the table was built in (core.modes; classic when `ac` has none)."""
+    """The alpha mode the table was built in (core.modes.alpha_modes; classic when `ac` has
+    none)."""
     mode = getattr(ac, "mode", None)
     return {"name": "classic"} if mode is None else mode.to_dict()
 

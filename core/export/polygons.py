@@ -12,7 +12,7 @@ from core.export.csvrows import format_rows, write_rows
 from core.export.geographic import rfc7946, to_lonlat
 from core.export.metadata import sidecar_text
 from core.export.rings import ring_order, successors
-from core.georef import Georef, geodesic_area_perimeter, geodesic_length
+from core.geometry.georef import Georef, geodesic_area_perimeter, geodesic_length
 
 
 def boundary_rings(points: np.ndarray, edges: np.ndarray) -> list[np.ndarray]:
@@ -77,8 +77,8 @@ def _user_coordinates(ac, geometry, georef):
 def write_geojson(path: Path, ac, shape, meta: dict, georef=None) -> None:
     """FeatureCollection: the polygons (properties = metadata) and any singular edges.
 
-    Geographic input (`georef`, a core.georef.Georef) is written in WGS 84 longitude/latitude
-    as RFC 7946 requires: shells counter-clockwise, cut at the antimeridian.
+    Geographic input (`georef`, a core.geometry.georef.Georef) is written in WGS 84
+    longitude/latitude as RFC 7946 requires: shells counter-clockwise, cut at the antimeridian.
     """
     polygons = rfc7946(_user_coordinates(ac, shape_polygons(ac, shape), georef))
     features = [{"type": "Feature", "properties": {"role": "shape", **meta},

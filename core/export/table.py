@@ -4,8 +4,8 @@ NPZ layout (format "alphascoop-intervals", version 1): `points` (m, dim) float64
 `ambient_dim` scalars; for each k in 0..dim: `simplices_k` (n_k, k+1) int32 vertex rows
 (ascending within a row; rows ordered by enter) and `intervals_k` (n_k, 3) float64 columns
 enter <= regular <= interior (alpha radii; inf = never); `spectrum` (s,) float64; `mode`
-the alpha mode as JSON text (core.modes: its name and parameters; alpha is in its units).
-CSV: one row per simplex: k, v0, v1, v2, v3 (-1 = unused), enter, regular, interior.
+the alpha mode as JSON text (core.modes.alpha_modes: its name and parameters; alpha is in its
+units). CSV: one row per simplex: k, v0, v1, v2, v3 (-1 = unused), enter, regular, interior.
 
 Weighted tables add `weights` (m,) float64 squared radii and `intervals_sq_k` (squared
 values, may be negative) to the NPZ (their `intervals_k` and `spectrum` are signed radii

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
-from core.georef import Georef
+from core.geometry.georef import Georef
 from core.io.columns import clean_name, parse_columns
 from core.io.e57 import read_e57
 from core.io.geographic import geographic_points

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.georef import Georef
+from core.geometry.georef import Georef
 
 LON_NAMES = ("lon", "lng", "long", "longitude")
 LAT_NAMES = ("lat", "latitude")

@@ -10,11 +10,11 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from core.arrays import contiguous_readonly
+from core.build.points import clearly_spread, first_too_large, flatness, too_large_message
 from core.errors import FileFormatError
-from core.georef import Georef
+from core.geometry.georef import Georef
 from core.io.subsample import first_unique, subsample_indices
 from core.parallel import both
-from core.points import clearly_spread, first_too_large, flatness, too_large_message
 from core.tolerances import FLAT_RTOL
 
 SPACING_SAMPLE = 100_000  # query points used to estimate the median nearest-neighbour distance

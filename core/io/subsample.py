@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from core.build.points import merge_duplicates
 from core.errors import InputError
-from core.points import merge_duplicates
 
 SUBSAMPLE_METHODS = ("voxel", "random")
 _BISECTION_STEPS = 40

@@ -9,9 +9,8 @@ import numpy as np
 
 from core.arrays import contiguous_readonly
 from core.errors import InputError
-
-from .cavities import void_cells, void_volumes
-from .measures import union_measures
+from core.molecule.cavities import void_cells, void_volumes
+from core.molecule.measures import union_measures
 
 
 @dataclass(frozen=True, eq=False)

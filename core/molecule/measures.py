@@ -13,9 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from core.arrays import readonly
+from core.molecule.intersections import four_balls, three_balls, two_balls
 from core.parallel import together
-
-from .intersections import four_balls, three_balls, two_balls
 
 CHUNK = 100_000  # simplices per vectorized batch (bounds the temporary arrays)
 TERMS = {2: two_balls, 3: three_balls, 4: four_balls}

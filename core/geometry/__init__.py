@@ -1,0 +1,3 @@
+"""Geometric primitives: circumspheres, orthospheres, exact and filtered predicates, local
+neighbourhoods, georeference.
+"""

@@ -1,0 +1,3 @@
+"""Tables on disk: saved tables and their checks, safe .npz reading, atomic writes, folders of
+mapped arrays.
+"""
