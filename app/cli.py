@@ -184,24 +184,36 @@ def _molecule_point_data(args, ac) -> dict | None:
     return {"atom_area": measure_molecule(ac, args.probe).point_area}
 
 
-def molecule_summary(ac, probe: float) -> dict:
-    """The `molecule` object of `info`: exact area and volume, per-atom area, cavities."""
+def molecule_summary(ac, probe: float, mol=None) -> dict:
+    """The `molecule` object of `info`: exact area and volume, per-atom area, cavities and
+    pockets (their lining atoms named from `mol`, the Molecule read, when given)."""
+    from core.io.molecule import atom_labels
     from core.molecule.analysis import measure_molecule
 
-    return {**measure_molecule(ac, probe).to_dict(), "pockets": None}
+    labels = None if mol is None else atom_labels(mol, ac.points)
+    return measure_molecule(ac, probe).to_dict(labels)
+
+
+POCKETS_SHOWN = 5  # pockets named in `info`'s text (all of them in --json)
 
 
 def _molecule_text(mol: dict) -> list[str]:
     """Text lines of the `molecule` object."""
     kind = "solvent-accessible" if mol["probe"] > 0 else "van der Waals"
-    cavities = ", ".join(f"{v:.4g} ± {e:.2g}" for v, e in
-                         zip(mol["cavities"], mol["cavity_errors"], strict=True))
+    cavities = ", ".join(f"{v:.4g} Å³ ({a:.4g} Å²)" for v, a in
+                         zip(mol["cavities"], mol["cavity_areas"], strict=True))
+    pockets = mol["pockets"]
+    shown = "; ".join(
+        f"{p['volume']:.4g} Å³ ({p['area']:.4g} Å², {len(p['mouths'])} mouth"
+        f"{'s' if len(p['mouths']) != 1 else ''}, {len(p['atoms'])} atoms)"
+        for p in pockets[:POCKETS_SHOWN])
     return [
         f"atoms       {mol['atoms']:,} balls, probe {mol['probe']:g} Å ({kind} surface)",
         f"surface     {mol['surface_area']:,.2f} Å² (exact)",
         f"volume      {mol['volume']:,.2f} Å³ (exact, union of balls)",
-        f"cavities    {len(mol['cavities'])}" + (f": {cavities} Å³" if cavities else ""),
-        "pockets     not computed (see README: Molecules)",
+        f"cavities    {len(mol['cavities'])}" + (f" (exact): {cavities}" if cavities else ""),
+        f"pockets     {len(pockets)}" + (f", largest: {shown}" if shown else "")
+        + (" ..." if len(pockets) > POCKETS_SHOWN else ""),
     ]
 
 
@@ -327,7 +339,10 @@ def cmd_info(args) -> int:
     ac = obtained.complex
     info = summary(ps, obtained, seconds, chosen_alpha(args))
     if is_molecule(args):
-        info["molecule"] = molecule_summary(ac, args.probe)
+        from core.io.molecule import read_molecule
+
+        info["molecule"] = molecule_summary(ac, args.probe,
+                                            read_molecule(args.file, keep_water=args.keep_water))
     text = None if args.json else _text({**info, "mode_text": ac.mode.describe(),
                                          "build_text": ac.build_info.describe()},
                                         ps.report.lines())

@@ -58,7 +58,9 @@ def molecule_lines(model: ExplorerModel) -> list[str]:
     return [f"<b>molecule</b>, probe {m.probe:g} Å (at alpha² 0)",
             f"surface area {m.surface_area:,.2f} Å² (exact)",
             f"volume {m.volume:,.2f} Å³ (exact)",
-            f"{len(m.cavities)} cavities" + (f": {cavities} Å³" if cavities else "")]
+            f"{len(m.cavities)} cavities" + (f": {cavities} Å³" if cavities else ""),
+            f"{len(m.pockets)} pockets" + (f", largest {m.pockets.volume[0]:.3g} Å³"
+                                           if len(m.pockets) else "")]
 
 
 def box_lines(bbox, unit: str | None) -> list[str]:

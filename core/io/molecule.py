@@ -53,7 +53,8 @@ class MoleculeReport:
 @dataclass(frozen=True, eq=False)
 class Molecule:
     """Atoms of one model: centres (n, 3) float64 Å, elements (n,) str, vdw_radii (n,) float64,
-    atomic_numbers (n,) int16, residues (n,) str labels 'chain:name:number'."""
+    atomic_numbers (n,) int16, residues (n,) str labels 'chain:name:number', atom_names (n,)
+    str ('CA'...; None when the file names none)."""
 
     centres: np.ndarray
     elements: np.ndarray
@@ -61,6 +62,7 @@ class Molecule:
     vdw_radii: np.ndarray
     residues: np.ndarray
     report: MoleculeReport
+    atom_names: np.ndarray | None = None
 
     def radii(self, probe: float = DEFAULT_PROBE) -> np.ndarray:
         """(n,) float64 ball radii: van der Waals radius plus the probe (0 = vdW surface)."""
@@ -146,7 +148,24 @@ def _molecule(path: Path, st, n_models: int, waters: int, altlocs: int) -> Molec
         hydrogens=int(np.isin(numbers, (1,)).sum()), waters_skipped=waters,
         altlocs_skipped=altlocs,
         unknown_elements=tuple(sorted({str(e) for e in elements[unknown]})))
-    return Molecule(centres, elements, numbers, radii, residues, report)
+    names = np.array([a.name for _, _, a in atoms])
+    return Molecule(centres, elements, numbers, radii, residues, report, names)
+
+
+def atom_labels(mol: Molecule, points: np.ndarray) -> list[dict]:
+    """For each of `points` (m, 3) (a complex's atoms), the nearest atom of `mol` as
+    {"chain", "residue", "number", "atom", "index"} (index: its row in the file's atoms)."""
+    from scipy.spatial import cKDTree
+
+    _, rows = cKDTree(mol.centres).query(np.asarray(points, np.float64))
+    out = []
+    for row in np.asarray(rows, np.int64):
+        chain, name, number = [*str(mol.residues[row]).split(":"), "", ""][:3]
+        atom = str(mol.atom_names[row]) if mol.atom_names is not None else str(
+            mol.elements[row])
+        out.append({"chain": chain, "residue": name, "number": number, "atom": atom,
+                    "index": int(row)})
+    return out
 
 
 def molecule_attributes(mol: Molecule, probe: float = DEFAULT_PROBE) -> dict[str, np.ndarray]:
