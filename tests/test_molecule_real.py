@@ -40,8 +40,19 @@ def test_info_json_molecule_object(capsys):
     assert len(mol["atom_area"]) == 556
     assert sum(mol["atom_area"]) == pytest.approx(mol["surface_area"], rel=1e-6)
     assert mol["volume"] > 0 and isinstance(mol["cavities"], list)
+    assert mol["cavity_errors"] == [0.0] * len(mol["cavities"])  # exact now
+    assert len(mol["cavity_areas"]) == len(mol["cavities"])
+    pockets = mol["pockets"]
+    volumes = [p["volume"] for p in pockets]
+    assert len(pockets) > 0 and volumes == sorted(volumes, reverse=True)
+    big = pockets[0]
+    assert big["area"] > 0 and len(big["mouths"]) >= 1
+    assert all(m["area"] >= 0 and m["perimeter"] >= 0 for m in big["mouths"])
+    assert {"chain", "residue", "number", "atom", "index"} <= set(big["atoms"][0])
+    assert big["atoms"][0]["chain"] == "A" and big["atoms"][0]["residue"].isalpha()
     assert main(["info", str(PDB), "--keep-water", "--no-cache"]) == 0
-    assert "644 balls" in capsys.readouterr().out
+    text = capsys.readouterr().out
+    assert "644 balls" in text and "pockets" in text and "±" not in text
 
 
 def test_info_molecule_rejects_columns(capsys):
