@@ -75,3 +75,47 @@ def _info_json(capsys) -> str:
     capsys.readouterr()
     assert main(["info", str(PDB), "--json", "--no-cache"]) == 0
     return capsys.readouterr().out
+
+
+def test_1a8o_cavities_at_probe_06_against_sampling_in_their_tetrahedra():
+    """At probe 0.6 Å 1A8O has voids of a few Å³: each of the two largest against 10^6
+    samples of its tetrahedra (empty: in no ball), and its lining area against sphere points
+    stepped 10^-6 Å outward into its tetrahedra."""
+    from scipy.spatial import cKDTree
+
+    from core.molecule.regions import dual_facts
+    from core.molecule.sectors import tet_volumes
+
+    mol = read_molecule(PDB)
+    ac = AlphaComplex.from_points(mol.centres, weights=mol.weights(0.6))
+    m = measure_molecule(ac, 0.6)
+    facts = dual_facts(ac)
+    tree, rng = cKDTree(facts.centres), np.random.default_rng(7)
+    assert m.cavities[0] > 1.0
+    for v in range(2):
+        corners = facts.centres[facts.cells[m.cavity_cells == v]]  # (t, 4, 3)
+        vol = tet_volumes(corners)
+        n = 1_000_000
+        cell = rng.choice(len(vol), size=n, p=vol / vol.sum())
+        x = np.einsum("pi,pij->pj", rng.dirichlet(np.ones(4), size=n), corners[cell])
+        dist, idx = tree.query(x, k=8)
+        p = (~(dist <= facts.radii[idx]).any(1)).mean()
+        error = vol.sum() * np.sqrt(p * (1 - p) / n)  # about 0.005 Å³
+        assert abs(m.cavities[v] - p * vol.sum()) < 4 * error
+        atoms = m.cavity_atoms[v]
+        counts = np.full(len(atoms), 10_000)
+        ball = np.repeat(atoms, counts)
+        u = rng.normal(size=(len(ball), 3))
+        u /= np.linalg.norm(u, axis=1, keepdims=True)
+        y = facts.centres[ball] + (facts.radii[ball, None] + 1e-6) * u
+        dist, idx = tree.query(y, k=8)
+        free = ~(dist < facts.radii[idx]).any(1)
+        inverse = np.linalg.inv(np.transpose(corners[:, 1:] - corners[:, :1], (0, 2, 1)))
+        lam = np.einsum("tij,ptj->pti", inverse, y[:, None] - corners[None, :, 0])
+        inside = ((lam >= 0).all(2) & (lam.sum(2) <= 1)).any(1)
+        sphere = (4 * np.pi * facts.radii[atoms] ** 2 / counts)
+        weight = np.repeat(sphere, counts)
+        area = float((weight * (free & inside)).sum())
+        q = (free & inside).reshape(len(atoms), -1).mean(1)
+        error = np.sqrt((sphere ** 2 * counts * q * (1 - q)).sum())
+        assert abs(m.cavity_areas[v] - area) < 4 * error + 1e-3
