@@ -51,6 +51,8 @@ READ_FORMATS: dict[str, str] = {
     ".vtu": "VTK unstructured grid (vertices)",
     ".pdb": "PDB molecule (atoms; also .ent and .gz)",
     ".cif": "mmCIF molecule (atoms; also .mmcif and .gz)",
+    ".pqr": "PQR molecule (atoms with their radii, PDB2PQR)",
+    ".xyzr": "XYZR atoms: x y z radius per line (MSMS)",
     ".e57": "E57 terrestrial scans (ASTM E2807), every scan with its pose",
 }
 
@@ -60,7 +62,7 @@ READERS: dict[str, Reader] = {
     ".npy": read_npy, ".npz": read_npy,
     **dict.fromkeys((".xyz", ".pts", ".txt", ".csv"), read_text),
     **dict.fromkeys((".obj", ".stl", ".off", ".glb", ".gltf", ".vtk", ".vtu"), read_mesh),
-    **dict.fromkeys((".pdb", ".ent", ".cif", ".mmcif"), read_molecule_points),
+    **dict.fromkeys((".pdb", ".ent", ".cif", ".mmcif", ".pqr", ".xyzr"), read_molecule_points),
     ".e57": read_e57,
 }
 

@@ -1,4 +1,5 @@
-"""PDB and mmCIF molecules (gzip too) through gemmi: atoms as balls with van der Waals radii.
+"""PDB and mmCIF molecules (gzip too) through gemmi: atoms as balls with van der Waals radii;
+PQR and XYZR files with their own radii (`radii_files`).
 
 First model only, first alternate location, waters dropped unless asked for, hydrogens kept.
 Radii: gemmi's `Element.vdw_r` (Bondi 1964 for H, C, N, O, S, P and the halogens; other
@@ -14,9 +15,11 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
+from core.io.radii_files import read_pqr, read_xyzr
 from core.io.report import PointSet, finish
 
-MOLECULE_EXTENSIONS = (".pdb", ".ent", ".cif", ".mmcif")
+MOLECULE_EXTENSIONS = (".pdb", ".ent", ".cif", ".mmcif", ".pqr", ".xyzr")
+RADII_READERS = {".pqr": read_pqr, ".xyzr": read_xyzr}  # the file gives every atom's radius
 DEFAULT_PROBE = 1.4  # Å, a water molecule
 UNKNOWN_RADIUS = 1.8  # Å, for elements without a known van der Waals radius
 
@@ -107,6 +110,8 @@ def read_molecule(path: str | Path, *, keep_water: bool = False) -> Molecule:
                               f"{' '.join(MOLECULE_EXTENSIONS)}, optionally .gz)")
     if not path.is_file():
         raise FileFormatError(f"{path}: no such file")
+    if ext in RADII_READERS:
+        return RADII_READERS[ext](path, keep_water)
     st = _structure(path, ext)
     n_models = len(st)
     if n_models == 0:
