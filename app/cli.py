@@ -100,6 +100,9 @@ def build_parser() -> Parser:
     export.add_argument("--sidecar", action="store_true", help="also write OUT.json metadata")
     export.add_argument("--table", action="store_true", help="write the interval table "
                         "(.npz or .csv) instead of the shape")
+    export.add_argument("--pockets", action="store_true", help="molecules: write the pockets "
+                        "instead of the shape (.vtu: their tetrahedra and mouths with cell data "
+                        "`pocket`; .csv: the residues lining each)")
     return parser
 
 
@@ -357,6 +360,8 @@ def cmd_export(args) -> int:
     from core.export import SHAPE_FORMATS, TABLE_FORMATS, write_shape, write_table
     from core.export.targets import refuse_source
 
+    if args.pockets:
+        return _export_pockets(args)
     formats = TABLE_FORMATS if args.table else SHAPE_FORMATS
     ext = os.path.splitext(args.output)[1].lower()
     if ext not in formats:  # before the build, which may take a while
@@ -380,6 +385,33 @@ def cmd_export(args) -> int:
                          manifold=args.manifold, sidecar=args.sidecar, source=args.file,
                          georef=ps.report.georef, point_data=_molecule_point_data(args, ac))
     print(report.line())
+    return 0
+
+
+def _export_pockets(args) -> int:
+    """`export --pockets`: a molecule's pockets at alpha² = 0 as VTU or CSV."""
+    from app.pocket_export import write_pockets_csv, write_pockets_vtu
+    from core.export.targets import refuse_source
+    from core.io.molecule import atom_labels, read_molecule
+    from core.molecule.analysis import measure_molecule
+
+    ext = os.path.splitext(args.output)[1].lower()
+    if not is_molecule(args) or ext not in (".vtu", ".csv") or args.table:
+        raise UsageError("--pockets writes a molecule's pockets to .vtu or .csv")
+    try:
+        refuse_source(args.output, args.file)
+    except InputError as exc:
+        raise UsageError(str(exc)) from None
+    _, obtained, _ = load(args)
+    ac = obtained.complex
+    pockets = measure_molecule(ac, args.probe).pockets
+    if ext == ".vtu":
+        count = write_pockets_vtu(args.output, ac, pockets, {"probe": args.probe})
+        print(f"{args.output}: {len(pockets)} pockets, {count:,} cells (cell data pocket, mouth)")
+    else:
+        labels = atom_labels(read_molecule(args.file, keep_water=args.keep_water), ac.points)
+        count = write_pockets_csv(args.output, pockets, labels)
+        print(f"{args.output}: {len(pockets)} pockets, {count:,} lining residues")
     return 0
 
 

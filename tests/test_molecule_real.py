@@ -119,3 +119,31 @@ def test_1a8o_cavities_at_probe_06_against_sampling_in_their_tetrahedra():
         q = (free & inside).reshape(len(atoms), -1).mean(1)
         error = np.sqrt((sphere ** 2 * counts * q * (1 - q)).sum())
         assert abs(m.cavity_areas[v] - area) < 4 * error + 1e-3
+
+
+def test_export_pockets_vtu_and_csv(tmp_path, capsys):
+    """`export --pockets`: the VTU's cells carry the pocket of each, the CSV the residues
+    lining each pocket, both as info --json reports them."""
+    import csv
+
+    import meshio
+
+    pockets = json.loads(_info_json(capsys))["molecule"]["pockets"]
+    vtu, table = tmp_path / "p.vtu", tmp_path / "p.csv"
+    assert main(["export", str(PDB), "-o", str(vtu), "--pockets", "--no-cache"]) == 0
+    assert main(["export", str(PDB), "-o", str(table), "--pockets", "--no-cache"]) == 0
+    grid = meshio.read(vtu)
+    ids = np.concatenate([np.ravel(a) for a in grid.cell_data["pocket"]])
+    mouth = np.concatenate([np.ravel(a) for a in grid.cell_data["mouth"]])
+    assert set(ids.tolist()) == set(range(len(pockets)))
+    n_mouths = sum(len(p["mouths"]) for p in pockets)
+    assert len(set(mouth[mouth >= 0].tolist())) == n_mouths
+    with open(table, newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    first = {(r["chain"], r["residue"], r["number"]) for r in rows if r["pocket"] == "0"}
+    assert first == {(a["chain"], a["residue"], a["number"]) for a in pockets[0]["atoms"]}
+    lining = sum(float(r["lining_area"]) for r in rows if r["pocket"] == "0")
+    # the balls with a positive share: a ball's share of one region can be a little below 0
+    # (its sector reaching through a neighbour's facet), the region's total is exact
+    assert lining == pytest.approx(pockets[0]["area"], rel=0.01)
+    assert main(["export", str(PDB), "-o", str(tmp_path / "p.ply"), "--pockets"]) == 2

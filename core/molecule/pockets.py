@@ -50,7 +50,8 @@ class Pockets:
     """Pockets largest first. cells (c,) int64 pocket of each cell (-1 = none); volume (k,),
     area (k,) float64; atoms: k arrays of ball rows lining each; mouth_pocket (m,) int64,
     mouth_area (m,), mouth_perimeter (m,) float64 per mouth; facets (f,) int64 mouth facet
-    rows and facet_mouth (f,) int64 their mouth."""
+    rows and facet_mouth (f,) int64 their mouth; atom_area (k, n) sparse CSR lining area of
+    each ball in each pocket."""
 
     cells: np.ndarray
     volume: np.ndarray
@@ -61,6 +62,7 @@ class Pockets:
     mouth_perimeter: np.ndarray
     facets: np.ndarray
     facet_mouth: np.ndarray
+    atom_area: object
 
     def __len__(self) -> int:
         return len(self.volume)
@@ -153,4 +155,4 @@ def find_pockets(facts: DualFacts) -> Pockets:
         mouth_area=np.maximum(np.bincount(mouth, weights=open_area(facts, facets),
                                           minlength=n_mouths), 0.0),
         mouth_perimeter=_rim_length(facts, facets, mouth, n_mouths),
-        facets=facets, facet_mouth=mouth)
+        facets=facets, facet_mouth=mouth, atom_area=measures.atom_area[order])
