@@ -34,7 +34,8 @@ every ball to radius² w + alpha²). A tetrahedron of D not in K is *empty*.
   For a void (bounded by triangles of K) this is exactly its empty space. A pocket is open at
   its mouths, and a ball's sector that reaches through a mouth triangle is counted on the side
   of its own tetrahedron: on 1A8O the volumes differ from the sampled empty space of the
-  pockets' tetrahedra by up to 2 % (tests/test_molecule_real.py).
+  pockets' tetrahedra by up to 2 % on the large ones, 0.05 Å³ on small ones
+  (tests/test_molecule_real.py).
 """
 
 from __future__ import annotations
