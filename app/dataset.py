@@ -67,6 +67,8 @@ class Dataset:
     #: numbers aligned with ac.points (None for other point sets).
     molecule: MoleculeMeasures | None = None
     atomic_numbers: np.ndarray | None = None
+    #: Molecules: (m,) str 'chain:residue:number:atom' of each of ac.points (else None).
+    atom_labels: np.ndarray | None = None
     persistence: Persistence | None = None  # known with the topology (None before)
     #: The N_SUGGESTIONS suggested alphas, found with the topology off the GUI thread (None
     #: before, or for a dataset made elsewhere: suggestions_of computes them then).
@@ -163,6 +165,7 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
     molecule, numbers = _molecule(ac, pointset)
+    labels = None if molecule is None else _atom_labels(ac, pointset)
     complete = ac.has_signatures
     # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
     handed = runner.handed_over(ac)  # what a build process found beside the table
@@ -177,7 +180,7 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
         signatures=None, n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
         source=obtained.source, entry=obtained.entry, frame=frame_for(path, pointset.report),
-        molecule=molecule, atomic_numbers=numbers,
+        molecule=molecule, atomic_numbers=numbers, atom_labels=labels,
         attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )
     if complete:
@@ -276,6 +279,18 @@ def aligned_attributes(attributes: dict[str, np.ndarray], input_index: np.ndarra
         aligned.flags.writeable = False
         out[name] = aligned
     return out
+
+
+def _atom_labels(ac: AlphaComplex, pointset) -> np.ndarray | None:
+    """(m,) str 'chain:residue:number:atom' of ac's atoms, read again from the molecule file
+    (the point set keeps numbers only); None when the file is not a molecule file."""
+    from core.io.molecule import atom_labels, molecule_extension, read_molecule
+
+    path = Path(pointset.report.path)
+    if molecule_extension(path) is None:
+        return None
+    return np.array([f"{a['chain']}:{a['residue']}:{a['number']}:{a['atom']}"
+                     for a in atom_labels(read_molecule(path), ac.points)])
 
 
 def _molecule(ac: AlphaComplex, pointset) -> tuple[MoleculeMeasures | None, np.ndarray | None]:

@@ -21,6 +21,7 @@ from PySide6.QtWidgets import (
 from app.inspect import Inspection, alpha_text
 from app.model import ExplorerModel
 from app.palette import CLASS_COLOURS
+from app.pockets_layer import pocket_at, pocket_text
 
 HINT = "Click a point, edge, triangle or cell in the view (without dragging) to inspect it."
 
@@ -39,7 +40,8 @@ class InspectPanel(QWidget):
         self.title = QLabel(HINT)
         self.title.setWordWrap(True)
         self.fields = {name: QLabel() for name in
-                       ("vertices", "class", "enter", "regular", "interior", "coordinates")}
+                       ("vertices", "class", "enter", "regular", "interior", "coordinates",
+                        "pocket")}
         for label in self.fields.values():
             label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
             label.setTextFormat(Qt.TextFormat.RichText)
@@ -82,8 +84,19 @@ class InspectPanel(QWidget):
         for column, name in enumerate(("enter", "regular", "interior")):
             self.fields[name].setText(alpha_text(item.intervals[column]))
         self.spoon.setEnabled(item.k > 0 and self.model.dataset.ac.weights is None)
+        self.fields["pocket"].setText(self._pocket(item))
         self.clear_button.setEnabled(True)
         self.refresh()
+
+    def _pocket(self, item: Inspection) -> str:
+        """A molecule's pocket the simplex belongs to (a pocket cell or mouth), with its
+        residues; '' otherwise."""
+        ds = self.model.dataset
+        if ds.molecule is None:
+            return ""
+        pocket = pocket_at(ds.molecule.pockets, item.k, item.row)
+        return "" if pocket is None else pocket_text(ds.molecule.pockets, pocket,
+                                                     ds.atom_labels)
 
     def refresh(self) -> None:
         """Update the class for the model's current alpha."""

@@ -31,7 +31,7 @@ from app.layers_panel import LayersPanel
 from app.menus import MenuTools, build_menus
 from app.mode_panel import ModePanel
 from app.model import ExplorerModel
-from app.palette import ATOM_STYLE, CAVITY_STYLE, cpk_rgb
+from app.palette import ATOM_STYLE, CAVITY_STYLE, MOUTH_STYLE, POCKET_STYLE, cpk_rgb
 from app.progress_widget import ProgressWidget
 from app.reopen import ReopenFallback
 from app.resources import ICON_PATH
@@ -284,6 +284,7 @@ class MainWindow(QMainWindow):
         rgb = None
         if ds.atomic_numbers is not None:  # a molecule: atoms in CPK colours, its cavities
             styles["balls"], styles["cavities"] = ATOM_STYLE, CAVITY_STYLE
+            styles["pockets"], styles["mouths"] = POCKET_STYLE, MOUTH_STYLE
             rgb = cpk_rgb(ds.atomic_numbers)
         self.layers_panel.set_layers(styles)  # first: the docks it widens redraw no shape
         self.scene.set_dataset(scene_data(ds, styles, rgb))

@@ -40,6 +40,8 @@ LAYER_TITLES = {
     "delaunay": "Delaunay edges",
     "balls": "Points as balls (own radius; at most 20,000 drawn)",
     "cavities": "Cavities (voids at this alpha)",
+    "pockets": "Pockets (at alpha² 0, one colour each; click one)",
+    "mouths": "Pocket mouths",
 }
 
 #: CPK colours of atoms by atomic number (Jmol's scheme); other elements are pink.
@@ -50,6 +52,9 @@ CPK_OTHER = "#ff1493"
 #: Molecules: the cavities (voids of the complex) at the current alpha, and the atoms shown.
 CAVITY_STYLE = LayerStyle(True, "#f3a712", 0.9)
 ATOM_STYLE = LayerStyle(True, "#8fb8de", 1.0)
+#: Molecules: the pockets (each in its own colour, app.pockets_layer) and their mouths.
+POCKET_STYLE = LayerStyle(True, "#4e79a7", 0.9)
+MOUTH_STYLE = LayerStyle(True, "#ffffff", 0.6)
 
 
 def cpk_rgb(atomic_numbers: np.ndarray) -> np.ndarray:

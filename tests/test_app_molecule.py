@@ -52,3 +52,30 @@ def test_molecule_window(window, qtbot, recwarn):
     canvas.draw()  # the signatures dock keeps room for its axes (no collapsed layout)
     assert canvas.height() >= MIN_PLOT_HEIGHT
     assert not [w for w in recwarn if "constrained_layout" in str(w.message)]
+
+
+def test_pockets_layer_colours_and_click(window, qtbot, tmp_path):
+    """The pockets are a layer of their tetrahedra, one colour per pocket, with their mouths;
+    clicking a pocket's cell lists its residues in the Inspect dock."""
+    open_and_wait(qtbot, window, PDB)
+    ds = window.model.dataset
+    pockets = ds.molecule.pockets
+    assert len(pockets) >= 2
+    mesh = window.scene.meshes["pockets"]
+    assert mesh.n_cells == int((pockets.cells >= 0).sum())
+    rgb = np.asarray(mesh.cell_data["rgb"])
+    assert len({tuple(c) for c in rgb}) == min(len(pockets), 10)
+    assert window.scene.meshes["mouths"].n_cells == len(pockets.facets)
+    mapper = window.scene.layers["pockets"].actor.mapper
+    assert mapper.GetScalarVisibility() and mapper.GetArrayName() == "rgb"
+    assert "pockets" in window.layers_panel.rows and "mouths" in window.layers_panel.rows
+    window.model.set_index(len(window.model.spectrum) - 1)  # a new alpha keeps the pockets
+    qtbot.wait(50)
+    assert window.scene.meshes["pockets"].n_cells == mesh.n_cells
+    cell = int(np.flatnonzero(pockets.cells == 0)[0])
+    window.inspector.inspect_vertices(ds.ac.simplices(3)[cell])
+    text = window.inspect_panel.fields["pocket"].text()
+    first = ds.atom_labels[pockets.atoms[0][0]].split(":")
+    assert "pocket 1 of" in text and " ".join(first[:3]) in text
+    window.inspector.inspect_vertices(ds.ac.simplices(0)[0])  # a vertex: no pocket
+    assert window.inspect_panel.fields["pocket"].text() == ""

@@ -10,6 +10,7 @@ import numpy as np
 from app.camera import Z_UP, ViewFrame
 from app.dataset import Dataset
 from app.palette import LayerStyle
+from app.pockets_layer import PocketArrays, pocket_arrays
 
 
 def as_xyz(points: np.ndarray) -> np.ndarray:
@@ -26,7 +27,8 @@ class SceneData:
     (e, 2) Delaunay `edges`, the layer `styles`, for weighted points their (m,) `radii` (the
     balls layer, when styles has it) and (m, 3) uint8 `rgb` ball colours (atoms by element;
     else None), the view `frame` (which way is up, app.camera) and the length `unit` the file
-    declares (or None). A "cavities" style adds a layer of cells set by Scene.set_cells."""
+    declares (or None). A "cavities" style adds a layer of cells set by Scene.set_cells;
+    `pockets` (a molecule's, app.pockets_layer) the "pockets" and "mouths" layers."""
 
     xyz: np.ndarray
     dim: int
@@ -36,6 +38,7 @@ class SceneData:
     rgb: np.ndarray | None = None
     frame: ViewFrame = Z_UP
     unit: str | None = None
+    pockets: PocketArrays | None = None
 
 
 def scene_data(dataset: Dataset, styles: dict[str, LayerStyle],
@@ -43,5 +46,6 @@ def scene_data(dataset: Dataset, styles: dict[str, LayerStyle],
     """The arrays the scene draws of dataset, with these layer styles (and ball colours)."""
     ac = dataset.ac
     radii = None if ac.weights is None else np.sqrt(np.maximum(ac.weights, 0.0))
+    pockets = None if dataset.molecule is None else pocket_arrays(ac, dataset.molecule.pockets)
     return SceneData(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                     radii, rgb, dataset.frame, dataset.unit)
+                     radii, rgb, dataset.frame, dataset.unit, pockets)

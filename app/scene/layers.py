@@ -21,7 +21,7 @@ KINDS_2D = {
     "delaunay": "lines", "points": "verts", "interior": "tris", "boundary": "lines",
     "singular_edges": "lines", "singular_points": "verts",
 }
-STATIC_LAYERS = ("points", "delaunay", "balls", "cavities")
+STATIC_LAYERS = ("points", "delaunay", "balls", "cavities", "pockets", "mouths")
 BALL_RESOLUTION = 10  # sphere glyph: 10 x 10 facets, about 160 triangles per ball
 DRAW_OPTIONS = {
     "points": {"point_size": 3.0},
@@ -93,6 +93,14 @@ def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS,
     sphere = pv.Sphere(radius=1.0, theta_resolution=BALL_RESOLUTION,
                        phi_resolution=BALL_RESOLUTION)
     return centres.glyph(scale="radius", geom=sphere, orient=False)
+
+
+def coloured_cells(kind: str, xyz: np.ndarray, cells: np.ndarray, rgb: np.ndarray) -> Layer:
+    """A layer of fixed cells, each in its own colour (cell data "rgb", (k, 3) uint8)."""
+    layer = Layer(kind, new_mesh(kind, xyz))
+    layer.set_cells(cells)
+    layer.mesh.cell_data["rgb"] = np.ascontiguousarray(rgb, dtype=np.uint8)
+    return layer
 
 
 def new_mesh(kind: str, xyz: np.ndarray) -> pv.DataSet:

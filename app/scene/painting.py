@@ -40,9 +40,13 @@ def is_mapped(layer: Layer) -> bool:
 
 
 def use_own(layer: Layer) -> None:
-    """Draw a layer in its own per-point colours (atom balls by element)."""
+    """Draw a layer in its own per-point colours (atom balls by element) or per-cell ones
+    (a molecule's pockets)."""
     mapper = layer.actor.mapper
-    mapper.SetScalarModeToUsePointFieldData()
+    if OWN_COLOURS in layer.mesh.point_data:
+        mapper.SetScalarModeToUsePointFieldData()
+    else:
+        mapper.SetScalarModeToUseCellFieldData()
     mapper.SelectColorArray(OWN_COLOURS)
     mapper.SetColorModeToDirectScalars()
     mapper.SetScalarVisibility(True)
@@ -84,7 +88,7 @@ class Painter:
                 shown.append(self._use_points(layer))
             elif name in cell_values:
                 shown.append(self._use_cells(layer, cell_values[name]))
-            elif OWN_COLOURS in layer.mesh.point_data:
+            elif OWN_COLOURS in layer.mesh.point_data or OWN_COLOURS in layer.mesh.cell_data:
                 use_own(layer)
             else:
                 layer.actor.mapper.SetScalarVisibility(False)

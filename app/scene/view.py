@@ -27,6 +27,7 @@ from app.scene.layers import (
     STATIC_LAYERS,
     Layer,
     ball_mesh,
+    coloured_cells,
     new_mesh,
     shape_cells,
 )
@@ -87,6 +88,13 @@ class Scene:
         if "cavities" in styles and data.dim == 3:
             self._add_layer("cavities", Layer("tets", new_mesh("tets", data.xyz)),
                             styles["cavities"])
+        if data.pockets is not None and data.dim == 3:
+            p = data.pockets
+            for name, kind, cells, rgb in (("pockets", "tets", p.cells, p.cell_rgb),
+                                           ("mouths", "tris", p.mouths, p.mouth_rgb)):
+                if name in styles:
+                    self._add_layer(name, coloured_cells(kind, data.xyz, cells, rgb),
+                                    styles[name])
         self.layers["points"].set_cells(np.arange(len(data.xyz), dtype=np.int32)[:, None])
         self.layers["delaunay"].set_cells(data.edges)
         self.overlay.set_layers(self.styles)
