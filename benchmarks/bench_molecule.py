@@ -1,20 +1,27 @@
-"""Benchmark of the molecule measures (issue 12, Performance) on a ~10,000-atom protein.
+"""Benchmark of a molecule end to end against freesasa, and of the weighted build against gudhi.
 
-    python benchmarks/bench_molecule.py [--copies 18] [--probe 1.4] [--json out.json]
+    python benchmarks/bench_molecule.py [--sizes 2 18 180] [--probe 1.4] [--no-save]
 
-The protein is synthetic: copies of the shared 1A8O (556 atoms), each turned by a seeded
-random rotation, on a 3 x 3 x 2 grid 24 Å apart, so neighbouring copies interpenetrate like
-packed domains. One run times, on the same atoms: the weighted build alone, `measure_molecule`
-(exact area, volume, per-atom area, cavities), `union_measures` alone (the exact area
-and volume from the dual complex's simplices), and freesasa's default Lee–Richards (20 slices)
-and a fine one (200 slices) for the area. Each timing is the best of 3 runs.
+Inputs: copies of the shared 1A8O (556 atoms without its waters), each turned by a seeded
+random rotation, on a 3 x 3 x k grid 24 Å apart (neighbouring copies interpenetrate like packed
+domains), written as one PDB file: 2, 18 and 180 copies give 1,112, 10,008 and 100,080 atoms.
+
+Per size, in one run, each timing the best of REPS (one run at 100,000 atoms):
+- ours end to end: read the PDB (core.io.molecule), build the weighted complex, exact area and
+  volume of the union (`union_measures`); and the whole `measure_molecule` (also per-atom
+  areas, exact cavities and pockets);
+- freesasa end to end, its default: read the same PDB (freesasa.Structure, all records as ATOM)
+  and its default Lee–Richards (20 slices, probe 1.4 Å, ProtOr radii): area only;
+- our weighted build against gudhi's weighted AlphaComplex with precision 'fast' (its
+  simplex tree), on the same centres and weights.
+Figures go to benchmarks/results/molecule.json (benchmarks/results.py).
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -24,6 +31,7 @@ from scipy.spatial.transform import Rotation
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from benchmarks.results import Figure, save  # noqa: E402
 from core.complex import AlphaComplex  # noqa: E402
 from core.io.molecule import read_molecule  # noqa: E402
 from core.molecule.analysis import measure_molecule  # noqa: E402
@@ -32,66 +40,149 @@ from core.molecule.measures import union_measures  # noqa: E402
 SPACING = 24.0  # Å between copies: about the protein's width, so copies overlap a little
 
 
-def synthetic_protein(copies: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
-    """(centres (n, 3), vdW radii (n,)) of `copies` rotated copies of 1A8O on a grid."""
-    mol = read_molecule(ROOT.parent / "shared" / "data" / "1A8O.pdb")
-    base = mol.centres - mol.centres.mean(0)
+def _source() -> Path:
+    """The shared 1A8O.pdb: beside the checkout (or a worktree's parent), or $ALPHASCOOP_DATA."""
+    import os
+
+    places = [ROOT.parent / "shared" / "data", ROOT.parents[1] / "shared" / "data"]
+    if os.environ.get("ALPHASCOOP_DATA"):
+        places.append(Path(os.environ["ALPHASCOOP_DATA"]))
+    return next((p / "1A8O.pdb" for p in places if (p / "1A8O.pdb").is_file()),
+                places[0] / "1A8O.pdb")
+
+
+SOURCE = _source()
+CHAINS = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+REPS = 3  # every timing is the best of this many runs (the machine is shared)
+SINGLE_RUN_ATOMS = 50_000  # above this, one run per timing
+
+
+def _atom_lines() -> list[str]:
+    """1A8O's atom records without waters, every one as ATOM (freesasa skips HETATM)."""
+    lines = [line for line in SOURCE.read_text().splitlines()
+             if line.startswith(("ATOM", "HETATM")) and line[17:20] != "HOH"]
+    return ["ATOM  " + line[6:] for line in lines]
+
+
+def write_copies(copies: int, path: Path, seed: int = 0) -> int:
+    """Write `copies` rotated copies of 1A8O on the grid as one PDB file; the atom count."""
+    lines = _atom_lines()
+    xyz = np.array([[float(line[30 + 8 * i:38 + 8 * i]) for i in range(3)] for line in lines])
+    base = xyz - xyz.mean(0)
     rotations = Rotation.random(copies, random_state=seed)
     grid = np.stack(np.meshgrid(range(3), range(3), range(-(-copies // 9)), indexing="ij"),
                     -1).reshape(-1, 3)[:copies]
-    centres = np.concatenate([rot.apply(base) + SPACING * g
-                              for rot, g in zip(rotations, grid, strict=True)])
-    return centres, np.tile(mol.vdw_radii, copies)
+    out, serial = [], 0
+    for c, (rot, g) in enumerate(zip(rotations, grid, strict=True)):
+        for line, p in zip(lines, rot.apply(base) + SPACING * g, strict=True):
+            serial += 1
+            out.append(f"{line[:6]}{serial % 100000:5d}{line[11:21]}{CHAINS[c % len(CHAINS)]}"
+                       f"{line[22:30]}{p[0]:8.3f}{p[1]:8.3f}{p[2]:8.3f}{line[54:]}")
+    path.write_text("\n".join(out) + "\nEND\n")
+    return serial
 
 
-REPS = 3  # every timing is the best of this many runs (the machine is shared)
-
-
-def timed(fn, *args, **kwargs):
-    """(result, seconds): the best wall time of REPS calls."""
-    best = float("inf")
-    for _ in range(REPS):
+def timed(reps: int, fn, *args, **kwargs):
+    """(result, seconds): the best wall time of `reps` calls."""
+    best, out = float("inf"), None
+    for _ in range(reps):
         start = time.perf_counter()
         out = fn(*args, **kwargs)
         best = min(best, time.perf_counter() - start)
     return out, best
 
 
-def run(copies: int, probe: float) -> dict:
-    """Every measurement of one run, as a JSON-ready dict."""
+def ours_area_volume(path: Path, probe: float):
+    """Read, build, exact area and volume of the union: our end to end."""
+    mol = read_molecule(path)
+    ac = AlphaComplex.from_points(mol.centres, weights=mol.weights(probe))
+    k = [ac.simplices(d)[ac.intervals_sq(d)[:, 0] <= 0] for d in range(4)]
+    return union_measures(ac.points, np.sqrt(ac.weights), *k[1:], vertices=k[0][:, 0])
+
+
+def ours_everything(path: Path, probe: float):
+    """Read, build, measure_molecule (area, volume, per-atom areas, cavities, pockets)."""
+    mol = read_molecule(path)
+    return measure_molecule(AlphaComplex.from_points(mol.centres, weights=mol.weights(probe)),
+                            probe)
+
+
+def freesasa_default(path: Path):
+    """freesasa end to end with its defaults: read the PDB, Lee–Richards."""
     import freesasa
 
-    centres, vdw = synthetic_protein(copies)
-    ac, build = timed(AlphaComplex.from_points, centres, weights=(vdw + probe) ** 2)
-    m, measures = timed(measure_molecule, ac, probe)
-    simplices = [ac.simplices(k)[ac.intervals_sq(k)[:, 0] <= 0] for k in range(4)]
-    _, union = timed(union_measures, ac.points, np.sqrt(ac.weights), *simplices[1:],
-                     vertices=simplices[0][:, 0])
-    out = {"atoms": len(centres), "probe": probe, "build_s": build, "measures_s": measures,
-           "exact_area_volume_s": union,
-           "info_over_build": (build + measures) / build, "surface_area": m.surface_area,
-           "volume": m.volume, "cavities": len(m.cavities)}
-    for slices in (20, 200):
-        params = freesasa.Parameters({"algorithm": freesasa.LeeRichards, "n-slices": slices,
-                                      "probe-radius": probe})
-        result, seconds = timed(freesasa.calcCoord, centres.ravel(), list(map(float, vdw)),
-                                params)
-        out[f"freesasa_lr{slices}_s"] = seconds
-        out[f"freesasa_lr{slices}_area"] = result.totalArea()
-    return out
+    return freesasa.calc(freesasa.Structure(str(path)))
+
+
+def gudhi_fast(centres: np.ndarray, weights: np.ndarray):
+    """gudhi's weighted alpha complex, precision 'fast', to its simplex tree."""
+    import gudhi
+
+    return gudhi.AlphaComplex(points=centres, weights=weights,
+                              precision="fast").create_simplex_tree()
+
+
+def run_size(copies: int, probe: float, folder: Path) -> tuple[list[Figure], dict]:
+    """Figures and a table row for one input size."""
+    import freesasa
+
+    freesasa.setVerbosity(freesasa.silent)
+    path = folder / f"copies{copies}.pdb"
+    atoms = write_copies(copies, path)
+    reps = 1 if atoms > SINGLE_RUN_ATOMS else REPS
+    union, ours = timed(reps, ours_area_volume, path, probe)
+    full, everything = timed(reps, ours_everything, path, probe)
+    result, theirs = timed(reps, freesasa_default, path)
+    mol = read_molecule(path)
+    weights = mol.weights(probe)
+    _, build = timed(reps, AlphaComplex.from_points, mol.centres, weights=weights)
+    _, gudhi = timed(reps, gudhi_fast, mol.centres, weights)
+    size = f"{atoms:,} atoms"
+    figures = [
+        Figure(f"end_to_end_{atoms}", f"read + build + exact area and volume, {size}", ours,
+               "s", "freesasa default Lee-Richards, read + area", theirs, "<= 1"),
+        Figure(f"everything_{atoms}", f"read + build + measure_molecule (per-atom, cavities, "
+               f"pockets), {size}", everything, "s",
+               "freesasa default Lee-Richards, read + area", theirs),
+        Figure(f"weighted_build_{atoms}", f"weighted build, {size}", build, "s",
+               "gudhi weighted AlphaComplex, precision fast", gudhi, "<= 0.8"),
+    ]
+    row = [atoms, round(ours, 3), round(everything, 3), round(theirs, 3), round(build, 3),
+           round(gudhi, 3), round(union.area, 2), round(result.totalArea(), 2),
+           len(full.pockets), len(full.cavities)]
+    return figures, row
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--copies", type=int, default=18, help="copies of 1A8O (556 atoms)")
+    parser.add_argument("--sizes", type=int, nargs="+", default=[2, 18, 180],
+                        help="copies of 1A8O per input (556 atoms each)")
     parser.add_argument("--probe", type=float, default=1.4, help="probe radius, Å")
-    parser.add_argument("--json", metavar="PATH", help="also write the results as JSON")
+    parser.add_argument("--no-save", action="store_true", help="print only")
+    parser.add_argument("--results", type=Path, default=None, help="folder of the result JSON "
+                        "(default benchmarks/results)")
     args = parser.parse_args(argv)
-    out = run(args.copies, args.probe)
-    for key, value in out.items():
-        print(f"{key:<22}{value:.6g}" if isinstance(value, float) else f"{key:<22}{value}")
-    if args.json:
-        Path(args.json).write_text(json.dumps(out, indent=2))
+    figures, rows = [], []
+    with tempfile.TemporaryDirectory() as folder:
+        for copies in args.sizes:
+            more, row = run_size(copies, args.probe, Path(folder))
+            figures += more
+            rows.append(row)
+            for f in more:
+                print(f"{f.label:<70} {f.value:8.3f} s  vs {f.anchor_value:8.3f} s  "
+                      f"ratio {f.ratio:.2f}" + (f" (goal {f.goal}: {f.met})" if f.goal else ""))
+    columns = ["atoms", "ours_end_to_end_s", "ours_everything_s", "freesasa_default_s",
+               "our_build_s", "gudhi_fast_build_s", "our_area", "freesasa_area", "pockets",
+               "cavities"]
+    if not args.no_save:
+        extra = {} if args.results is None else {"folder": args.results}
+        print(save("molecule", figures, **extra, tables=[{
+            "title": "Molecules end to end (synthetic copies of 1A8O)", "columns": columns,
+            "rows": rows}], notes=[
+            "Ours: read the PDB, weighted build, exact area and volume; freesasa: read the "
+            "same PDB and its default Lee-Richards (20 slices; ProtOr radii, area only). "
+            "'everything' adds per-atom areas, exact cavities and pockets.",
+            "Inputs: rotated copies of 1A8O packed 24 Å apart (bench_molecule.py)."]))
     return 0
 
 

@@ -161,19 +161,20 @@ def test_weighted_packing_radii_span_one_to_two_spacings() -> None:
 
 def test_molecule_benchmark_small_run(tmp_path) -> None:
     pytest.importorskip("freesasa")
-    from benchmarks.bench_molecule import ROOT, synthetic_protein
+    pytest.importorskip("gudhi")
+    from benchmarks.bench_molecule import SOURCE, write_copies
     from benchmarks.bench_molecule import main as bench_main
 
-    if not (ROOT.parent / "shared" / "data" / "1A8O.pdb").is_file():
+    if not SOURCE.is_file():
         pytest.skip("no shared data")
-    centres, radii = synthetic_protein(2)
-    assert centres.shape == (1112, 3) and radii.shape == (1112,)
-    assert np.ptp(centres[556:].mean(0) - centres[:556].mean(0)) > 0  # the copy moved
-    out = tmp_path / "m.json"
-    assert bench_main(["--copies", "2", "--json", str(out)]) == 0
-    figures = json.loads(out.read_text())
-    assert figures["atoms"] == 1112 and figures["build_s"] > 0
-    assert figures["surface_area"] == pytest.approx(figures["freesasa_lr200_area"], rel=1e-3)
+    assert write_copies(2, tmp_path / "two.pdb") == 1112
+    assert bench_main(["--sizes", "2", "--results", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "molecule.json").read_text())
+    names = {f["name"]: f for f in result["figures"]}
+    assert {"end_to_end_1112", "everything_1112", "weighted_build_1112"} <= set(names)
+    assert all(f["anchor_value"] > 0 and f["ratio"] > 0 for f in names.values())
+    row = result["tables"][0]["rows"][0]
+    assert row[0] == 1112 and row[6] > 0 and row[7] > 0  # our and freesasa's areas
 
 
 def test_bench_passes_compares_two_checkouts_stage_by_stage(tmp_path, capsys) -> None:
