@@ -220,3 +220,17 @@ def test_orthocentre_has_equal_power_and_open_area_of_a_bare_triangle():
     # disks apart, none reaching its opposite edge: the triangle less half a disk (the
     # corner angles sum to pi)
     assert np.allclose(open_area(facts, bare), double / 2 - np.pi * radii[0] ** 2 / 2)
+
+
+def test_flat_cell_has_its_centroid_for_orthocentre():
+    """A cell without volume (four coplanar centres) neither fails nor flows anywhere."""
+    from core.molecule.regions import DualFacts
+
+    centres = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [0, 0, 1], [1, 0, 1],
+                        [0, 1, 1], [0.5, 0.5, 2]])
+    cells = np.array([[0, 1, 2, 3], [0, 1, 2, 4]])
+    none = np.zeros(0, np.int64)
+    facts = DualFacts(centres, np.ones(8), cells, np.zeros(2, bool), none, none, none, none,
+                      none, none, none)
+    lam = barycentric_orthocentres(facts)
+    assert np.allclose(lam[0], 0.25) and np.isclose(lam[1].sum(), 1.0)

@@ -15,12 +15,17 @@ from core.molecule.regions import DualFacts
 def barycentric_orthocentres(facts: DualFacts) -> np.ndarray:
     """(c, 4) float64 barycentric coordinates of each cell's orthocentre (the point of equal
     power to its four balls); a negative coordinate j puts the orthocentre beyond the facet
-    opposite vertex j."""
+    opposite vertex j. A flat cell (no volume) gets its centroid: it flows nowhere."""
     c = facts.centres[facts.cells]
     c = c - c[:, :1]
-    z, _ = radical_point(c, facts.radii[facts.cells])
     edges = np.transpose(c[:, 1:], (0, 2, 1))  # (c, 3, 3) columns c1-c0, c2-c0, c3-c0
+    flat = ~(np.abs(np.linalg.det(edges)) > 0)
+    edges[flat] = np.eye(3)
+    with np.errstate(all="ignore"):
+        z, _ = radical_point(c, facts.radii[facts.cells])
+    z[flat] = 0.25
     lam = np.linalg.solve(edges, z[:, :, None])[:, :, 0]
+    lam[flat] = 0.25
     return np.concatenate([1.0 - lam.sum(1, keepdims=True), lam], 1)
 
 
