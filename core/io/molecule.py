@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
-from core.io.radii_files import read_pqr, read_xyzr
+from core.io.radii_files import AtomTable, read_pqr, read_xyzr
 from core.io.report import PointSet, finish
 
 MOLECULE_EXTENSIONS = (".pdb", ".ent", ".cif", ".mmcif", ".pqr", ".xyzr")
@@ -111,7 +111,7 @@ def read_molecule(path: str | Path, *, keep_water: bool = False) -> Molecule:
     if not path.is_file():
         raise FileFormatError(f"{path}: no such file")
     if ext in RADII_READERS:
-        return RADII_READERS[ext](path, keep_water)
+        return _from_table(path, RADII_READERS[ext](path, keep_water))
     st = _structure(path, ext)
     n_models = len(st)
     if n_models == 0:
@@ -128,6 +128,15 @@ def read_molecule(path: str | Path, *, keep_water: bool = False) -> Molecule:
         waters = 0
     st.remove_empty_chains()
     return _molecule(path, st, n_models, waters, altlocs)
+
+
+def _from_table(path: Path, t: AtomTable) -> Molecule:
+    """The Molecule of a radii file's atoms (PQR, XYZR)."""
+    report = MoleculeReport(path=str(path), models=t.models, chains=t.chains,
+                            residues=len(set(t.residues.tolist())), atoms=len(t.radii),
+                            hydrogens=int((t.numbers == 1).sum()), waters_skipped=t.waters,
+                            altlocs_skipped=0)
+    return Molecule(t.centres, t.elements, t.numbers, t.radii, t.residues, report, t.names)
 
 
 def _molecule(path: Path, st, n_models: int, waters: int, altlocs: int) -> Molecule:

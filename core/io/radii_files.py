@@ -8,6 +8,7 @@ after them; '#' starts a comment. The radii are the file's; the probe is added a
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +16,23 @@ import numpy as np
 from core.errors import FileFormatError
 
 WATERS = ("HOH", "WAT", "H2O", "DOD", "SOL")
+
+
+@dataclass(frozen=True, eq=False)
+class AtomTable:
+    """What a radii file gives, for core.io.molecule to make a Molecule of: centres (n, 3),
+    radii (n,) float64, elements (n,) str, numbers (n,) int16, residues (n,) str
+    'chain:name:number', names (n,) str, and the counts of its report."""
+
+    centres: np.ndarray
+    radii: np.ndarray
+    elements: np.ndarray
+    numbers: np.ndarray
+    residues: np.ndarray
+    names: np.ndarray
+    waters: int
+    models: int
+    chains: int
 
 
 def _element_of(name: str) -> tuple[str, int]:
@@ -55,8 +73,8 @@ def _pqr_rows(path: Path, keep_water: bool) -> tuple[list[tuple], int, int]:
     return rows, waters, models
 
 
-def read_pqr(path: Path, keep_water: bool = False):
-    """The Molecule of a PQR file (radii from its last column)."""
+def read_pqr(path: Path, keep_water: bool = False) -> AtomTable:
+    """The atoms of a PQR file (radii from its last column)."""
     rows, waters, models = _pqr_rows(path, keep_water)
     if not rows:
         raise FileFormatError(f"{path}: no atoms (no ATOM/HETATM records)")
@@ -69,8 +87,8 @@ def read_pqr(path: Path, keep_water: bool = False):
                    chains=len(set(chain.tolist())))
 
 
-def read_xyzr(path: Path, keep_water: bool = False):
-    """The Molecule of an XYZR file (MSMS: x y z radius [name] per line)."""
+def read_xyzr(path: Path, keep_water: bool = False) -> AtomTable:
+    """The atoms of an XYZR file (MSMS: x y z radius [name] per line)."""
     del keep_water  # XYZR names no residues: nothing to recognise as water
     centres, radii, names = [], [], []
     with open(path, encoding="utf-8", errors="replace") as handle:
@@ -94,10 +112,8 @@ def read_xyzr(path: Path, keep_water: bool = False):
                    residues, 0, 1, chains=0)
 
 
-def _finish(path, centres, radii, names, residues, waters, models, chains):
-    """A Molecule with the file's radii (each > 0 and finite, else an error)."""
-    from core.io.molecule import Molecule, MoleculeReport
-
+def _finish(path, centres, radii, names, residues, waters, models, chains) -> AtomTable:
+    """The AtomTable, its radii checked (each > 0 and finite, else an error)."""
     bad = ~(np.isfinite(radii) & (radii > 0))
     if bad.any():
         raise FileFormatError(f"{path}: {int(bad.sum()):,} atoms with a radius that is not a "
@@ -105,10 +121,6 @@ def _finish(path, centres, radii, names, residues, waters, models, chains):
     if not np.all(np.isfinite(centres)):
         raise FileFormatError(f"{path}: non-finite atom coordinates")
     guessed = [_element_of(str(n)) for n in names]
-    elements = np.array([g[0] for g in guessed])
-    numbers = np.array([g[1] for g in guessed], np.int16)
-    report = MoleculeReport(path=str(path), models=models, chains=chains,
-                            residues=len(set(residues.tolist())), atoms=len(radii),
-                            hydrogens=int((numbers == 1).sum()), waters_skipped=waters,
-                            altlocs_skipped=0)
-    return Molecule(centres, elements, numbers, radii, residues, report, names)
+    return AtomTable(centres, radii, np.array([g[0] for g in guessed]),
+                     np.array([g[1] for g in guessed], np.int16), residues, names, waters,
+                     models, chains)
