@@ -53,6 +53,7 @@ def _source() -> Path:
 
 SOURCE = _source()
 CHAINS = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+RESIDUE_STEP = 1000  # copies past the 62nd reuse a chain letter, residues numbered on from here
 REPS = 3  # every timing is the best of this many runs (the machine is shared)
 SINGLE_RUN_ATOMS = 50_000  # above this, one run per timing
 
@@ -65,7 +66,8 @@ def _atom_lines() -> list[str]:
 
 
 def write_copies(copies: int, path: Path, seed: int = 0) -> int:
-    """Write `copies` rotated copies of 1A8O on the grid as one PDB file; the atom count."""
+    """Write `copies` rotated copies of 1A8O on the grid as one PDB file; the atom count.
+    Every copy is its own (chain, residue numbers): no atom repeats another's name."""
     lines = _atom_lines()
     xyz = np.array([[float(line[30 + 8 * i:38 + 8 * i]) for i in range(3)] for line in lines])
     base = xyz - xyz.mean(0)
@@ -76,8 +78,9 @@ def write_copies(copies: int, path: Path, seed: int = 0) -> int:
     for c, (rot, g) in enumerate(zip(rotations, grid, strict=True)):
         for line, p in zip(lines, rot.apply(base) + SPACING * g, strict=True):
             serial += 1
+            residue = int(line[22:26]) + RESIDUE_STEP * (c // len(CHAINS))
             out.append(f"{line[:6]}{serial % 100000:5d}{line[11:21]}{CHAINS[c % len(CHAINS)]}"
-                       f"{line[22:30]}{p[0]:8.3f}{p[1]:8.3f}{p[2]:8.3f}{line[54:]}")
+                       f"{residue:4d}{line[26:30]}{p[0]:8.3f}{p[1]:8.3f}{p[2]:8.3f}{line[54:]}")
     path.write_text("\n".join(out) + "\nEND\n")
     return serial
 

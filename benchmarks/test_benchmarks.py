@@ -168,6 +168,10 @@ def test_molecule_benchmark_small_run(tmp_path) -> None:
     if not SOURCE.is_file():
         pytest.skip("no shared data")
     assert write_copies(2, tmp_path / "two.pdb") == 1112
+    from core.io.molecule import read_molecule
+
+    assert write_copies(70, tmp_path / "many.pdb") == 70 * 556  # chain letters reused
+    assert len(read_molecule(tmp_path / "many.pdb").centres) == 70 * 556  # no atom merged
     assert bench_main(["--sizes", "2", "--results", str(tmp_path)]) == 0
     result = json.loads((tmp_path / "molecule.json").read_text())
     names = {f["name"]: f for f in result["figures"]}
