@@ -136,6 +136,20 @@ def on_export_table(tools: MenuTools) -> None:
             ds.ac, path, progress, source=ds.path))
 
 
+def on_export_pockets(tools: MenuTools) -> None:
+    """File → Export pockets: a molecule's pockets (VTU cells or CSV of lining residues)."""
+    from app.pocket_export import POCKET_FORMATS, write_pockets_file
+
+    ds = tools.model.dataset
+    if ds is None or ds.molecule is None or ds.atom_labels is None:
+        QMessageBox.information(tools.parent, "Export pockets", "Open a molecule first.")
+        return
+    path = file_actions.ask_save_path(tools.parent, tools.prefs, "Export pockets",
+                                      POCKET_FORMATS, f"{ds.path.stem}_pockets")
+    if path and not is_the_source(tools, "Export pockets", path):
+        run_writer(tools, "Export pockets", lambda: write_pockets_file(ds, path))
+
+
 def on_save_screenshot(tools: MenuTools) -> None:
     """File → Save screenshot (PNG)."""
     path = file_actions.ask_save_path(tools.parent, tools.prefs, "Save screenshot",
@@ -177,6 +191,8 @@ def add_file_menu(window: QMainWindow, tools: MenuTools) -> dict[str, QAction]:
     menu.addSeparator()
     actions["export_shape"] = add_action(menu, "&Export shape…", partial(on_export_shape, tools))
     actions["export_table"] = add_action(menu, "Export &table…", partial(on_export_table, tools))
+    actions["export_pockets"] = add_action(menu, "Export &pockets…",
+                                           partial(on_export_pockets, tools))
     actions["screenshot"] = add_action(menu, "Save &screenshot…",
                                        partial(on_save_screenshot, tools))
     menu.addSeparator()

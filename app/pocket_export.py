@@ -12,6 +12,8 @@ import numpy as np
 from core.export.vtkxml import vtu_bytes
 from core.storage.atomic import atomic_path
 
+POCKET_FORMATS = {".vtu": "VTU: the pockets' tetrahedra and mouths (cell data pocket, mouth)",
+                  ".csv": "CSV: the residues lining each pocket"}
 CSV_COLUMNS = ("pocket", "volume", "area", "mouths", "chain", "residue", "number", "atoms",
                "lining_area")
 
@@ -63,3 +65,22 @@ def write_pockets_csv(path: str | Path, pockets, labels: list[dict]) -> int:
         writer.writeheader()
         writer.writerows(rows)
     return len(rows)
+
+
+def label_dicts(labels) -> list[dict]:
+    """Dataset.atom_labels ('chain:residue:number:atom' per point) as atom_labels' dicts."""
+    out = []
+    for text in labels:
+        chain, residue, number, atom = [*str(text).split(":"), "", "", "", ""][:4]
+        out.append({"chain": chain, "residue": residue, "number": number, "atom": atom})
+    return out
+
+
+def write_pockets_file(dataset, path: str | Path) -> str:
+    """Write an open molecule's pockets to .vtu or .csv; the status line."""
+    pockets = dataset.molecule.pockets
+    if Path(path).suffix.lower() == ".csv":
+        count = write_pockets_csv(path, pockets, label_dicts(dataset.atom_labels))
+        return f"{path}: {len(pockets)} pockets, {count:,} lining residues"
+    count = write_pockets_vtu(path, dataset.ac, pockets, {"probe": dataset.molecule.probe})
+    return f"{path}: {len(pockets)} pockets, {count:,} cells (cell data pocket, mouth)"

@@ -79,3 +79,24 @@ def test_pockets_layer_colours_and_click(window, qtbot, tmp_path):
     assert "pocket 1 of" in text and " ".join(first[:3]) in text
     window.inspector.inspect_vertices(ds.ac.simplices(0)[0])  # a vertex: no pocket
     assert window.inspect_panel.fields["pocket"].text() == ""
+
+
+def test_export_pockets_from_the_window(window, qtbot, tmp_path, monkeypatch):
+    """File → Export pockets writes the VTU (cell data pocket) and the CSV of residues."""
+    import csv
+
+    import meshio
+
+    from app import file_actions
+
+    open_and_wait(qtbot, window, PDB)
+    pockets = window.model.dataset.molecule.pockets
+    for name in ("p.vtu", "p.csv"):
+        monkeypatch.setattr(file_actions, "ask_save_path", lambda *_a, n=name: tmp_path / n)
+        window.menus["export_pockets"].trigger()
+    ids = np.concatenate([np.ravel(a) for a in meshio.read(tmp_path / "p.vtu").cell_data["pocket"]])
+    assert set(ids.tolist()) == set(range(len(pockets)))
+    with open(tmp_path / "p.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    assert {r["pocket"] for r in rows} == {str(p) for p in range(len(pockets))}
+    assert rows[0]["chain"] == "A" and rows[0]["residue"].isalpha() and rows[0]["atoms"]
