@@ -1,5 +1,5 @@
 """Our pockets beside pyKVFinder's cavities (a grid method with another definition) on 1A8O:
-the largest found by both line the same residues (docs/pockets.md says where they differ)."""
+the largest found by both line the same residues (assets/docs/pockets.md says where they differ)."""
 
 from __future__ import annotations
 
