@@ -1,4 +1,4 @@
-"""Triangulation backends (issue 15): our core build with gmsh and with Qhull against gudhi's
+"""Triangulation backends: our core build with gmsh and with Qhull against gudhi's
 bare `AlphaComplex(precision="fast")` build, and gmsh's triangulation (completed near the hull
 and certified) against scipy's Delaunay, in one run, each step in its own fresh interpreter.
 
@@ -16,9 +16,10 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
+from benchmarks.core_report import write_json
 from benchmarks.datasets import bunny_scan, noisy_torus
 from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
-from benchmarks.report import write_json
+from benchmarks.results import clock_pair, save, slug
 
 #: (mine, theirs, goal): ratio of wall times mine / theirs must be <= goal.
 GOALS = (("build gmsh", "gudhi fast", 0.5), ("build qhull", "gudhi fast", 0.8),
@@ -138,7 +139,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--sets", default="torus,bunny")
     parser.add_argument("--steps", default=",".join(STEPS))
     args = parser.parse_args(argv)
-    everything = {}
+    everything, figures = {}, []
     for name in args.sets.split(","):
         points = SETS[name](args.n, args.seed)
         with tempfile.TemporaryDirectory() as folder:
@@ -150,9 +151,16 @@ def main(argv: list[str] | None = None) -> int:
                 results[step] = run_isolated(fn, path, *extra)
                 results[step].pop("trace", None)
         everything[name] = results
+        figures += [fig for mine, theirs, goal in GOALS for fig in clock_pair(
+            f"{slug(mine)}_vs_{slug(theirs)}_{name}", f"{mine} / {theirs}, {args.n:,} {name} "
+            "points", results.get(mine, {}), theirs, results.get(theirs, {}),
+            None if goal is None else f"<= {goal}")]
         print("\n".join(report(name, args.n, results)), flush=True)
         if args.json:
             write_json(args.json, {"n": args.n, "seed": args.seed, "results": everything})
+    save("bench_backends", figures, notes=[
+        "Each step in its own fresh interpreter; \"build\" is AlphaComplex.from_points with "
+        "that backend, \"triangulation\" the backend's certified triangulation alone."])
     return 0
 
 

@@ -1,9 +1,10 @@
-"""Benchmark of the core table against scipy, gudhi and Open3D (issues 3, 4, 6: Performance).
+"""Benchmark of the core table against scipy, gudhi and Open3D: build, memory, load, queries.
 
     python benchmarks/bench_core.py --n 200000 [--n 1000000] [--skip-gudhi] [--skip-open3d]
         [--reps 5] [--seed 0] [--json results.json]
 
-Every measurement runs in its own spawned interpreter so its peak memory is its own.
+Every measurement runs in its own spawned interpreter so its peak memory is its own. The goal
+figures of every size go to benchmarks/results/bench_core.json (benchmarks/results.py).
 """
 
 from __future__ import annotations
@@ -16,10 +17,11 @@ import sys
 import tempfile
 import time
 
+import core_report
 import measure
-import report
 from datasets import write_torus
 from isolate import run_isolated
+from results import save as save_result
 
 
 def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
@@ -80,8 +82,9 @@ def run_size(n: int, args: argparse.Namespace, folder: str) -> dict:
     for path in (points, table):
         if os.path.exists(path):
             os.unlink(path)
-    rows = report.ratios(report.figures(results))
-    return {"results": results, "ratios": rows, "table": report.format_tables(n, results, rows)}
+    rows = core_report.ratios(core_report.figures(results))
+    table = core_report.format_tables(n, results, rows)
+    return {"results": results, "ratios": rows, "table": table}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -90,12 +93,17 @@ def main(argv: list[str] | None = None) -> int:
     machine = {"python": platform.python_version(), "cpus": os.cpu_count(),
                "platform": platform.platform()}
     payload = {"machine": machine, "seed": args.seed, "reps": args.reps, "runs": {}}
+    figures = []
     with tempfile.TemporaryDirectory(prefix="alphascoop-bench-") as folder:
         for n in args.n:
             payload["runs"][str(n)] = run = run_size(n, args, folder)
             print(run["table"] + "\n", flush=True)
+            figures += core_report.result_figures(n, run["ratios"])
             if args.json:
-                report.write_json(args.json, payload)
+                core_report.write_json(args.json, payload)
+    save_result("bench_core", figures, notes=[
+        "Noisy torus points; every measurement in its own spawned interpreter; times are the "
+        f"best of {args.reps} for the cheap queries, one run for the builds."])
     return 0
 
 

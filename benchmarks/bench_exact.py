@@ -1,4 +1,4 @@
-"""Certified build (issue 14): the build with exact certification and sign decisions against
+"""Certified build: the build with exact certification and sign decisions against
 the floating-point build of the same points, in one run, each in its own fresh interpreter.
 
     flock /work/wt/bench.lock .venv/bin/python benchmarks/bench_exact.py --n 1000000 \
@@ -20,9 +20,10 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
+from benchmarks.core_report import write_json
 from benchmarks.datasets import noisy_torus
 from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
-from benchmarks.report import write_json
+from benchmarks.results import clock_pair, save
 
 GOAL = 1.10  # the certified build at most 10 % slower
 
@@ -83,6 +84,12 @@ def main(argv: list[str] | None = None) -> int:
     if args.json:
         write_json(args.json, {"input": label, "n": len(points), "seed": args.seed,
                                "results": results})
+    name = "bench_exact" if not args.scan else f"bench_exact_{os.path.basename(args.scan)}"
+    save(name.replace(".", "_"), clock_pair(
+        "certified_vs_floating_point", f"certified build / floating-point build, {label}",
+        exact, "floating-point build", fast,
+        cpu_goal=None if args.scan else f"<= {GOAL}"),
+        notes=[f"certification: {exact.get('info', exact.get('error'))}"])
     return 0
 
 

@@ -1,4 +1,4 @@
-"""Benchmark of a first open in the window (issue 15), against gudhi's bare build, in one run.
+"""Benchmark of a first open in the window, against gudhi's bare build, in one run.
 
     xvfb-run -a python benchmarks/bench_first_open.py [--n 1000000] [--seed 0]
         [--set torus|bunny] [--steps scipy,gudhi,qhull,gmsh,window,window-qhull]
@@ -36,10 +36,12 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import numpy as np
+from core_report import write_json
 from datasets import bunny_scan, noisy_torus, write_points
 from isolate import Probe, run_isolated
 from measure import gudhi_alpha, scipy_delaunay
-from report import write_json
+from results import Figure, slug
+from results import save as save_result
 from window_open import CANCELS, REOPENS, first_open
 
 GOALS = (  # (figure, reference, goal: at most; None: reported only)
@@ -275,7 +277,29 @@ def main(argv: list[str] | None = None) -> int:
     save(results)
     print(f"{load_text()} at the end", flush=True)
     print(format_report(args.n, results, args.set), flush=True)
+    name = "bench_first_open" if args.set == "torus" else f"bench_first_open_{args.set}"
+    save_result(name, result_figures(args.n, results, args.set), notes=[
+        f"{args.n:,} {args.set} points, a first open with an empty table cache; the window's "
+        "CPU time includes its build and topology processes. Steps: " + ", ".join(args.steps)
+        + "."])
     return 0
+
+
+def result_figures(n: int, results: dict, point_set: str) -> list[Figure]:
+    """Every goal row as a figure beside its anchor of the same run."""
+    figures = []
+    for label, value, ref, _ratio, goal, _met in ratio_rows(results, point_set):
+        figure, _, reference = label.partition(" / ")
+        reference, clock = reference.rsplit(" (", 1) if "(" in reference else (reference, "")
+        clock = {"time)": "wall", "CPU)": "cpu"}.get(clock, "")
+        unit = "MiB" if "MiB" in label else "s"
+        name = slug(figure.replace("window:", "")) + (
+            f"_vs_{slug(reference.split()[0])}" if unit == "s" else "") + (
+            f"_{clock}" if clock else "")
+        figures.append(Figure(name=name, label=f"{label}, {n:,} {point_set} points",
+                              value=value, unit=unit, anchor=reference, anchor_value=ref,
+                              goal=None if goal is None else f"<= {goal}"))
+    return figures
 
 
 if __name__ == "__main__":

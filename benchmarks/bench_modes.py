@@ -1,5 +1,5 @@
-"""Benchmark of the alpha modes (issue 13, Performance): each mode's build against the classic
-build of the same points, in one run.
+"""Benchmark of the alpha modes: each mode's build against the classic build of the same points,
+in one run.
 
     python benchmarks/bench_modes.py [--n 200000] [--seed 0] [--json out.json]
 
@@ -22,9 +22,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+from core_report import write_json
 from datasets import noisy_torus
 from isolate import size_options
-from report import write_json
+from results import Figure, save
 
 from core import AlphaComplex
 
@@ -89,13 +90,28 @@ def report(result: dict) -> str:
     return "\n".join(lines)
 
 
+def result_figures(result: dict) -> list[Figure]:
+    """Each mode's build against the classic build of the run, on the wall and CPU clocks."""
+    base, n = result["builds"]["classic"], result["n"]
+    return [Figure(name=f"{name.split()[0]}_{clock}", label=f"{name} build, {clock_name}, "
+                   f"{n:,} torus points", value=result["builds"][name][clock], unit="s",
+                   anchor="classic build", anchor_value=base[clock], goal=f"<= {GOAL}")
+            for name in result["ratios"] for clock, clock_name in (("wall", "wall"),
+                                                                  ("cpu", "CPU"))]
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run and print (and write the JSON)."""
+    """Run and print; write the result (and the detailed JSON when asked)."""
     args = parse_args(argv)
     result = run(args.n, args.seed)
     print(report(result))
     if args.json:
         write_json(args.json, result)
+    before, after = result["load"]
+    save("bench_modes", result_figures(result), notes=[
+        "Builds in one process in the order classic, density, anisotropic, classic; the classic "
+        f"anchor is the faster of its two runs. Load average {before:.1f} before, "
+        f"{after:.1f} after."])
     return 0
 
 

@@ -1,5 +1,6 @@
 """Per-stage timings of the build's table passes and of the topology pass, this checkout
-against another one in the same run (issue 15: each pass at least 1.5x faster).
+against another one in the same run (the figures: each pass's sum of stages, this checkout
+against the other, in benchmarks/results/bench_passes.json).
 
     python benchmarks/bench_passes.py --before /path/to/old/checkout [--n 200000] [--n 1000000]
         [--rounds 2] [--gudhi] [--json out.json]
@@ -50,7 +51,7 @@ def worker(n: int, seed: int) -> dict:
     wall, cpu = time.perf_counter(), time.process_time()
     topology = build_topology(ac)
     figures["topology"] = [time.perf_counter() - wall, time.process_time() - cpu]
-    index = getattr(ac, "index", None)  # the table index object since issue 16
+    index = getattr(ac, "index", None)  # None in checkouts older than the table index object
     wall, cpu = time.perf_counter(), time.process_time()
     compute_signatures(*((ac,) if index is None else (index, ac.points)), topology)
     figures["signatures"] = [time.perf_counter() - wall, time.process_time() - cpu]
@@ -134,7 +135,7 @@ def main(argv: list[str] | None = None) -> int:
     if not os.path.isdir(os.path.join(args.before, "core")):
         parser.error(f"--before: {args.before} has no core/ folder")
     after_root = os.path.dirname(HERE)
-    payload = {}
+    payload, figures = {}, []
     for n in args.n or [200_000]:
         sides = {"before": [], "after": []}
         for _ in range(max(1, args.rounds)):
@@ -145,12 +146,35 @@ def main(argv: list[str] | None = None) -> int:
         payload[n] = {"before": sides["before"], "after": sides["after"], "gudhi": None}
         _write(args.json, payload)
         print(table(n, best(sides["before"]), best(sides["after"]), None) + "\n", flush=True)
+        figures += result_figures(n, best(sides["before"]), best(sides["after"]))
         if args.gudhi:  # after the table, so a long gudhi run loses nothing measured before
             payload[n]["gudhi"] = gudhi = run(after_root, n, args.seed, "--gudhi-worker")
             _write(args.json, payload)
             print(table(n, best(sides["before"]), best(sides["after"]), gudhi).splitlines()[-1]
                   + "\n", flush=True)
+    sys.path.insert(0, HERE)
+    from results import save
+
+    save("bench_passes", figures, notes=[
+        f"This checkout against {os.path.abspath(args.before)}, the best of {args.rounds} "
+        "alternating rounds per side, each in a fresh interpreter."])
     return 0
+
+
+def result_figures(n: int, before: dict, after: dict) -> list:
+    """Each pass's summed stages, this checkout against the other, on both clocks."""
+    sys.path.insert(0, HERE)
+    from results import Figure
+
+    figures = []
+    for name, stages in (("table passes", TABLE_STAGES), ("topology pass", TOPOLOGY_STAGES)):
+        for i, clock in enumerate(("wall", "CPU")):
+            figures.append(Figure(
+                name=f"{name.replace(' ', '_')}_{clock.lower()}_{n}",
+                label=f"{name} (sum of stages), {clock}, {n:,} torus points",
+                value=sum(after[s][i] for s in stages), unit="s",
+                anchor="the other checkout", anchor_value=sum(before[s][i] for s in stages)))
+    return figures
 
 
 def _write(path: str | None, payload: dict) -> None:

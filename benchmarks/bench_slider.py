@@ -1,4 +1,4 @@
-"""Benchmark of a slider step in the explorer (issue 6, Performance).
+"""Benchmark of a slider step in the explorer: shape query + mesh update against the build.
 
     python benchmarks/bench_slider.py [--n 200000] [--steps 40] [--seed 0] [--size 1280x800]
         [--all-layers] [--skip-open3d] [--json out.json]
@@ -14,6 +14,7 @@ in the same run; the cursor's one-off set-up (done in the loader thread) is repo
 When `import open3d` works, Open3D's per-alpha reconstruction (TetraMesh made once, then
 create_from_point_cloud_alpha_shape) is timed on the same points at the first arrow and page
 alphas, and the slowest step of each kind is given as a ratio to Open3D's fastest alpha.
+The step figures go to benchmarks/results/bench_slider.json (benchmarks/results.py).
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 import numpy as np
 import pyvista as pv
 from datasets import noisy_torus
+from results import Figure, save
 
 from app.palette import default_styles
 from app.scene import Scene, SceneData, as_xyz
@@ -146,6 +148,7 @@ def run(args: argparse.Namespace) -> dict:
         "build_s": build_s, "cursor_setup_s": cursor_s, "arrow_step": summary(arrows),
         "drag_step": summary(drags), "page_step": summary(pages),
         "render": summary(renders), "window": args.size, "all_layers": args.all_layers,
+        "steps": args.steps,
         "open3d": open3d,
     }
 
@@ -185,13 +188,32 @@ def write_json(path: Path, figures: dict) -> None:
     os.replace(tmp, path)
 
 
+STEP_GOAL = "<= 0.001"  # a slider step at most a thousandth of the table's build
+KINDS = {"arrow_step": "arrow key (next critical alpha)", "drag_step": "mouse drag (1 pixel)",
+         "page_step": "Page key (1/50 of the spectrum)"}
+
+
+def result_figures(figures: dict) -> list[Figure]:
+    """The median and the worst step of each kind against the build of the same run (wall)."""
+    n = f"{figures['n_points']:,} torus points"
+    return [Figure(name=f"{kind}_{stat}", label=f"slider step, {label}, {stat} of "
+                   f"{figures['steps']}, {n}", value=figures[kind][f"{stat}_s"], unit="s",
+                   anchor="table build", anchor_value=figures["build_s"], goal=STEP_GOAL)
+            for kind, label in KINDS.items() for stat in ("median", "max")]
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run, print, optionally write JSON."""
+    """Run, print, write the result (and the detailed JSON when asked)."""
     args = parse_args(argv)
     figures = run(args)
     print(report(figures))
     if args.json:
         write_json(Path(args.json), figures)
+    save("bench_slider", result_figures(figures), notes=[
+        "A step is the window's cursor.move(alpha) plus the swap of the visible layers' mesh "
+        "connectivity, without the render; the anchor is the table build of the same run. "
+        f"Render alone (software, {figures['window']}): median "
+        f"{1e3 * figures['render']['median_s']:.1f} ms."])
     return 0
 
 

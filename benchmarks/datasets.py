@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from pathlib import Path
 
 import numpy as np
 
@@ -68,14 +69,21 @@ def write_torus(n: int, seed: int, path: str) -> dict:
     return {"n": n, "seed": seed}
 
 
+def shared_data() -> Path:
+    """The folder of the real scans: shared/data beside the repository, else $ALPHASCOOP_DATA
+    (the tests' rule, tests/reference.py)."""
+    here = Path(__file__).resolve().parents[2] / "shared" / "data"
+    env = os.environ.get("ALPHASCOOP_DATA")
+    return here if here.is_dir() or not env else Path(env)
+
+
 def bunny_scan(n: int, seed: int = 0, mesh: str | None = None) -> np.ndarray:
     """(n, 3) float64 scan-like sample of the Stanford bunny (shared/data/bunny.ply's faces):
     area-uniform on the mesh, moved along each face normal by Gaussian range noise of sigma
     0.05 mm, coordinates rounded to 1 µm as the ASCII PLY stores them (metres)."""
     from plyfile import PlyData
 
-    path = mesh or os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                "..", "shared", "data", "bunny.ply")
+    path = mesh or shared_data() / "bunny.ply"
     ply = PlyData.read(path)
     vertex = ply["vertex"]
     corners = np.column_stack([vertex["x"], vertex["y"], vertex["z"]]).astype(np.float64)

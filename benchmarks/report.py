@@ -1,174 +1,193 @@
-"""Turn bench_core measurements into figures, goal ratios, a printed table and a JSON file."""
+"""The READMEs' figures, made from the benchmark results (benchmarks/results/*.json).
+
+    python benchmarks/report.py --write    # rewrite the generated blocks of both READMEs
+    python benchmarks/report.py --check    # exit 1 when a generated block differs from its file
+
+benchmarks/README.md holds one block per benchmark between `<!-- report:begin NAME -->` and
+`<!-- report:end NAME -->`: where and when it ran, then every figure of its latest result beside
+the anchor measured in the same run. README.md holds the handful of figures a user cares about
+between `<!-- figures:begin -->` and `<!-- figures:end -->`. Only the text between markers is
+generated; the guide around it is written by hand.
+"""
 
 from __future__ import annotations
 
-import json
-import math
-import operator
+import argparse
+import datetime as _dt
 import os
+import re
+import sys
 import tempfile
+from pathlib import Path
 
-# label, numerator figure, denominator figure, comparison, goal, source issue
-GOALS = (
-    ("build / scipy Delaunay (time)", "build.seconds", "scipy.seconds", "<=", 1.5, 3),
-    ("build / gudhi fast (time)", "build.seconds", "gudhi.seconds", "<=", 0.8, 3),
-    ("build / scipy (peak extra memory)", "build.extra_mib", "scipy.extra_mib", "<=", 2.0, 3),
-    ("worst shape(alpha) / build", "shape.worst_seconds", "build.seconds", "<=", 1e-3, 3),
-    ("build / load", "build.seconds", "query.load_seconds", ">=", 20.0, 3),
-    ("signatures() / build", "query.signatures_seconds", "build.seconds", "<=", 0.5, 4),
-    ("shape / Open3D, same alpha (worst)", "pair.shape_seconds", "pair.open3d_seconds",
-     "<=", 0.1, 6),
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from results import RESULTS, load
+
+ROOT = Path(__file__).resolve().parent.parent
+BENCH_README = ROOT / "benchmarks" / "README.md"
+USER_README = ROOT / "README.md"
+BLOCK = re.compile(r"(<!-- report:begin (\S+) -->\n)(.*?)(<!-- report:end \2 -->)", re.S)
+FIGURES = re.compile(r"(<!-- figures:begin -->\n)(.*?)(<!-- figures:end -->)", re.S)
+
+# The README's figures: (benchmark, figure name), in this order; a figure whose result does not
+# exist yet is left out.
+FEATURED = (
+    ("bench_first_open", "slider_live_vs_gudhi_wall"),
+    ("bench_first_open", "topology_done_vs_gudhi_wall"),
+    ("bench_core", "build_gudhi_fast_time_wall"),
+    ("bench_core", "build_gudhi_fast_time_cpu"),
+    ("bench_core", "build_load_wall"),
+    ("bench_slider", "drag_step_max"),
+    ("bench_slider", "page_step_max"),
+    ("bench_modes", "density_wall"),
+    ("bench_modes", "anisotropic_wall"),
+    ("bench_weighted", "weighted_vs_gudhi_wall"),
+    ("bench_molecule", "end_to_end_vs_freesasa_lr20_wall"),
 )
-COMPARE = {"<=": operator.le, ">=": operator.ge}
-ROWS = {"scipy": "scipy Delaunay", "gudhi": "gudhi AlphaComplex fast", "build":
-        "AlphaComplex.from_points", "open3d": "Open3D TetraMesh (once)"}
-BUSY = 0.8  # cpu/wall below this for a one-thread step: the shared machine was busy
 
 
-def figures(results: dict) -> dict:
-    """Flat {'name.key': number} of every scalar measurement, plus the derived worst/fastest."""
-    flat = {}
-    for name, result in results.items():
-        for key, value in result.items():
-            if isinstance(value, int | float) and not isinstance(value, bool):
-                flat[f"{name}.{key}"] = float(value)
-    shapes = results.get("query", {}).get("shapes", [])
-    per_alpha = results.get("open3d", {}).get("per_alpha", [])
-    for clock in ("seconds", "cpu_seconds"):
-        if shapes:
-            flat[f"shape.worst_{clock}"] = max(s[clock] for s in shapes)
-        flat.update(_worst_pair(shapes, per_alpha, clock))
-    return flat
+def results(folder: Path = RESULTS) -> dict[str, dict]:
+    """Every saved result in the folder, by benchmark name."""
+    return {path.stem: load(path.stem, folder) for path in sorted(folder.glob("*.json"))}
 
 
-def _worst_pair(shapes: list[dict], per_alpha: list[dict], clock: str) -> dict:
-    """Our shape time and Open3D's at the alpha where ours is slowest relative to theirs."""
-    ours = {s["alpha"]: s[clock] for s in shapes}
-    pairs = [(ours[p["alpha"]], p[clock]) for p in per_alpha if p["alpha"] in ours]
-    if not pairs:
-        return {}
-    shape, o3d = max(pairs, key=lambda pair: pair[0] / max(pair[1], 1e-12))
-    return {f"pair.shape_{clock}": shape, f"pair.open3d_{clock}": o3d}
+def number(value: float, unit: str = "") -> str:
+    """A figure as the READMEs print it: three significant digits and its unit."""
+    text = f"{value:,.3g}" if abs(value) < 1e4 else f"{value:,.0f}"
+    return f"{text} {unit}".strip()
 
 
-def _cpu_key(key: str) -> str | None:
-    """The CPU-time figure matching a wall-time figure, None for non-time figures."""
-    return key.replace("seconds", "cpu_seconds") if key.endswith("seconds") else None
+def ratio(figure: dict) -> str:
+    """The figure's ratio to its anchor as "0.58x", or "-" when it has no anchor."""
+    return "-" if figure.get("ratio") is None else f"{figure['ratio']:.3g}x"
 
 
-def ratios(flat: dict) -> list[dict]:
-    """One dict per goal: value, reference, ratios and passed / cpu_passed (None: not measured)."""
-    rows = []
-    for label, num, den, op, goal, issue in GOALS:
-        value, ref = flat.get(num), flat.get(den)
-        ratio = _ratio(value, ref)
-        cpu_ratio = _ratio(flat.get(_cpu_key(num)), flat.get(_cpu_key(den)))
-        passed, cpu_passed = (None if r is None else bool(COMPARE[op](r, goal))
-                              for r in (ratio, cpu_ratio))
-        rows.append({"figure": label, "value": value, "reference": ref, "ratio": ratio,
-                     "cpu_ratio": cpu_ratio, "goal": f"{op} {goal:g}", "passed": passed,
-                     "cpu_passed": cpu_passed,
-                     "issue": issue})
-    return rows
+def verdict(figure: dict) -> str:
+    """The goal and whether the figure met it, e.g. "<= 0.8: met"."""
+    if figure.get("goal") is None:
+        return "-"
+    return f"{figure['goal']}: {'met' if figure['met'] else 'NOT met'}"
 
 
-def _ratio(value: float | None, ref: float | None) -> float | None:
-    """value / ref, or None when either is missing or ref is zero."""
-    return value / ref if value is not None and ref else None
+def provenance(result: dict) -> str:
+    """One line saying where and when a result was measured."""
+    when = _dt.datetime.fromisoformat(result["date"]).strftime("%Y-%m-%d %H:%M UTC")
+    box = result["machine"]
+    dirty = ", with uncommitted changes" if result.get("dirty") else ""
+    return (f"Commit `{result['commit'][:10]}`{dirty}, {when}; {box['processor']}, "
+            f"{box['cpu_count']} CPUs, {box['memory_gib']} GiB, Python {box['python']}.")
 
 
-def _verdict(passed: bool | None, cpu_passed: bool | None) -> str:
-    """PASS / FAIL / n/a on wall time, with the CPU-time verdict added when it differs."""
-    word = {True: "PASS", False: "FAIL", None: "n/a"}
-    if cpu_passed is None or cpu_passed == passed:
-        return word[passed]
-    return f"{word[passed]} (cpu: {word[cpu_passed]})"
+def benchmark_block(result: dict) -> str:
+    """The generated text of one benchmark: provenance, its figures' table, its notes."""
+    lines = [provenance(result), "",
+             "| figure | value | anchor, same run | ratio | goal |", "|---|---|---|---|---|"]
+    for fig in result["figures"]:
+        anchor = "-" if fig.get("anchor") is None else (
+            f"{fig['anchor']}: {number(fig['anchor_value'], fig['unit'])}")
+        lines.append(f"| {fig['label']} | {number(fig['value'], fig['unit'])} | {anchor} | "
+                     f"{ratio(fig)} | {verdict(fig)} |")
+    for table in result.get("tables", []):
+        lines += ["", f"{table['title']}:", "", "| " + " | ".join(table["columns"]) + " |",
+                  "|" + "---|" * len(table["columns"])]
+        lines += ["| " + " | ".join(str(cell) for cell in row) + " |" for row in table["rows"]]
+    if result.get("notes"):
+        lines += ["", *result["notes"]]
+    return "\n".join(lines) + "\n"
 
 
-def _num(value: float | None, digits: int = 3) -> str:
-    """Short human number; '-' when absent."""
-    return "-" if value is None else f"{value:.{digits}g}"
+def missing_block(name: str) -> str:
+    """What a benchmark's block says before it has a result."""
+    return f"No result yet: run `python benchmarks/{name}.py` (it writes results/{name}.json).\n"
 
 
-def format_tables(n: int, results: dict, rows: list[dict]) -> str:
-    """The measurements and the goal ratios as two plain-text (markdown) tables."""
-    lines = [f"### n = {n}", "",
-             "| measurement | wall s | cpu s | peak MiB | extra MiB | note |",
-             "|---|---|---|---|---|---|"]
-    for name, label in ROWS.items():
-        res = results.get(name)
-        if res is None:
+def figures_block(found: dict[str, dict]) -> str:
+    """README.md's short figures table: the featured figures that have a result."""
+    lines = ["| figure | ours | anchor, same run | ratio | measured |", "|---|---|---|---|---|"]
+    for name, figure in FEATURED:
+        fig = next((f for f in found.get(name, {}).get("figures", []) if f["name"] == figure),
+                   None)
+        if fig is None:
             continue
-        lines.append(f"| {label} | {_num(res.get('seconds'))} | {_num(res.get('cpu_seconds'))} "
-                     f"| {_num(res.get('peak_mib'), 4)} | {_num(res.get('extra_mib'), 4)} "
-                     f"| {_note(res)} |")
-        lines += [_timed(f"build: {stage['stage']}", stage, "") for stage in res.get("stages", [])]
-    lines += _query_lines(results.get("query", {}), results.get("open3d", {}))
-    lines += ["", "| figure | value s/MiB | reference | ratio | cpu ratio | goal | pass |",
-              "|---|---|---|---|---|---|---|"]
-    for row in rows:
-        verdict = _verdict(row["passed"], row["cpu_passed"])
-        lines.append(f"| {row['figure']} | {_num(row['value'])} | {_num(row['reference'])} | "
-                     f"{_num(row['ratio'])} | {_num(row['cpu_ratio'])} | {row['goal']} | "
-                     f"{verdict} |")
-    return "\n".join(lines)
+        result = found[name]
+        anchor = f"{fig['anchor']}: {number(fig['anchor_value'], fig['unit'])}"
+        lines.append(f"| {fig['label']} | {number(fig['value'], fig['unit'])} | {anchor} | "
+                     f"{ratio(fig)} | `{name}`, {result['machine']['cpu_count']} CPUs, "
+                     f"{result['date'][:10]} |")
+    return "\n".join(lines) + "\n"
 
 
-def _note(res: dict) -> str:
-    """The error of a measurement, or a warning when its wall time far exceeds its CPU time."""
-    if "error" in res:
-        return res["error"]
-    if res["cpu_seconds"] < BUSY * res["seconds"]:
-        return f"cpu only {res['cpu_seconds'] / res['seconds']:.0%} of wall: machine busy?"
-    return ""
+def render_benchmarks(text: str, found: dict[str, dict]) -> str:
+    """benchmarks/README.md with every block regenerated, and a section added for a result
+    that has no block yet."""
+    def fill(match: re.Match) -> str:
+        name = match.group(2)
+        body = benchmark_block(found[name]) if name in found else missing_block(name)
+        return match.group(1) + body + match.group(4)
+
+    text = BLOCK.sub(fill, text)
+    present = {match.group(2) for match in BLOCK.finditer(text)}
+    for name in sorted(set(found) - present):
+        text = (text.rstrip("\n") + f"\n\n## {name}\n\n<!-- report:begin {name} -->\n"
+                f"{benchmark_block(found[name])}<!-- report:end {name} -->\n")
+    return text
 
 
-def _query_lines(query: dict, o3d: dict) -> list[str]:
-    """Table rows for load, save, signatures and each timed alpha."""
-    if not query or "error" in query:
-        return [f"| query | | | | | {query.get('error', 'not run')} |"]
-    lines = [_timed("load (best)", query, "load_"),
-             _timed("signatures() (fresh table)", query, "signatures_"),
-             _timed("spectrum(), first call", query, "spectrum_first_call_"),
-             _timed("shape, first call", query, "shape_first_call_", "lazy set-up included"),
-             _timed("optimal_alpha()", query, "optimal_alpha_")]
-    for shape in query["shapes"]:
-        where = "optimal" if shape["quantile"] is None else f"q{shape['quantile']:g}"
-        lines.append(_timed(f"shape {where} alpha={shape['alpha']:.4g}", shape, "",
-                            f"{shape['simplices']} simplices"))
-    for part in query.get("shape_parts", []):
-        lines.append(_timed(f"shape part at alpha={part['alpha']:.4g}: {part['part']}", part, ""))
-    for item in o3d.get("per_alpha", []):
-        lines.append(_timed(f"Open3D alpha={item['alpha']:.4g}", item, "",
-                            f"{item['triangles']} triangles"))
-    return lines
+def render_readme(text: str, found: dict[str, dict]) -> str:
+    """README.md with its figures block regenerated."""
+    if not FIGURES.search(text):
+        raise ValueError("README.md has no <!-- figures:begin --> ... <!-- figures:end --> block")
+    return FIGURES.sub(lambda m: m.group(1) + figures_block(found) + m.group(3), text)
 
 
-def _timed(label: str, res: dict, prefix: str, note: str = "") -> str:
-    """A table row with the wall and CPU seconds stored under prefix in res."""
-    wall, cpu = res.get(f"{prefix}seconds"), res.get(f"{prefix}cpu_seconds")
-    return f"| {label} | {_num(wall)} | {_num(cpu)} | | | {note} |"
+def rendered(folder: Path = RESULTS, bench_readme: Path = BENCH_README,
+             readme: Path = USER_README) -> dict[Path, tuple[str, str]]:
+    """{file: (its text now, the text the results make)} for both READMEs."""
+    found = results(folder)
+    bench_now, readme_now = bench_readme.read_text(), readme.read_text()
+    return {bench_readme: (bench_now, render_benchmarks(bench_now, found)),
+            readme: (readme_now, render_readme(readme_now, found))}
 
 
-def _finite(value: object) -> object:
-    """value with every non-finite float replaced by None, so the JSON stays standard."""
-    if isinstance(value, dict):
-        return {key: _finite(item) for key, item in value.items()}
-    if isinstance(value, list | tuple):
-        return [_finite(item) for item in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
+def stale(folder: Path = RESULTS, bench_readme: Path = BENCH_README,
+          readme: Path = USER_README) -> list[Path]:
+    """The READMEs whose generated text is not what the results make."""
+    return [path for path, (now, made) in rendered(folder, bench_readme, readme).items()
+            if now != made]
 
 
-def write_json(path: str, payload: dict) -> None:
-    """Write payload as indented JSON atomically (temp file + os.replace)."""
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(suffix=".json", dir=folder)
+def write_atomic(path: Path, text: str) -> None:
+    """Replace path's text through a temporary file in its folder."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".md.tmp")
     try:
-        with os.fdopen(fd, "w") as handle:
-            json.dump(_finite(payload), handle, indent=2, allow_nan=False, default=str)
+        with os.fdopen(fd, "w") as stream:
+            stream.write(text)
         os.replace(tmp, path)
     except BaseException:
-        os.unlink(tmp)
+        Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def main(argv: list[str] | None = None) -> int:
+    """--write rewrites the READMEs' generated blocks; --check exits 1 when they are stale."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    action = parser.add_mutually_exclusive_group(required=True)
+    action.add_argument("--write", action="store_true", help="rewrite the generated blocks")
+    action.add_argument("--check", action="store_true", help="exit 1 when a block is stale")
+    args = parser.parse_args(argv)
+    if args.check:
+        old = stale()
+        for path in old:
+            print(f"{path.relative_to(ROOT)}: its figures are not the report's output "
+                  "(run python benchmarks/report.py --write)", file=sys.stderr)
+        return 1 if old else 0
+    for path, (now, made) in rendered().items():
+        if now != made:
+            write_atomic(path, made)
+            print(f"rewrote {path.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

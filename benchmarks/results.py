@@ -18,6 +18,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 RESULTS = Path(__file__).resolve().parent / "results"
+FOLDER_ENV = "ALPHASCOOP_BENCH_RESULTS"  # another folder for the results (the harness's tests)
 SCHEMA = "alphascoop-benchmark-result/1"
 
 
@@ -58,6 +59,24 @@ def goal_met(goal: str, number: float) -> bool:
             ">": number > limit}[op]
 
 
+def slug(text: str) -> str:
+    """A figure name made of a label: lower case, runs of other characters as one "_"."""
+    return "_".join("".join(c if c.isalnum() else " " for c in text.lower()).split())
+
+
+def clock_pair(name: str, label: str, mine: dict, anchor: str, theirs: dict,
+               goal: str | None = None, cpu_goal: str | None = None) -> list[Figure]:
+    """Two figures of one comparison, on the wall clock ("seconds") and on the CPU clock
+    ("cpu_seconds"), from two measurements of the same run; none when either failed."""
+    if "seconds" not in mine or not theirs.get("seconds"):
+        return []
+    return [Figure(name=f"{name}_{clock}", label=f"{label}, {word}", value=mine[key], unit="s",
+                   anchor=anchor, anchor_value=theirs[key], goal=held)
+            for clock, word, key, held in (("wall", "wall", "seconds", goal),
+                                           ("cpu", "CPU", "cpu_seconds", cpu_goal))
+            if theirs.get(key)]
+
+
 def _commit() -> tuple[str, bool]:
     """The checked-out commit and whether the work tree differs from it."""
     root = Path(__file__).resolve().parent.parent
@@ -81,13 +100,19 @@ def machine() -> dict:
             "system": platform.platform()}
 
 
+def results_folder() -> Path:
+    """Where results are written and read: $ALPHASCOOP_BENCH_RESULTS, else benchmarks/results."""
+    return Path(os.environ.get(FOLDER_ENV) or RESULTS)
+
+
 def save(benchmark: str, figures: list[Figure], *, tables: list[dict] | None = None,
-         notes: list[str] | None = None, folder: Path = RESULTS) -> Path:
+         notes: list[str] | None = None, folder: Path | None = None) -> Path:
     """Write `folder/<benchmark>.json` atomically and return its path.
 
     `tables` are extra detail tables ({"title", "columns", "rows"}); `notes` are sentences the
     report prints under the benchmark's table (what was measured, on which input).
     """
+    folder = folder or results_folder()
     sha, dirty = _commit()
     result = {"schema": SCHEMA, "benchmark": benchmark, "commit": sha, "dirty": dirty,
               "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
@@ -107,8 +132,9 @@ def save(benchmark: str, figures: list[Figure], *, tables: list[dict] | None = N
     return target
 
 
-def load(benchmark: str, folder: Path = RESULTS) -> dict:
+def load(benchmark: str, folder: Path | None = None) -> dict:
     """The saved result of one benchmark (raises FileNotFoundError when it never ran)."""
+    folder = folder or results_folder()
     with open(folder / f"{benchmark}.json") as handle:
         result = json.load(handle)
     if result.get("schema") != SCHEMA:

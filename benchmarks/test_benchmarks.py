@@ -7,9 +7,9 @@ import json
 import numpy as np
 import pytest
 from bench_core import main
+from core_report import figures, format_tables, ratios
 from datasets import TORUS_R, TORUS_TUBE, noisy_torus
 from isolate import Probe, run_isolated
-from report import figures, format_tables, ratios
 
 
 def _allocate(mib: int) -> dict:

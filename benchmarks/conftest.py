@@ -1,0 +1,13 @@
+"""The harness's tests write their benchmark results to a temporary folder, never to
+benchmarks/results/ (whose JSON holds the figures of real runs)."""
+
+from __future__ import annotations
+
+import pytest
+from results import FOLDER_ENV
+
+
+@pytest.fixture(autouse=True)
+def _results_elsewhere(tmp_path, monkeypatch):
+    """Point benchmarks/results.py (and any child process) at a folder of this test's own."""
+    monkeypatch.setenv(FOLDER_ENV, str(tmp_path / "results"))
