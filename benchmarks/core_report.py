@@ -183,14 +183,14 @@ ANCHORS = {"scipy.seconds": "scipy Delaunay", "gudhi.seconds": "gudhi AlphaCompl
 def result_figures(n: int, rows: list[dict]) -> list:
     """The goal rows of one size as benchmarks.results Figures: one on the wall clock and, for
     times, one on the CPU clock, each with its anchor from the same run."""
-    from results import Figure
+    from results import Figure, slug
 
     out = []
     for row in rows:
         if row["ratio"] is None:
             continue
         unit = "MiB" if row["num"].endswith("mib") else "s"
-        base = "".join(c if c.isalnum() else "_" for c in row["figure"].lower()).strip("_")
+        base = slug(row["figure"].replace(" (time)", ""))
         clocks = [("wall", row["value"], row["reference"])]
         if row["cpu_ratio"] is not None:
             clocks.append(("CPU", row["cpu_value"], row["cpu_reference"]))
