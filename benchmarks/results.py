@@ -77,14 +77,17 @@ def clock_pair(name: str, label: str, mine: dict, anchor: str, theirs: dict,
             if theirs.get(key)]
 
 
+CODE = ("*.py", "*.toml", "*.txt")  # what can change a figure; the READMEs and results cannot
+
+
 def _commit() -> tuple[str, bool]:
-    """The checked-out commit and whether the work tree differs from it."""
+    """The checked-out commit and whether its code in the work tree differs from it."""
     root = Path(__file__).resolve().parent.parent
     try:
         sha = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True,
                              text=True, check=True).stdout.strip()
-        dirty = bool(subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
-                                    cwd=root, capture_output=True, text=True,
+        dirty = bool(subprocess.run(["git", "status", "--porcelain", "--untracked-files=no",
+                                     "--", *CODE], cwd=root, capture_output=True, text=True,
                                     check=True).stdout.strip())
     except (OSError, subprocess.CalledProcessError):
         return "unknown", True
