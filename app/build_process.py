@@ -14,7 +14,7 @@ or closing the window still kills (the load's cancel; the entry is then absent, 
 damaged, and that file is built again on its next open: nothing runs on behind the user's
 next action). Without /dev/shm, or with too little room in it, the child writes the cache
 entry (or a temporary file when the cache cannot be written or is not used) first and hands
-that file over, with the orders in a scratch file, as before.
+that file over, with the orders in a scratch file.
 
 The caller maps (or loads, without re-checking the file its own child wrote a moment ago) the
 table it was handed and makes the cursor from those orders while the child still works; the

@@ -77,7 +77,7 @@ def _window(folder: str):
 
 def _topology_signal(win):
     """The model's 'topology done' signal when the window hands the dataset over before its
-    topology (issue 15), else None (the dataset comes with it)."""
+    topology, else None (the dataset comes with it)."""
     return getattr(win.model, "topologyChanged", None)
 
 
@@ -202,10 +202,9 @@ def first_open(points_path: str, other_path: str, cancel_path: str, soak: int,
     """First open of points_path in a new window (empty cache): times, peaks, the longest
     GUI-thread stall while the topology completes, and with `soak` (a count of cycles; True
     = CANCELS and REOPENS) the RSS after that many cancelled opens of cancel_path and re-opens
-    of points_path / other_path. `topology_in_thread`
-    runs the topology pass in a thread of the window (as before issue 15's topology process),
-    for comparison; `drag` has the stall probe step a cursor on every tick (a slider drag's
-    queries) while the topology computes."""
+    of points_path / other_path. `topology_in_thread` runs the topology pass in a thread of
+    the window (as small sets do), for comparison; `drag` has the stall probe step a cursor
+    on every tick (a slider drag's queries) while the topology computes."""
     from app import memory, topology_process
 
     if topology_in_thread:

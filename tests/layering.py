@@ -172,7 +172,7 @@ def rendering_importers(root: Path, package: str) -> list[str]:
 
 
 def report(root: Path) -> dict[str, object]:
-    """The figures of the issue: cycles, private reads, __dict__ uses, VTK importers."""
+    """The layering figures: cycles, private reads, __dict__ uses, VTK importers."""
     graph = import_graph(root)
     found = cycles(graph)
     return {"import cycles": len(found), "modules in cycles": sum(map(len, found)),

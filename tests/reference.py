@@ -161,7 +161,7 @@ def strictly_inside(points: np.ndarray, centres: np.ndarray, radii: np.ndarray) 
 
 
 def brute_table(points: np.ndarray, simplices: dict, dim: int) -> dict:
-    """Intervals from DESIGN.md §1 computed top-down with empty-ball tests against all points."""
+    """Intervals by core/table.py's rules, top-down, with empty-ball tests against all points."""
     pts = np.asarray(points, dtype=np.float64)
     sigma, attached, enter = {}, {}, {}
     for k in range(dim + 1):
@@ -280,7 +280,7 @@ def read_scan_raw(path: Path) -> np.ndarray:
 
 
 def expected_classes(intervals: np.ndarray, alpha: float) -> np.ndarray:
-    """(n,) int8 class at alpha from (n, 3) intervals, closed on the left (DESIGN.md §1)."""
+    """(n,) int8 class at alpha from (n, 3) intervals, closed on the left (ARCHITECTURE.md)."""
     iv = np.asarray(intervals)
     return (iv <= alpha).sum(axis=1).astype(np.int8)
 

@@ -1,4 +1,4 @@
-"""Memory in the window (issue 15): a soak of cancelled opens and re-opens stays flat.
+"""Memory in the window: a soak of cancelled opens and re-opens stays flat.
 
 One window opens a torus scan and cancels it 10 times, then opens a torus and a cube
 alternately 5 times each (the first of each built in the build process, the rest read from

@@ -1,4 +1,4 @@
-"""The window holds one table at a time and the topology comes from its own process (issue 15).
+"""The window holds one table at a time and the topology comes from its own process.
 
 A new open releases the shown dataset once the new file is read (before its table is built or
 loaded); a cancelled or failed load re-opens the released file from the table cache. Big

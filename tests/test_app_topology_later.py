@@ -1,4 +1,4 @@
-"""The slider is live before the topology: the docks fill in when it arrives (issue 15)."""
+"""The slider is live before the topology: the docks fill in when it arrives."""
 
 from __future__ import annotations
 

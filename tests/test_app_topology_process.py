@@ -1,4 +1,4 @@
-"""The topology pass in a child process (issue 15): the same topology as the pass in this
+"""The topology pass in a child process: the same topology as the pass in this
 process, handed over before the cache entry is upgraded, Cancel kills it (before and during
 that rewrite, which leaves the old entry whole), and nothing is left in the temp dir."""
 

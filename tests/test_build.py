@@ -18,7 +18,7 @@ def points() -> np.ndarray:
 
 def test_build_info_records_the_backend(points):
     info = AlphaComplex.from_points(points).build_info
-    assert (info.backend, info.uncertified) == ("qhull", 0)  # certified (issue 14)
+    assert (info.backend, info.uncertified) == ("qhull", 0)  # certified
     assert BuildInfo().uncertified == -1  # default: not certified (old tables, weighted)
     assert AlphaComplex.from_points(points, backend="qhull").build_info.backend == "qhull"
 

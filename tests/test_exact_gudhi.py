@@ -1,4 +1,4 @@
-"""Near-degenerate input (issue 14): the certified triangulation and exact sign decisions give
+"""Near-degenerate input: the certified triangulation and exact sign decisions give
 gudhi's exact alpha complex (precision="exact"): same simplices, enter² within 1e-9 relative,
 regular and interior as derived from gudhi's complex; exactly degenerate input gives a valid,
 deterministic filtration with gudhi's volume at every alpha."""
@@ -30,7 +30,7 @@ def lattice(n: int, dim: int) -> np.ndarray:
 
 
 def noisy_lattice(n: int, dim: int, noise: float, seed: int = 0) -> np.ndarray:
-    """The lattice moved by Gaussian noise of the given size (the issue's table)."""
+    """The lattice moved by Gaussian noise of the given size."""
     rng = np.random.default_rng(seed)
     return lattice(n, dim) + rng.normal(size=(n**dim, dim)) * noise
 
@@ -49,7 +49,7 @@ def assert_certified(ac) -> None:
     assert info.uncertified == 0, f"{info.uncertified} facets left uncertified"
 
 
-ISSUE_CASES = {
+NOISY_LATTICES = {
     "3d-noise-1e-6": (6, 3, 1e-6),
     "3d-noise-1e-9": (6, 3, 1e-9),
     "3d-noise-1e-12": (6, 3, 1e-12),
@@ -58,7 +58,7 @@ ISSUE_CASES = {
 }
 
 
-@pytest.mark.parametrize("case", ISSUE_CASES.values(), ids=list(ISSUE_CASES))
+@pytest.mark.parametrize("case", NOISY_LATTICES.values(), ids=list(NOISY_LATTICES))
 def test_issue_table_cases_equal_gudhi_exact(case) -> None:
     n, dim, noise = case
     pts = noisy_lattice(n, dim, noise)

@@ -74,7 +74,7 @@ def test_unknown_header_lines_skipped_with_a_note(tmp_path, text):
                     text=text).write(str(path))
     _with_header_lines(path, b"obj_info is_cyberware_data 1\nbye\nobj_info is_mesh 0\nbye\n")
     with pytest.raises(plyfile.PlyHeaderParseError):
-        plyfile.PlyData.read(str(path))  # the file the issue describes
+        plyfile.PlyData.read(str(path))  # plyfile refuses these header lines
     ps = read_points(path)
     np.testing.assert_array_equal(ps.points, XYZ.astype(np.float64))
     assert "PLY header: 2 unknown lines skipped ('bye', 'bye')" in ps.report.notes

@@ -74,7 +74,7 @@ def test_mode_tables_are_valid_filtrations(kwargs, dim):
 
 
 def _brute_density(points: np.ndarray, k: int, combine: str) -> dict:
-    """The density-scaled table of DESIGN.md's rules with every value from scratch: global
+    """The density-scaled table of core/modes.py's rules with every value from scratch: global
     empty-ball attachment, distance-matrix spacing, enter = min over cofaces of own values."""
     dim = points.shape[1]
     simplices = delaunay_simplices(points)

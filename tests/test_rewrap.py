@@ -1,4 +1,4 @@
-"""The local exact re-triangulation (core/build/rewrap.py, issue 14): cut out around cells and
+"""The local exact re-triangulation (core/build/rewrap.py): cut out around cells and
 wrapped again, a Delaunay triangulation comes back cell for cell (Qhull's on general points,
 an independent reference); on the jittered lattices whose folds no flip repairs, certification
 with the repair gives gudhi's exact Delaunay cells where it failed without."""

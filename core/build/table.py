@@ -1,7 +1,7 @@
 """Builds the interval table: for every Delaunay simplex, the alphas where it enters the
 complex (enter), becomes a face of a higher simplex (regular) and turns interior (interior).
 
-Rules (DESIGN.md §1, CGAL's GENERAL mode): a cell enters at its circumradius; a face enters
+Rules (CGAL's GENERAL mode; ARCHITECTURE.md): a cell enters at its circumradius; a face enters
 at its smallest circumradius unless attached (a cofacet's vertex strictly inside that sphere),
 then with its first cofacet; regular = smallest enter among cofacets; interior = largest enter
 among the cells around it, inf on the convex hull. Each level is returned sorted by enter.
