@@ -1,4 +1,4 @@
-"""Alpha Scoop core: pure numpy/scipy alpha-shape computation (no Qt, no VTK).
+"""Alpha Scoop core: the alpha-shape computation over numpy arrays (no Qt, no VTK, no pyvista).
 
 `AlphaComplex.from_points(points)` builds the Delaunay triangulation and the interval table
 once (core/pipeline.py); `ac.shape(alpha)` and the other queries are then cheap lookups in its

@@ -1,4 +1,4 @@
-"""`import core` must not load any GUI or rendering module (core stays pure numpy/scipy)."""
+"""`import core` must not load any GUI or rendering module (core never imports Qt or VTK)."""
 
 from __future__ import annotations
 
