@@ -1,6 +1,6 @@
 """The window starts the topology process as soon as it has the table the build process
-handed over and its cursor, while the load still goes on: the topology arrives as
-before, the entry gets the signatures for the next open, and a load cancelled, superseded or
+handed over and its cursor, while the load still goes on: the topology arrives,
+the entry gets the signatures for the next open, and a load cancelled, superseded or
 failed after that start leaves no process, no scratch folder and no topology behind."""
 
 from __future__ import annotations
