@@ -161,7 +161,7 @@ def strictly_inside(points: np.ndarray, centres: np.ndarray, radii: np.ndarray) 
 
 
 def brute_table(points: np.ndarray, simplices: dict, dim: int) -> dict:
-    """Intervals by core/table.py's rules, top-down, with empty-ball tests against all points."""
+    """Intervals by core/build/table.py's rules, top-down, with empty-ball tests on all points."""
     pts = np.asarray(points, dtype=np.float64)
     sigma, attached, enter = {}, {}, {}
     for k in range(dim + 1):

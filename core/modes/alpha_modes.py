@@ -14,7 +14,7 @@ table, which every query, cursor, signature and export then uses unchanged:
 - repair, from the cells down: enter(T) = min(rho(T) if T is unattached, min enter over T's
   cofacets); so a face never enters after its cofaces, attached faces enter with their first
   cofacet as in the classic rule. regular(T) = min enter over cofacets, interior(T) = max
-  enter over the cells around T (inf on the convex hull), the classic rules (core.table); so
+  enter over the cells around T (inf on the convex hull), the classic rules (core.build.table); so
   enter <= regular <= interior and classes are monotone in alpha.
 - every level is sorted by its new enter, and the ids that point into it are renumbered
   (core/modes/filtration.py). The classic table a mode starts from is built unsorted and,
