@@ -104,7 +104,7 @@ def missing_block(name: str) -> str:
 
 def figures_block(found: dict[str, dict]) -> str:
     """README.md's short figures table: the featured figures that have a result."""
-    lines = ["| figure | ours | anchor, same run | ratio | measured |", "|---|---|---|---|---|"]
+    lines = ["| figure | ours | anchor, same run | ratio | benchmark |", "|---|---|---|---|---|"]
     for name, figure in FEATURED:
         fig = next((f for f in found.get(name, {}).get("figures", []) if f["name"] == figure),
                    None)
@@ -113,8 +113,7 @@ def figures_block(found: dict[str, dict]) -> str:
         result = found[name]
         anchor = f"{fig['anchor']}: {number(fig['anchor_value'], fig['unit'])}"
         lines.append(f"| {fig['label']} | {number(fig['value'], fig['unit'])} | {anchor} | "
-                     f"{ratio(fig)} | `{name}`, {result['machine']['cpu_count']} CPUs, "
-                     f"{result['date'][:10]} |")
+                     f"{ratio(fig)} | `{name}`, {result['machine']['cpu_count']} CPUs |")
     return "\n".join(lines) + "\n"
 
 

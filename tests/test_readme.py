@@ -81,3 +81,21 @@ def test_molecule_output_is_the_real_one(workdir: Path) -> None:
     shown = next(body for body in blocks("text") if body.startswith("atoms "))
     printed = run_cli(["info", "1A8O.pdb"], workdir)
     assert printed.endswith(shown)
+
+
+@pytest.mark.parametrize("name", ["README.md", "ARCHITECTURE.md"])
+def test_every_path_the_docs_cite_exists(name: str) -> None:
+    text = (ROOT / name).read_text()
+    cited = set(re.findall(r"`((?:core|app|tests|benchmarks|assets|\.ci)/[\w./*-]*)`", text))
+    assert len(cited) > 5
+    missing = sorted(path for path in cited if not any(ROOT.glob(path.rstrip("/"))))
+    assert not missing, missing
+
+
+def test_every_core_module_the_architecture_names_exists() -> None:
+    rows = re.findall(r"^\| `(\w+)/` \| ([^|]+) \|", (ROOT / "ARCHITECTURE.md").read_text(),
+                      re.M)
+    assert len(rows) >= 7
+    for family, modules in rows:
+        for module in re.findall(r"`(\w+)`", modules):
+            assert (ROOT / "core" / family / f"{module}.py").is_file(), (family, module)
