@@ -1,7 +1,6 @@
 """App layering, read from the source (tests/layering.py): only the scene package touches VTK,
 pyvista, pyvistaqt or the plotter, and no two app modules define a top-level function or class
-of the same name (one name, one meaning: `menus.export_shape` vs `file_actions.export_shape`
-was two)."""
+of the same name (one name, one meaning)."""
 
 from __future__ import annotations
 

@@ -59,7 +59,7 @@ NOISY_LATTICES = {
 
 
 @pytest.mark.parametrize("case", NOISY_LATTICES.values(), ids=list(NOISY_LATTICES))
-def test_issue_table_cases_equal_gudhi_exact(case) -> None:
+def test_noisy_lattices_equal_gudhi_exact(case) -> None:
     n, dim, noise = case
     pts = noisy_lattice(n, dim, noise)
     ac = AlphaComplex.from_points(pts)

@@ -48,7 +48,7 @@ def test_decimal_commas_read_when_unambiguous(tmp_path, name, text):
     assert "decimal commas read as decimal points" in ps.report.notes
 
 
-def test_decimal_commas_example_of_the_issue(tmp_path):
+def test_decimal_commas_example(tmp_path):
     (tmp_path / "p.xyz").write_text("1,5 2,25 3,0\n4,0 5,5 6,125\n")
     np.testing.assert_array_equal(read_points(tmp_path / "p.xyz").points,
                                   [[1.5, 2.25, 3.0], [4.0, 5.5, 6.125]])

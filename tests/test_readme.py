@@ -1,5 +1,5 @@
 """README.md's examples run and print what it says: its Python blocks execute, its console
-session prints the lines shown (build times aside), its molecule output is the real one."""
+transcript prints the lines shown (build times aside), its molecule output is the real one."""
 
 from __future__ import annotations
 
@@ -65,10 +65,10 @@ def test_python_example_runs(number: int, workdir: Path) -> None:
             assert value.rstrip(".") in done.stdout, (comment, done.stdout)
 
 
-def test_console_session_prints_what_the_readme_shows(workdir: Path) -> None:
-    session = blocks("console")[0]
-    commands = re.findall(r"^\$ alphascoop (.+)$", session, re.M)
-    shown = re.split(r"^\$ alphascoop .+\n", session, flags=re.M)[1:]
+def test_console_transcript_prints_what_the_readme_shows(workdir: Path) -> None:
+    transcript = blocks("console")[0]
+    commands = re.findall(r"^\$ alphascoop (.+)$", transcript, re.M)
+    shown = re.split(r"^\$ alphascoop .+\n", transcript, flags=re.M)[1:]
     assert len(commands) == len(shown) == 2
     for command, expected in zip(commands, shown, strict=True):
         printed = run_cli(command.split(), workdir)
