@@ -37,9 +37,8 @@ from core.geometry.circumspheres import CACHE_CHUNK, centre_terms, circumspheres
 from core.geometry.power import orthospheres
 from core.tolerances import ILL_CONDITIONED_RTOL, SPLIT_EMPTY_RTOL
 
-#: From this many points the Qhull backend triangulates in two halves. With a free second
-#: core the halves take about 0.5-0.6x one call (200k weighted, 400k 2D); on a machine whose
-#: cores are all busy the split costs 10-20 % more (benchmarks/README.md).
+#: From this many points the Qhull backend triangulates in two halves, on two threads: it
+#: gains where a second core is free (bench_weighted measures it against one Qhull call).
 SPLIT_FROM_POINTS = 50_000
 
 
