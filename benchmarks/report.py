@@ -30,19 +30,18 @@ USER_README = ROOT / "README.md"
 BLOCK = re.compile(r"(<!-- report:begin (\S+) -->\n)(.*?)(<!-- report:end \2 -->)", re.S)
 FIGURES = re.compile(r"(<!-- figures:begin -->\n)(.*?)(<!-- figures:end -->)", re.S)
 
-# The README's figures: (benchmark, figure name), in this order; a figure whose result does not
-# exist yet is left out.
+# The README's figures: (benchmark, figure name), in this order; a name also matches the same
+# name with a suffix (bench_core's "_200000"); a figure whose result does not exist is left out.
 FEATURED = (
     ("bench_first_open", "slider_live_vs_gudhi_wall"),
     ("bench_first_open", "topology_done_vs_gudhi_wall"),
-    ("bench_core", "build_gudhi_fast_time_wall"),
-    ("bench_core", "build_gudhi_fast_time_cpu"),
+    ("bench_core", "build_gudhi_fast_wall"),
     ("bench_core", "build_load_wall"),
-    ("bench_slider", "drag_step_max"),
-    ("bench_slider", "page_step_max"),
+    ("bench_slider", "drag_step_max_wall"),
+    ("bench_slider", "page_step_max_wall"),
     ("bench_modes", "density_wall"),
     ("bench_modes", "anisotropic_wall"),
-    ("bench_weighted", "weighted_vs_gudhi_wall"),
+    ("bench_weighted", "weighted_vs_gudhi_weighted_fast_wall"),
     ("bench_molecule", "end_to_end_vs_freesasa_lr20_wall"),
 )
 
@@ -102,18 +101,28 @@ def missing_block(name: str) -> str:
     return f"No result yet: run `python benchmarks/{name}.py` (it writes results/{name}.json).\n"
 
 
+def find(figures: list[dict], name: str) -> dict | None:
+    """The figure called `name`, or `name` with a suffix such as bench_core's "_200000"."""
+    return next((f for f in figures if f["name"] == name or f["name"].startswith(f"{name}_")),
+                None)
+
+
 def figures_block(found: dict[str, dict]) -> str:
-    """README.md's short figures table: the featured figures that have a result."""
-    lines = ["| figure | ours | anchor, same run | ratio | benchmark |", "|---|---|---|---|---|"]
+    """README.md's short figures table: the featured figures that have a result, each on the
+    wall clock with its CPU-clock twin's ratio beside it."""
+    lines = ["| figure | ours (wall) | anchor, same run | wall ratio | CPU ratio | benchmark |",
+             "|---|---|---|---|---|---|"]
     for name, figure in FEATURED:
-        fig = next((f for f in found.get(name, {}).get("figures", []) if f["name"] == figure),
-                   None)
+        figures = found.get(name, {}).get("figures", [])
+        fig = find(figures, figure)
         if fig is None:
             continue
-        result = found[name]
+        twin = find(figures, figure.replace("_wall", "_cpu")) if "_wall" in figure else None
+        label = fig["label"].replace(", wall", "") if twin else fig["label"]
         anchor = f"{fig['anchor']}: {number(fig['anchor_value'], fig['unit'])}"
-        lines.append(f"| {fig['label']} | {number(fig['value'], fig['unit'])} | {anchor} | "
-                     f"{ratio(fig)} | `{name}`, {result['machine']['cpu_count']} CPUs |")
+        lines.append(f"| {label} | {number(fig['value'], fig['unit'])} | {anchor} | "
+                     f"{ratio(fig)} | {ratio(twin) if twin else '-'} | `{name}`, "
+                     f"{found[name]['machine']['cpu_count']} CPUs |")
     return "\n".join(lines) + "\n"
 
 

@@ -85,6 +85,16 @@ def test_a_result_without_a_section_gets_one(tmp_path: Path) -> None:
     assert "| x, 5 points | 1 s | y: 2 s | 0.5x | - |" in made
 
 
+def test_readme_figures_give_the_cpu_ratio_beside_the_wall_one(tmp_path: Path) -> None:
+    folder = tmp_path / "results"
+    save("bench_modes", [Figure("density_wall", "density build, wall, 9 points", 3.0, "s",
+                                "classic build", 2.0, "<= 1.3"),
+                         Figure("density_cpu", "density build, CPU, 9 points", 1.0, "s",
+                                "classic build", 4.0, "<= 1.3")], folder=folder)
+    made = report.figures_block(report.results(folder))
+    assert "| density build, 9 points | 3 s | classic build: 2 s | 1.5x | 0.25x |" in made
+
+
 def test_readme_figures_only_show_featured_results(tmp_path: Path) -> None:
     folder = tmp_path / "results"
     save("bench_slider", [Figure("drag_step_max", "slider step, drag", 0.05, "s",
@@ -93,7 +103,7 @@ def test_readme_figures_only_show_featured_results(tmp_path: Path) -> None:
     made = report.render_readme(text, report.results(folder))
     rows = [line for line in made.splitlines() if line.startswith("| slider")]
     cpus = report.results(folder)["bench_slider"]["machine"]["cpu_count"]
-    assert rows == ["| slider step, drag | 0.05 s | table build: 60 s | 0.000833x | "
+    assert rows == ["| slider step, drag | 0.05 s | table build: 60 s | 0.000833x | - | "
                     f"`bench_slider`, {cpus} CPUs |"]
     with pytest.raises(ValueError, match="figures:begin"):
         report.render_readme("no markers", {})
