@@ -176,7 +176,7 @@ def write_json(path: str, payload: dict) -> None:
 
 
 ANCHORS = {"scipy.seconds": "scipy Delaunay", "gudhi.seconds": "gudhi AlphaComplex fast",
-           "scipy.extra_mib": "scipy Delaunay", "build.seconds": "our build + save",
+           "scipy.extra_mib": "scipy Delaunay", "build.seconds": "our build",
            "query.load_seconds": "AlphaComplex.load", "pair.open3d_seconds": "Open3D alpha shape"}
 
 
