@@ -101,9 +101,11 @@ def main(argv: list[str] | None = None) -> int:
             figures += core_report.result_figures(n, run["ratios"])
             if args.json:
                 core_report.write_json(args.json, payload)
+    load = ", ".join(f"{value:.1f}" for value in os.getloadavg())
     save_result("bench_core", figures, notes=[
         "Noisy torus points; every measurement in its own spawned interpreter; times are the "
-        f"best of {args.reps} for the cheap queries, one run for the builds."])
+        f"best of {args.reps} for the cheap queries, one run for the builds. Load average "
+        f"(1, 5, 15 min) {load} at the end."])
     return 0
 
 

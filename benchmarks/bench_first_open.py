@@ -281,7 +281,7 @@ def main(argv: list[str] | None = None) -> int:
     save_result(name, result_figures(args.n, results, args.set), notes=[
         f"{args.n:,} {args.set} points, a first open with an empty table cache; the window's "
         "CPU time includes its build and topology processes. Steps: " + ", ".join(args.steps)
-        + "."])
+        + f". {load_text().capitalize()} at the end (2 cores: above 2, others were running)."])
     return 0
 
 
