@@ -53,6 +53,16 @@ def _points(args) -> tuple[np.ndarray, str]:
     return points, f"{os.path.basename(args.scan)}: {len(points):,} distinct points"
 
 
+def certification(exact: dict) -> str:
+    """What the certified build did, as a sentence for the result's notes."""
+    info = exact.get("info")
+    if not isinstance(info, dict):
+        return f"The certified build failed: {exact.get('error')}."
+    return (f"The certified build: backend {info.get('backend')}, "
+            f"{info.get('exact_predicates')} predicates decided exactly, {info.get('flips')} "
+            f"flips, {info.get('uncertified')} facets uncertified.")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = size_options(__doc__, 200_000, "torus points")
     parser.add_argument("--scan", metavar="PATH", help="build this point file instead")
@@ -89,7 +99,7 @@ def main(argv: list[str] | None = None) -> int:
         "certified_vs_floating_point", f"certified build / floating-point build, {label}",
         exact, "floating-point build", fast,
         cpu_goal=None if args.scan else f"<= {GOAL}"),
-        notes=[f"certification: {exact.get('info', exact.get('error'))}"])
+        notes=[certification(exact)])
     return 0
 
 

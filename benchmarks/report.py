@@ -53,7 +53,7 @@ def results(folder: Path = RESULTS) -> dict[str, dict]:
 
 def number(value: float, unit: str = "") -> str:
     """A figure as the READMEs print it: three significant digits and its unit."""
-    text = f"{value:,.3g}" if abs(value) < 1e4 else f"{value:,.0f}"
+    text = f"{value:.3g}" if abs(value) < 1000 else f"{value:,.0f}"
     return f"{text} {unit}".strip()
 
 

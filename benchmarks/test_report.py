@@ -97,7 +97,7 @@ def test_readme_figures_give_the_cpu_ratio_beside_the_wall_one(tmp_path: Path) -
 
 def test_readme_figures_only_show_featured_results(tmp_path: Path) -> None:
     folder = tmp_path / "results"
-    save("bench_slider", [Figure("drag_step_max", "slider step, drag", 0.05, "s",
+    save("bench_slider", [Figure("drag_step_max_wall", "slider step, drag", 0.05, "s",
                                  "table build", 60.0, "<= 0.001")], folder=folder)
     text = "x\n<!-- figures:begin -->\n<!-- figures:end -->\n"
     made = report.render_readme(text, report.results(folder))
