@@ -34,11 +34,9 @@ FIGURES = re.compile(r"(<!-- figures:begin -->\n)(.*?)(<!-- figures:end -->)", r
 # name with a suffix (bench_core's "_200000"); a figure whose result does not exist is left out.
 FEATURED = (
     ("bench_first_open", "slider_live_vs_gudhi_wall"),
-    ("bench_first_open", "topology_done_vs_gudhi_wall"),
     ("bench_core", "build_gudhi_fast_wall"),
     ("bench_core", "build_load_wall"),
     ("bench_slider", "drag_step_max_wall"),
-    ("bench_slider", "page_step_max_wall"),
     ("bench_modes", "density_wall"),
     ("bench_modes", "anisotropic_wall"),
     ("bench_weighted", "weighted_vs_gudhi_weighted_fast_wall"),
