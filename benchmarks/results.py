@@ -80,18 +80,36 @@ def clock_pair(name: str, label: str, mine: dict, anchor: str, theirs: dict,
 CODE = ("*.py", "*.toml", "*.txt")  # what can change a figure; the READMEs and results cannot
 
 
+def _git(*args: str) -> str:
+    """The output of one git command in the repository (raises when git fails)."""
+    return subprocess.run(["git", *args], cwd=Path(__file__).resolve().parent.parent,
+                          capture_output=True, text=True, check=True).stdout.strip()
+
+
 def _commit() -> tuple[str, bool]:
     """The checked-out commit and whether its code in the work tree differs from it."""
-    root = Path(__file__).resolve().parent.parent
     try:
-        sha = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True,
-                             text=True, check=True).stdout.strip()
-        dirty = bool(subprocess.run(["git", "status", "--porcelain", "--untracked-files=no",
-                                     "--", *CODE], cwd=root, capture_output=True, text=True,
-                                    check=True).stdout.strip())
+        sha = _git("rev-parse", "HEAD")
+        dirty = bool(_git("status", "--porcelain", "--untracked-files=no", "--", *CODE))
     except (OSError, subprocess.CalledProcessError):
         return "unknown", True
     return sha, dirty
+
+
+_STARTED = _commit()  # the code a run starts with (this module is imported at its start)
+
+
+def _run_commit() -> tuple[str, bool]:
+    """The commit the run started on, dirty when its code differed from that commit then or
+    differs now (a commit of code during the run; commits of the READMEs do not count)."""
+    sha, dirty = _STARTED
+    if sha == "unknown":
+        return sha, True
+    try:
+        changed = bool(_git("diff", "--name-only", sha, "--", *CODE))
+    except (OSError, subprocess.CalledProcessError):
+        changed = True
+    return sha, dirty or changed
 
 
 def machine() -> dict:
@@ -116,7 +134,7 @@ def save(benchmark: str, figures: list[Figure], *, tables: list[dict] | None = N
     report prints under the benchmark's table (what was measured, on which input).
     """
     folder = folder or results_folder()
-    sha, dirty = _commit()
+    sha, dirty = _run_commit()
     result = {"schema": SCHEMA, "benchmark": benchmark, "commit": sha, "dirty": dirty,
               "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
               "machine": machine(), "figures": [asdict(f) for f in figures],

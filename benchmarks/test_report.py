@@ -107,3 +107,16 @@ def test_readme_figures_only_show_featured_results(tmp_path: Path) -> None:
                     f"`bench_slider`, {cpus} CPUs |"]
     with pytest.raises(ValueError, match="figures:begin"):
         report.render_readme("no markers", {})
+
+
+def test_a_result_names_the_commit_its_run_started_on(monkeypatch) -> None:
+    import results
+
+    head, dirty_now = results._commit()
+    monkeypatch.setattr(results, "_STARTED", (head, False))
+    assert results._run_commit() == (head, dirty_now)
+    monkeypatch.setattr(results, "_STARTED", (head, True))
+    assert results._run_commit() == (head, True)
+    first = results._git("rev-list", "--max-parents=0", "HEAD").splitlines()[0]
+    monkeypatch.setattr(results, "_STARTED", (first, False))
+    assert results._run_commit() == (first, True)  # the code changed since the run started
