@@ -261,11 +261,9 @@ def test_first_open_steps_and_soak_cycles_are_chosen_on_the_command_line():
 
 
 def test_bunny_scan_lies_near_the_bunny_and_is_deterministic() -> None:
-    from pathlib import Path
+    from benchmarks.datasets import bunny_scan, shared_data
 
-    from benchmarks.datasets import bunny_scan
-
-    folder = Path(__file__).resolve().parents[2] / "shared" / "data"
+    folder = shared_data()
     if not (folder / "bunny.ply").is_file():
         pytest.skip("shared/data is absent")
     points = bunny_scan(3000, seed=2, mesh=str(folder / "bunny.ply"))
