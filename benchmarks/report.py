@@ -40,7 +40,7 @@ FEATURED = (
     ("bench_modes", "density_wall"),
     ("bench_modes", "anisotropic_wall"),
     ("bench_weighted", "weighted_vs_gudhi_weighted_fast_wall"),
-    ("bench_molecule", "end_to_end_vs_freesasa_lr20_wall"),
+    ("molecule", "end_to_end_10008"),
 )
 
 
