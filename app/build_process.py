@@ -84,6 +84,8 @@ class ChildRunner:
         self.on_saved = on_saved
         self._built: AlphaComplex | None = None  # the complex its child last handed over
         self._handed = HandOver()  # what the child found beside it
+        # per child: (set by stop(): kill it, set once it ended and its folder is gone)
+        self._children: list[tuple[threading.Event, threading.Event]] = []
 
     def __call__(self, request: BuildRequest, progress: Progress | None = None) -> AlphaComplex:
         """The complex of request, saved to request.save_to when that can be written.
@@ -97,13 +99,17 @@ class ChildRunner:
             return run_here(request, progress)
         folder, lock = make_scratch("alphascoop-build-")
         shared = SharedFolder.make()  # after the scratch folder: none left if that failed
+        stopping, ended = threading.Event(), threading.Event()
+        self._children.append((stopping, ended))
 
         def remove() -> None:  # once the child has ended (it may outlive this call)
             lock.close()
             shutil.rmtree(folder, ignore_errors=True)
+            ended.set()
 
         try:
-            answer, taken = self._run(request, folder, shared, report, remove)
+            answer, taken = self._run(request, folder, shared, report, remove,
+                                      _Either(self.cancel, stopping))
         except BaseException:
             remove()  # (again: harmless) a child that failed or was killed has ended
             raise
@@ -118,6 +124,16 @@ class ChildRunner:
                                saving=bool(answer.get("saving", False)))
         return ac
 
+    def stop(self) -> None:
+        """Kill the child left writing its cache entry, if any, and wait until it has ended
+        and its scratch folder is gone (a load that fails after the hand-over leaves no
+        process behind; the entry is then absent, never damaged). Returns at once when no
+        child of this runner runs."""
+        for stopping, _ended in self._children:
+            stopping.set()
+        for _stopping, ended in self._children:
+            ended.wait()
+
     def handed_over(self, ac: AlphaComplex) -> HandOver:
         """The quick opening alpha (None when the signatures hold it) and the cursor the
         child's orders made, for the complex this runner built last, and whether its child
@@ -125,12 +141,13 @@ class ChildRunner:
         return self._handed if ac is self._built else HandOver()
 
     def _run(self, request: BuildRequest, folder: Path, shared: SharedFolder | None,
-             report: Progress, remove: Callable[[], None]
+             report: Progress, remove: Callable[[], None], cancel: _Either
              ) -> tuple[dict, list[tuple[AlphaComplex, HandOver]]]:
         """Run the child with its inputs in folder: its answer and what it handed over.
         Without the signatures, a child that handed its table over in shared memory and
         then its opening alpha is left to write the cache entry on its own (answer
-        "saving": True), killed if `cancel` is set meanwhile; remove() once it ended."""
+        "saving": True), killed once `cancel` (the load's, or stop()) is set meanwhile;
+        remove() once it ended."""
         source = folder / "points.npy"
         np.save(source, request.points)
         if request.weights is not None:
@@ -155,7 +172,7 @@ class ChildRunner:
 
         try:
             result = run_in_child(build_in_child, (str(source), str(folder / "table.npz"), job),
-                                  report, self.cancel, "alphascoop-build", handed, remove)
+                                  report, cancel, "alphascoop-build", handed, remove)
         except (AlphaScoopError, MemoryError) as error:
             if not taken or isinstance(error, Cancelled):
                 raise
@@ -189,6 +206,18 @@ class ChildRunner:
         """Cancelled when `cancel` is set."""
         if self.cancel.is_set():
             raise Cancelled("build cancelled")
+
+
+class _Either:
+    """A cancel flag set as soon as one of two events is (the load's cancel, or stop())."""
+
+    def __init__(self, first: threading.Event, second: threading.Event) -> None:
+        """The two events watched."""
+        self._events = (first, second)
+
+    def is_set(self) -> bool:
+        """True once either event is set."""
+        return any(event.is_set() for event in self._events)
 
 
 def _load_handed(answer: dict, mapped: bool, report: Progress

@@ -11,7 +11,8 @@ the table handed over (in shared memory, before the entry is written; or as the 
 written) and made its cursor (started earlier, it competed with that set-up and the slider
 went live later); the dataset carries it
 (`Dataset.topology_child`) to the topology job. A load that is cancelled, superseded or fails
-stops it before it reports its outcome.
+stops it, and the build process if that was left writing the cache entry, and waits until
+both have ended before it reports its outcome.
 """
 
 from __future__ import annotations
@@ -48,9 +49,10 @@ def load_job(path: str | Path, mode: Mode | None = None,
         try:
             dataset = load_dataset(path, progress, runner, mode=mode, options=options,
                                    topology=False)
-        except BaseException:
+        except BaseException:  # cancelled, superseded or failed: nothing is left running
             for child in started:
                 child.stop()
+            runner.stop()  # a build process left writing the cache entry: killed, joined
             raise
         if not started:
             return dataset

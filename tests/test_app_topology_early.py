@@ -5,8 +5,10 @@ failed after that start leaves no process, no scratch folder and no topology beh
 
 from __future__ import annotations
 
+import json
 import multiprocessing
 import os
+import signal
 import tempfile
 import threading
 import time
@@ -83,6 +85,28 @@ def hold_first_load(monkeypatch, then, at: str = TOPOLOGY_STARTED) -> threading.
     return reached
 
 
+def freeze_the_entry_writer(monkeypatch) -> list[int]:
+    """Stop (SIGSTOP) the build process as soon as it has handed its opening alpha over, so
+    it is still writing the cache entry, frozen, whatever the machine's speed: it can only
+    end if the window kills it. Returns the pids frozen."""
+    real, frozen = build_process.run_in_child, []
+
+    def run(work, args, progress, cancel, name, handed=None, finish=None):
+        def freeze_then(text: str) -> None:
+            if "opening_alpha" in json.loads(text):
+                for child in multiprocessing.active_children():
+                    if child.name == name:
+                        os.kill(child.pid, signal.SIGSTOP)
+                        frozen.append(child.pid)
+            handed(text)
+
+        return real(work, args, progress, cancel, name,
+                    None if handed is None else freeze_then, finish)
+
+    monkeypatch.setattr(build_process, "run_in_child", run)
+    return frozen
+
+
 def my_scratch() -> list[Path]:
     """This process's scratch folders in the temp dir."""
     return list(Path(tempfile.gettempdir()).glob(f"alphascoop-*-{os.getpid()}-*"))
@@ -123,12 +147,14 @@ def test_the_topology_process_runs_before_the_dataset_arrives(window, qtbot, fil
 def test_cancel_while_the_window_still_loads_stops_the_topology_process(
         window, qtbot, files, started, monkeypatch):
     reached = hold_first_load(monkeypatch, lambda runner: runner.cancel.wait(HOLD_S))
+    frozen = freeze_the_entry_writer(monkeypatch)
     window.open_path(files["first"])
     qtbot.waitUntil(reached.is_set, timeout=BUILD_TIMEOUT_MS)
-    assert len(started) == 1
+    assert len(started) == 1 and len(frozen) == 1
     with qtbot.waitSignal(window.loader.cancelled, timeout=BUILD_TIMEOUT_MS):
         window.loader.cancel()
-    # the load job stopped its topology process before it reported: nothing left at once
+    # the load job stopped its topology process and its build process (left writing the
+    # cache entry) before it reported: nothing left at once
     assert multiprocessing.active_children() == [] and my_scratch() == []
     assert started[0].wait(0) and started[0].is_set()
     assert window.model.dataset is None
@@ -189,8 +215,12 @@ def test_a_load_that_fails_after_the_start_stops_the_topology_process(
         raise MemoryError("no room for the table")
 
     hold_first_load(monkeypatch, fail)
+    frozen = freeze_the_entry_writer(monkeypatch)
     with qtbot.waitSignal(window.loader.failed, timeout=BUILD_TIMEOUT_MS):
         window.open_path(files["first"])
+    # the build process left writing the cache entry was killed and joined before `failed`
+    # (it does not end by itself: it is frozen), its topology process too
+    assert len(frozen) == 1
     assert multiprocessing.active_children() == [] and my_scratch() == []
     assert len(started) == 1 and started[0].wait(0)
     assert window.model.dataset is None and not window.topology.is_busy()
