@@ -11,6 +11,8 @@ from core_report import figures, format_tables, ratios
 from datasets import TORUS_R, TORUS_TUBE, noisy_torus
 from isolate import Probe, run_isolated
 
+from tests.reference import DATA_ABSENT
+
 
 def _allocate(mib: int) -> dict:
     """Child task: touch mib MiB of memory and report the probe's figures."""
@@ -160,13 +162,11 @@ def test_weighted_packing_radii_span_one_to_two_spacings() -> None:
 
 
 def test_molecule_benchmark_small_run(tmp_path) -> None:
-    pytest.importorskip("freesasa")
-    pytest.importorskip("gudhi")
     from benchmarks.bench_molecule import SOURCE, write_copies
     from benchmarks.bench_molecule import main as bench_main
 
     if not SOURCE.is_file():
-        pytest.skip("no shared data")
+        pytest.skip(DATA_ABSENT)
     assert write_copies(2, tmp_path / "two.pdb") == 1112
     from core.io.molecule import read_molecule
 
@@ -265,7 +265,7 @@ def test_bunny_scan_lies_near_the_bunny_and_is_deterministic() -> None:
 
     folder = shared_data()
     if not (folder / "bunny.ply").is_file():
-        pytest.skip("shared/data is absent")
+        pytest.skip(DATA_ABSENT)
     points = bunny_scan(3000, seed=2, mesh=str(folder / "bunny.ply"))
     assert points.shape == (3000, 3)
     assert np.array_equal(points, bunny_scan(3000, seed=2, mesh=str(folder / "bunny.ply")))

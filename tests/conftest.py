@@ -1,4 +1,5 @@
-"""Test session set-up: Qt binding, a private Xvfb display for GUI tests, plotter leak checks."""
+"""Test session set-up: Qt binding, a private Xvfb display for GUI tests, plotter leak checks,
+and in CI no skip but the shared data's (tests/skip_guard.py)."""
 
 from __future__ import annotations
 
@@ -16,6 +17,8 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 from hypothesis import settings
+from reference import data_dir
+from skip_guard import SkipGuard, in_ci
 
 # Property tests draw the same examples on every run (the CI must not depend on luck);
 # HYPOTHESIS_PROFILE=explore draws new ones, to look for failures on purpose.
@@ -49,6 +52,13 @@ def start_xvfb(xvfb: str) -> subprocess.Popen:
         raise RuntimeError(f"Xvfb did not start (exit status {process.wait()})")
     os.environ["DISPLAY"] = f":{number}"
     return process
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """The skip guard watches every test of the run (benchmarks/ too); it fails a CI run
+    that skipped a test for any reason but the shared data's absence."""
+    config.pluginmanager.register(SkipGuard(data_dir() is not None, in_ci()),
+                                  "alphascoop-skip-guard")
 
 
 def pytest_sessionstart(session: pytest.Session) -> None:

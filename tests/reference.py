@@ -10,6 +10,7 @@ from itertools import combinations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 SQ_RTOL = 1e-9  # relative slack on squared radii for generic input
 
@@ -239,6 +240,10 @@ def gudhi_measure(points: np.ndarray, table: dict, alpha: float) -> float:
     return float(simplex_measures(points, cells[keep]).sum())
 
 
+# The one skip reason CI accepts (tests/skip_guard.py), and only while the folder is absent.
+DATA_ABSENT = "shared real-scan data absent (../shared/data or $ALPHASCOOP_DATA)"
+
+
 def data_dir() -> Path | None:
     """The shared real-scan folder, or None when it is absent."""
     here = Path(__file__).resolve().parents[2] / "shared" / "data"
@@ -246,6 +251,18 @@ def data_dir() -> Path | None:
         return here
     env = os.environ.get("ALPHASCOOP_DATA")
     return Path(env) if env and Path(env).is_dir() else None
+
+
+needs_data = pytest.mark.skipif(data_dir() is None, reason=DATA_ABSENT)
+
+
+def shared_file(name: str) -> Path:
+    """The shared file `name`; the test is skipped (DATA_ABSENT) when the folder is absent.
+    A folder without that file is not a reason to skip: the test fails reading it."""
+    folder = data_dir()
+    if folder is None:
+        pytest.skip(DATA_ABSENT)
+    return folder / name
 
 
 def read_scan(path: Path) -> np.ndarray:

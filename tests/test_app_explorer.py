@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from conftest import BUILD_TIMEOUT_MS, fake_export_dialog, image_contrast, open_and_wait
 from PySide6.QtCore import Qt
-from reference import data_dir
+from reference import data_dir, needs_data
 
 MIN_CONTRAST = 10.0
 SINGULAR, REGULAR = 1, 2
@@ -599,7 +599,7 @@ def test_slider_marks_the_suggested_opening_and_optimal_alphas(opened) -> None:
     assert panel.travel.position(opened.model.default_index()) in positions
 
 
-@pytest.mark.skipif(data_dir() is None, reason="shared real scans absent")
+@needs_data
 def test_page_up_from_the_opening_stays_below_the_hull_on_a_real_scan(window, qtbot) -> None:
     """milk.pcd (an RGB-D scan): PageUp from where it opens moves up, far from the hull."""
     open_and_wait(qtbot, window, data_dir() / "milk.pcd")

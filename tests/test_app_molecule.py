@@ -11,10 +11,11 @@ from app.palette import cpk_rgb
 from app.signatures_dock import MIN_PLOT_HEIGHT
 from core.molecule.cavities import cavity_cells
 from tests.molecule_reference import shared_molecule
+from tests.reference import DATA_ABSENT
 
 PDB = shared_molecule("1A8O.pdb")
 pytestmark = [pytest.mark.gui,
-              pytest.mark.skipif(PDB is None or not PDB.is_file(), reason="no shared data")]
+              pytest.mark.skipif(PDB is None, reason=DATA_ABSENT)]
 
 
 def test_cpk_colours():

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from reference import data_dir
+from reference import data_dir, needs_data
 
 from app.camera import PRESETS, Y_UP, Z_UP, frame_for, quaternion_matrix
 from core.io import read_points
@@ -66,7 +66,7 @@ def test_graphics_formats_are_y_up_and_others_z_up(tmp_path) -> None:
     assert frame_for(tmp_path / "p.npy", read_points(tmp_path / "p.npy").report) == Z_UP
 
 
-@pytest.mark.skipif(DATA is None, reason="shared real scans absent")
+@needs_data
 @pytest.mark.parametrize("name", ["autzen_trim.las", "plane_flat.laz"])
 def test_lidar_is_z_up(name) -> None:
     path = DATA / name

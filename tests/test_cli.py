@@ -9,11 +9,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from reference import data_dir, needs_data
 
 from app.cli import main
 
-DATA = Path("/work/shared/data")
-needs_data = pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is absent")
+DATA = data_dir()
 
 
 @pytest.fixture(autouse=True)

@@ -7,20 +7,19 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-gudhi = pytest.importorskip("gudhi")
-
-from reference import (  # noqa: E402
+from reference import (
     assert_valid_table,
     data_dir,
     gudhi_measure,
     gudhi_table,
+    needs_data,
     read_scan,
+    shared_file,
 )
-from test_table_degenerate import probe_alphas  # noqa: E402
-from test_table_gudhi import assert_matches_gudhi  # noqa: E402
+from test_table_degenerate import probe_alphas
+from test_table_gudhi import assert_matches_gudhi
 
-from core import AlphaComplex  # noqa: E402
+from core import AlphaComplex
 
 
 def lattice(n: int, dim: int) -> np.ndarray:
@@ -146,17 +145,14 @@ DATA = data_dir()
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(DATA is None, reason="shared real-scan data folder is absent")
+@needs_data
 @pytest.mark.parametrize("name", ["bun000_rangegrid.ply", "milk.pcd", "plane_flat.laz"])
 def test_real_grid_like_scans_build_certified_and_equal_gudhi_exact(name: str) -> None:
     """The whole scan certifies; on a 3,000-point window (gudhi exact is slow on the whole)
     the volume equals gudhi's exact complex at every alpha between critical values. The
     scans are quantized, so exactly cospherical groups are triangulated by each side's own
     perturbation: the simplices may differ there, the complex's volume may not."""
-    path = DATA / name
-    if not path.is_file():
-        pytest.skip(f"{name} is absent")
-    pts = np.unique(read_scan(path), axis=0)
+    pts = np.unique(read_scan(shared_file(name)), axis=0)
     ac = AlphaComplex.from_points(pts)
     assert_valid_table(ac)
     assert_certified(ac)

@@ -11,13 +11,14 @@ import pytest
 import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from reference import data_dir, needs_data
 
 from core import AlphaComplex
 from core.errors import FileFormatError
 from core.export import write_shape
 from core.export.polygons import shape_polygons
 
-DATA = Path("/work/shared/data")
+DATA = data_dir()
 
 
 @pytest.fixture(scope="module")
@@ -145,7 +146,7 @@ def test_polygon_area_equals_measure(seed, alpha):
     assert geom.area == pytest.approx(shape.measure, rel=1e-9, abs=1e-12)
 
 
-@pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is absent")
+@needs_data
 def test_airports_geojson(tmp_path):
     from core.io import read_points
 

@@ -9,12 +9,13 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from reference import data_dir, needs_data
 
 from core import AlphaComplex
 from core.export import write_shape
 from core.export.surface import surface_arrays
 
-DATA = Path("/work/shared/data")
+DATA = data_dir()
 ALPHA = 0.25
 
 
@@ -162,7 +163,7 @@ def test_sidecar_json(tmp_path, ball):
     assert meta["manifold_split"]["nonmanifold_edges"] > 0
 
 
-@pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is absent")
+@needs_data
 def test_milk_manifold_split_resolves_every_edge():
     from core.io import read_points
 
@@ -174,7 +175,7 @@ def test_milk_manifold_split_resolves_every_edge():
     assert signed_volume(v, f) == pytest.approx(shape.measure, rel=1e-9)
 
 
-@pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is absent")
+@needs_data
 def test_bunny_manifold_surface_volume(tmp_path):
     import trimesh
 

@@ -5,12 +5,12 @@ expected points are computed here with numpy from the written values."""
 from __future__ import annotations
 
 import numpy as np
+import pye57
 import pytest
 
 from core.errors import FileFormatError
 from core.io import read_points
 
-pye57 = pytest.importorskip("pye57")
 RNG = np.random.default_rng(57)
 
 

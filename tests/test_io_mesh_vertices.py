@@ -3,16 +3,14 @@
 from __future__ import annotations
 
 import os
-from pathlib import Path
 
 import numpy as np
 import pytest
+from reference import data_dir, needs_data
 
 from core.io import read_points
 
-DATA_DIR = Path(__file__).resolve().parents[2] / "shared" / "data"
-if not DATA_DIR.is_dir():
-    DATA_DIR = Path("/work/shared/data")
+DATA_DIR = data_dir()
 
 RNG = np.random.default_rng(17)
 
@@ -53,7 +51,7 @@ def test_bad_obj_says_why(tmp_path, body, message):
         read_points(tmp_path / "b.obj")
 
 
-@pytest.mark.skipif(not DATA_DIR.is_dir(), reason="shared/data is absent")
+@needs_data
 def test_bunny_as_obj_has_all_35947_vertices(tmp_path):
     import plyfile
 
@@ -142,7 +140,7 @@ def _meshio_bytes(tmp_path, mesh, ext: str) -> bytes:
     return out.read_bytes()
 
 
-@pytest.mark.skipif(not DATA_DIR.is_dir(), reason="shared/data is absent")
+@needs_data
 def test_bunny_ply_report_counts_the_1113_unused_vertices():
     ps = read_points(DATA_DIR / "bunny.ply")  # 1,113: shared/data/SOURCES.md (plyfile)
     assert ps.report.n_points == 35_947 and "1,113 used by no face" in _note(ps)

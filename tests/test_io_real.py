@@ -2,17 +2,14 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
+from reference import data_dir, needs_data
 
 from core.io import read_points
 
-DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
-if not DATA.is_dir():
-    DATA = Path("/work/shared/data")
-pytestmark = pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is absent")
+DATA = data_dir()
+pytestmark = needs_data
 
 # file: (records read, unique points, dim, bbox lower corner, bbox upper corner)
 EXPECTED = {

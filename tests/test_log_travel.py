@@ -6,14 +6,13 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
-from reference import data_dir
+from reference import data_dir, needs_data
 
 from app.history import AlphaHistory
 from app.log_travel import LOW_QUANTILE, PAGE_FACTOR, TRAVEL, LogTravel, sorted_quantile
 from core import AlphaComplex
 
 DATA = data_dir()
-needs_data = pytest.mark.skipif(DATA is None, reason="shared real scans absent")
 
 
 @pytest.fixture(scope="module")

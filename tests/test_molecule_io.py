@@ -13,9 +13,10 @@ from core.errors import FileFormatError
 from core.io import read_points
 from core.io.molecule import UNKNOWN_RADIUS, read_molecule
 from tests.molecule_reference import shared_molecule
+from tests.reference import DATA_ABSENT
 
 PDB, CIF = shared_molecule("1A8O.pdb"), shared_molecule("1A8O.cif")
-needs_data = pytest.mark.skipif(PDB is None or not PDB.is_file(), reason="no shared data")
+needs_data = pytest.mark.skipif(PDB is None, reason=DATA_ABSENT)
 
 TWO_MODELS = """\
 MODEL        1

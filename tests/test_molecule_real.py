@@ -13,14 +13,14 @@ from core.complex import AlphaComplex
 from core.io.molecule import read_molecule
 from core.molecule.analysis import measure_molecule
 from tests.molecule_reference import freesasa_area, monte_carlo_volume, shared_molecule
+from tests.reference import DATA_ABSENT
 
 PDB = shared_molecule("1A8O.pdb")
-pytestmark = pytest.mark.skipif(PDB is None or not PDB.is_file(), reason="no shared data")
+pytestmark = pytest.mark.skipif(PDB is None, reason=DATA_ABSENT)
 
 
 @pytest.mark.parametrize("probe", [1.4, 0.0])
 def test_1a8o_area_matches_freesasa_and_cavities_are_b2(probe):
-    pytest.importorskip("freesasa")
     mol = read_molecule(PDB)
     ac = AlphaComplex.from_points(mol.centres, weights=mol.weights(probe))
     m = measure_molecule(ac, probe)

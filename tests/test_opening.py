@@ -7,7 +7,7 @@ import numpy as np
 import plyfile
 import pytest
 import trimesh
-from reference import data_dir
+from reference import data_dir, needs_data
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
@@ -17,7 +17,6 @@ from core import SINGULAR, AlphaComplex
 from core.topology.opening import OPENING_SHARE
 
 DATA = data_dir()
-needs_data = pytest.mark.skipif(DATA is None, reason="shared real scans absent")
 
 
 def largest_share(ac: AlphaComplex, alpha: float) -> float:

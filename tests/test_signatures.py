@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
+from reference import data_dir, needs_data
 from scipy.spatial import ConvexHull, Delaunay
 
 from core import AlphaComplex, InputError
 from core.topology.suggest import stable_ranges
 
-DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
+DATA = data_dir()
 
 
 @pytest.fixture(scope="module", params=[2, 3])
@@ -216,7 +215,7 @@ def test_planar_3d_input_matches_its_2d_complex() -> None:
     assert tilted.optimal_alpha() == pytest.approx(plain.optimal_alpha())
 
 
-@pytest.mark.skipif(not DATA.is_dir(), reason="shared/data is not available")
+@needs_data
 @pytest.mark.parametrize("name, columns", [("us_airports.csv", "longitude,latitude"),
                                            ("milk.pcd", None)])
 def test_real_scans(name: str, columns) -> None:

@@ -89,7 +89,6 @@ def test_classes_equal_brute_force_intervals(built) -> None:
 
 def test_reference_brute_force_equals_gudhi() -> None:
     """Self-check of the brute force on scipy's own triangulation, against gudhi."""
-    pytest.importorskip("gudhi")
     for dim in (2, 3):
         pts = random_points(dim, 40, 1)
         simplices = delaunay_simplices(pts)

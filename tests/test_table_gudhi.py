@@ -4,10 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-gudhi = pytest.importorskip("gudhi")
-
-from reference import (  # noqa: E402
+from reference import (
     SQ_RTOL,
     assert_valid_table,
     gudhi_star_intervals,
@@ -15,7 +12,7 @@ from reference import (  # noqa: E402
     ours_by_input_ids,
 )
 
-from core import AlphaComplex  # noqa: E402
+from core import AlphaComplex
 
 
 def uniform(rng: np.random.Generator, n: int, dim: int) -> np.ndarray:

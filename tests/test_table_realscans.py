@@ -9,10 +9,12 @@ from reference import (
     data_dir,
     gudhi_measure,
     gudhi_table,
+    needs_data,
     ours_by_input_ids,
     read_scan,
     read_scan_raw,
     row_keys,
+    shared_file,
     simplex_measures,
     smallest_circumspheres,
 )
@@ -22,16 +24,13 @@ from core import AlphaComplex
 DATA = data_dir()
 pytestmark = [
     pytest.mark.slow,
-    pytest.mark.skipif(DATA is None, reason="shared real-scan data folder is absent"),
+    needs_data,
 ]
 
 
 def scan(name: str) -> np.ndarray:
-    """(n, 3) float64 points of one shared scan, or a skip when the file is missing."""
-    path = DATA / name
-    if not path.is_file():
-        pytest.skip(f"{name} is not in {DATA}")
-    return read_scan(path)
+    """(n, 3) float64 points of one shared scan."""
+    return read_scan(shared_file(name))
 
 
 @pytest.mark.parametrize("name", ["bun000_rangegrid.ply", "milk.pcd"])
@@ -44,9 +43,7 @@ def test_grid_like_scan_builds_a_valid_table(name: str) -> None:
 
 def test_flat_lidar_patch_with_duplicates_builds() -> None:
     """plane_flat.laz read record by record: 28,185 records, 18,335 unique, 5 z levels."""
-    path = DATA / "plane_flat.laz"
-    if not path.is_file():
-        pytest.skip("plane_flat.laz is absent")
+    path = shared_file("plane_flat.laz")
     pts = read_scan_raw(path)
     ac = AlphaComplex.from_points(pts)
     assert len(ac.input_index) == len(pts)
@@ -117,10 +114,7 @@ def test_slider_cursor_walk_matches_classify_on_a_real_scan(name: str) -> None:
     in 2D) hold exactly classify()'s REGULAR facets and SINGULAR simplices at every stop."""
     from core import REGULAR, SINGULAR
 
-    path = DATA / name
-    if not path.is_file():
-        pytest.skip(f"{name} is absent")
-    ac = AlphaComplex.from_points(read_scan_raw(path))
+    ac = AlphaComplex.from_points(read_scan_raw(shared_file(name)))
     spectrum = ac.spectrum()
     n = len(spectrum)
     optimal = int(np.searchsorted(spectrum, ac.optimal_alpha(), side="right")) - 1

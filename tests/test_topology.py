@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gudhi
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
@@ -9,9 +10,7 @@ from hypothesis import strategies as st
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-gudhi = pytest.importorskip("gudhi")
-
-from core import AlphaComplex  # noqa: E402
+from core import AlphaComplex
 
 
 def torus_surface(rng: np.random.Generator) -> np.ndarray:

@@ -5,14 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from reference import SQ_RTOL
+from weighted_reference import gudhi_betti, gudhi_weighted_table, ours_by_input_rows
 
-gudhi = pytest.importorskip("gudhi")
-
-from reference import SQ_RTOL  # noqa: E402
-from weighted_reference import gudhi_betti, gudhi_weighted_table, ours_by_input_rows  # noqa: E402
-
-from core import AlphaComplex  # noqa: E402
-from core.geometry.power import signed_square  # noqa: E402
+from core import AlphaComplex
+from core.geometry.power import signed_square
 
 
 def uniform(rng: np.random.Generator, n: int, dim: int) -> np.ndarray:

@@ -1,0 +1,82 @@
+"""In CI, a skipped test fails the run unless it was skipped because the shared real scans
+are absent: a missing library, a display or a platform feature would otherwise hide a test
+behind one line of the summary.
+
+The guard is a pytest plugin (registered by conftest.py for the whole run, benchmarks/
+included) that collects every skip, at collection or at run time, and, when $CI is set to
+a true value, turns the session's exit status into a failure listing the skips it does not
+accept. The one accepted reason starts with DATA_ABSENT, and only while that folder really is
+absent: a CI machine with ../shared/data runs every test.
+"""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+from reference import DATA_ABSENT
+
+TRUE = ("1", "true", "yes", "on")
+
+
+def in_ci(environ: dict[str, str] | None = None) -> bool:
+    """True when $CI says this run is continuous integration (CI=true, as CI services set)."""
+    return (environ if environ is not None else os.environ).get("CI", "").lower() in TRUE
+
+
+def skip_reason(report: pytest.CollectReport | pytest.TestReport) -> str:
+    """The reason a skipped report gives (pytest keeps it as (path, line, 'Skipped: why'))."""
+    longrepr = report.longrepr
+    text = longrepr[2] if isinstance(longrepr, tuple) and len(longrepr) == 3 else str(longrepr)
+    return text.removeprefix("Skipped: ")
+
+
+def accepted(reason: str, data_present: bool) -> bool:
+    """True for the one skip CI accepts: shared data absent, while it really is."""
+    return reason.startswith(DATA_ABSENT) and not data_present
+
+
+class SkipGuard:
+    """Collects the skips of a run; in CI, fails the run on those it does not accept."""
+
+    def __init__(self, data_present: bool, enforce: bool) -> None:
+        """data_present: the shared data folder is there (then no skip is accepted);
+        enforce: fail the session on unaccepted skips (in CI), else only collect them."""
+        self.data_present = data_present
+        self.enforce = enforce
+        self.refused: list[str] = []  # "nodeid: reason" of each skip not accepted
+
+    def _note(self, report: pytest.CollectReport | pytest.TestReport) -> None:
+        """Keep report's skip when it is not accepted."""
+        if report.skipped and not hasattr(report, "wasxfail"):
+            reason = skip_reason(report)
+            if not accepted(reason, self.data_present):
+                self.refused.append(f"{report.nodeid}: {reason}")
+
+    def pytest_collectreport(self, report: pytest.CollectReport) -> None:
+        """A module skipped as a whole (pytest.skip at import, a module-level skipif)."""
+        self._note(report)
+
+    def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
+        """A test skipped in setup (skipif) or in its body (pytest.skip). An xfail in CI
+        hides a failure as well as a skip does: it is refused too."""
+        if hasattr(report, "wasxfail") and report.when == "call":
+            self.refused.append(f"{report.nodeid}: xfail ({report.wasxfail})")
+        self._note(report)
+
+    @pytest.hookimpl(trylast=True)
+    def pytest_sessionfinish(self, session: pytest.Session) -> None:
+        """In CI, a run that refused a skip fails (exit status 1) even if every test passed."""
+        if self.enforce and self.refused and session.exitstatus == pytest.ExitCode.OK:
+            session.exitstatus = pytest.ExitCode.TESTS_FAILED
+
+    def pytest_terminal_summary(self, terminalreporter) -> None:
+        """List the skips CI refuses, and why the run failed for them."""
+        if not (self.enforce and self.refused):
+            return
+        terminalreporter.section("skips refused in CI", sep="=", red=True, bold=True)
+        for line in self.refused:
+            terminalreporter.write_line(line)
+        terminalreporter.write_line(
+            f"CI accepts only skips whose reason starts with {DATA_ABSENT!r}, and only "
+            "while that folder is absent: install what is missing (./.ci/setup).")
