@@ -40,13 +40,27 @@ def points_file(tmp_path):
 
 
 def wait_for(signal, timeout_ms: int = BUILD_TIMEOUT_MS) -> None:
-    """Spin the event loop until signal fires (module fixtures cannot use qtbot)."""
+    """Spin the event loop until signal fires (module fixtures cannot use qtbot); fail when
+    it has not within timeout_ms."""
     from PySide6.QtCore import QEventLoop, QTimer
 
-    loop = QEventLoop()
-    signal.connect(loop.quit)
-    QTimer.singleShot(timeout_ms, loop.quit)
-    loop.exec()
+    loop, fired, timer = QEventLoop(), [], QTimer()
+
+    def arrived(*_args) -> None:
+        fired.append(True)
+        loop.quit()
+
+    signal.connect(arrived)
+    timer.setSingleShot(True)
+    timer.timeout.connect(loop.quit)
+    timer.start(timeout_ms)
+    try:
+        loop.exec()
+    finally:
+        timer.stop()
+        signal.disconnect(arrived)
+    if not fired:
+        pytest.fail(f"no {signal} within {timeout_ms / 1000:.0f} s")
 
 
 @pytest.fixture(scope="module")
@@ -69,6 +83,7 @@ def shared_window(qapp, tmp_path_factory):
     assert win.model.dataset is not None, "the shared test dataset did not build"
     if not win.model.dataset.has_topology:
         wait_for(win.model.topologyChanged)
+    assert win.model.dataset.signatures is not None, "the shared dataset has no topology"
     yield win
     win.close()
 
@@ -353,8 +368,7 @@ def test_reopening_loads_the_cached_table_and_says_so(window, qtbot, points_file
 def test_signature_cursor_follows_alpha(opened, qtbot) -> None:
     """The signature plots' cursor sits at the current alpha after a key step."""
     panel = opened.signatures_panel
-    if opened.model.dataset.signatures is None:
-        pytest.skip("core has no signatures yet")
+    assert opened.model.dataset.signatures is not None  # the fixture waited for them
     press(qtbot, opened, Qt.Key.Key_Right)
     assert panel.cursors
     for cursor in panel.cursors:
@@ -658,3 +672,12 @@ def test_info_dock_prints_for_people(opened) -> None:
     text = "\n".join(data_lines(opened.model))
     assert "e+0" not in text and "x " in text and "spacing" in text
     assert "build: backend qhull" in text  # ac.build_info (core/pipeline.py)
+
+
+def test_wait_for_fails_when_the_signal_never_comes(qapp) -> None:
+    """A wait that times out fails the test (before, it fell through into a skip)."""
+    from PySide6.QtCore import QTimer
+
+    idle = QTimer()  # never started: its timeout never fires
+    with pytest.raises(pytest.fail.Exception, match="within 0 s"):
+        wait_for(idle.timeout, timeout_ms=50)

@@ -87,14 +87,16 @@ import time  # noqa: E402
 import tracemalloc  # noqa: E402
 import warnings  # noqa: E402
 
-from fuzz_inputs import MAKERS, cases, original, write_case  # noqa: E402
+from fuzz_inputs import MAKERS, MUTATIONS, cases, original, write_case  # noqa: E402
 
 from app.cli import main  # noqa: E402
 
 SEED = 17
 READ_CASES_PER_KIND = 35  # 7 mutations five times over, for each of the 21 kinds
 CLI_CASES_PER_KIND = 10
-BUDGET_S = 20.0  # CPU seconds per test: cases past it are skipped (each case is seeded)
+BUDGET_S = 20.0  # CPU seconds per test: cases past it are not run (each case is seeded), but
+# a test that ran out before every kind met every mutation (or, for `info`, every kind once)
+# fails: a slow reader cannot shrink the fuzzing unnoticed
 PEAK_BASE = 32 << 20  # bytes a reader may use beyond twice the file's size
 NOT_PLAIN = re.compile(r"Traceback|codec|Errno|please report|unexpected|\b\w+(Error|Exception)\b"
                        r"|\(\w+: |dtype|ndarray|usecols")
@@ -122,10 +124,12 @@ def assert_plain(message: str, path) -> None:
 def test_every_reader_fuzzed(tmp_path, valid_bytes):
     deadline = time.process_time() + BUDGET_S
     tracemalloc.start()
+    ran = 0
     try:
         for kind, how, seed in cases(list(MAKERS), READ_CASES_PER_KIND, SEED):
             if time.process_time() > deadline:
                 break
+            ran += 1
             path = write_case(valid_bytes[kind], MAKERS[kind][0], how, seed, tmp_path)
             tracemalloc.reset_peak()
             with warnings.catch_warnings(record=True) as caught:
@@ -142,15 +146,18 @@ def test_every_reader_fuzzed(tmp_path, valid_bytes):
             path.unlink()
     finally:
         tracemalloc.stop()
+    assert ran >= len(MAKERS) * len(MUTATIONS), f"the budget ran out after {ran} cases"
 
 
 @pytest.mark.timeout(120)
 def test_info_on_fuzzed_files_prints_one_line(tmp_path, valid_bytes, capfd, monkeypatch):
     monkeypatch.setenv("ALPHASCOOP_CACHE_DIR", str(tmp_path / "cache"))
     deadline = time.process_time() + BUDGET_S
+    ran = 0
     for kind, how, seed in cases(list(MAKERS), CLI_CASES_PER_KIND, SEED + 1):
         if time.process_time() > deadline:
             break
+        ran += 1
         path = write_case(valid_bytes[kind], MAKERS[kind][0], how, seed, tmp_path)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -163,6 +170,7 @@ def test_info_on_fuzzed_files_prints_one_line(tmp_path, valid_bytes, capfd, monk
             assert status == 1 and out == "", (kind, how, seed, status)
             assert err.startswith("alphascoop: error: ") and err.count("\n") == 1, err
             assert not NOT_PLAIN.search(err), err
+    assert ran >= len(MAKERS), f"the budget ran out after {ran} cases"
 
 
 @pytest.mark.parametrize("ext", sorted({ext for ext, _ in MAKERS.values()}))

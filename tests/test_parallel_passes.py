@@ -11,6 +11,7 @@ from unittest import mock
 import numpy as np
 import pytest
 
+import core.backends.gmsh
 import core.build.table
 import core.geometry.circumspheres
 import core.parallel
@@ -223,12 +224,12 @@ def _table_arrays(built) -> dict:
 
 
 @pytest.mark.parametrize("dim", [2, 3])
-@pytest.mark.parametrize("backend", ["qhull", "gmsh"])
+@pytest.mark.parametrize("backend", [
+    "qhull", pytest.param("gmsh", marks=pytest.mark.skipif(
+        not core.backends.gmsh.installed(), reason="the optional gmsh package is not installed"))])
 def test_every_table_array_is_the_same_split_or_not(dim: int, backend: str) -> None:
     """Built with every pass split in tiny parts (the gmsh backend: its neighbour table,
     mirror columns and checks too), each table array equals the unsplit build's."""
-    if backend == "gmsh":
-        pytest.importorskip("gmsh")
     rng = np.random.default_rng(10 + dim)
     points = rng.random((701, dim))
     plain = build_complex(points, backend=backend)
