@@ -28,6 +28,22 @@ def assert_same_cells(tri: Triangulation, ref: Triangulation) -> None:
     assert np.array_equal(ref.neighbors[row], across)
 
 
+def splits_counted(monkeypatch) -> list[str]:
+    """Two CPUs as far as split.worth_splitting can tell (a one-CPU machine would never try
+    the halves, and a test could not tell that from a split), and the outcome of every
+    split_triangulation call the builds make: "split", or the reason it fell back."""
+    monkeypatch.setattr(split.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    original, outcomes = split.split_triangulation, []
+
+    def counted(*args, **kwargs):
+        tri = original(*args, **kwargs)
+        outcomes.append("split" if isinstance(tri, Triangulation) else tri)
+        return tri
+
+    monkeypatch.setattr(split, "split_triangulation", counted)
+    return outcomes
+
+
 def split_equals_qhull(points: np.ndarray, weights: np.ndarray | None = None) -> None:
     tri = split.split_triangulation(points, weights)
     assert isinstance(tri, Triangulation), tri
@@ -92,21 +108,19 @@ def test_split_equals_one_qhull_call_on_real_scans(name: str) -> None:
 
 
 @pytest.mark.parametrize("name", list(DEGENERATE))
-def test_degenerate_input_is_equal_or_a_clean_fallback(name: str, monkeypatch) -> None:
-    """Lattices, cospherical points, near duplicates: the same cells, or the one call (the
-    reason in the note)."""
+def test_degenerate_input_falls_back_to_one_call(name: str, monkeypatch) -> None:
+    """Lattices, cospherical points, near duplicates: the halves cannot promise the one
+    call's cells, so the build makes that call (the reason in the note)."""
     points = prepared(DEGENERATE[name](np.random.default_rng(3)))
     monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 1 << 40)
     monkeypatch.setattr(split, "SPLIT_FROM_POINTS", 0)
+    outcomes = splits_counted(monkeypatch)
     tri, choice = backends.delaunay(points, "qhull")
     ref = triangulate(points)
-    assert choice.backend == "qhull"
-    if choice.note:
-        assert choice.note.startswith("not split in two halves: ")
-        assert np.array_equal(tri.cells, ref.cells)
-        assert np.array_equal(tri.neighbors, ref.neighbors)
-    else:
-        assert_same_cells(tri, ref)
+    assert len(outcomes) == 1 and outcomes[0] != "split"  # tried, and it fell back
+    assert choice == backends.Choice("qhull", f"not split in two halves: {outcomes[0]}")
+    assert np.array_equal(tri.cells, ref.cells)
+    assert np.array_equal(tri.neighbors, ref.neighbors)
 
 
 def test_lattices_fall_back(monkeypatch) -> None:
@@ -146,10 +160,12 @@ def test_build_is_the_same_split_or_not(weighted: bool, monkeypatch) -> None:
     points = rng.uniform(size=(3000, 3)) * 20.0 + 3.0
     weights = spacing_weights(rng, points, 3.0) if weighted else None
     monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 1 << 40)
+    outcomes = splits_counted(monkeypatch)
     whole = AlphaComplex.from_points(points, weights=weights)
+    assert outcomes == []  # 3,000 points: one call
     monkeypatch.setattr(split, "SPLIT_FROM_POINTS", 1000)
     halves = AlphaComplex.from_points(points, weights=weights)
-    assert halves.build_info.backend_note == ""
+    assert outcomes == ["split"] and halves.build_info.backend_note == ""
     assert np.array_equal(whole.input_index, halves.input_index)
     assert whole.counts() == halves.counts()
     for k in range(4):
@@ -174,8 +190,9 @@ def test_weighted_split_build_equals_gudhi(d: int, monkeypatch) -> None:
     points = rng.uniform(size=(3000, d))
     weights = spacing_weights(rng, points, 3.0)
     monkeypatch.setattr(split, "SPLIT_FROM_POINTS", 1000)
+    outcomes = splits_counted(monkeypatch)
     ac = AlphaComplex.from_points(points, weights=weights)
-    assert ac.build_info.backend_note == ""
+    assert outcomes == ["split"] and ac.build_info.backend_note == ""
     assert (np.asarray(ac.input_index) < 0).sum() > 50
     assert_matches_gudhi(ac, gudhi_weighted_table(points, weights), len(points))
 

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from reference import DATA_ABSENT, data_dir, read_scan
 from test_backends import DEGENERATE, cell_set, prepared
-from test_split import SPLITTABLE, assert_same_cells, by_rows
+from test_split import SPLITTABLE, assert_same_cells, by_rows, splits_counted
 
 import core.backends as backends
 import core.backends.gmsh_half as gmsh_half
@@ -53,19 +53,21 @@ def test_gmsh_split_equals_one_qhull_call_on_real_scans(name: str) -> None:
 
 
 @pytest.mark.parametrize("name", list(DEGENERATE))
-def test_degenerate_input_is_equal_or_one_gmsh_call(name: str, monkeypatch) -> None:
-    """Lattices, cospherical points, near duplicates: Qhull's cells from the halves, or the
-    reason they were not split (then one gmsh call, or Qhull)."""
+def test_degenerate_input_falls_back_from_the_gmsh_halves(name: str, monkeypatch) -> None:
+    """Lattices, cospherical points, near duplicates: the gmsh halves cannot promise Qhull's
+    cells (the reason in the note), nor can one gmsh call: the automatic choice is one
+    Qhull call."""
     points = prepared(DEGENERATE[name](np.random.default_rng(3)))
     monkeypatch.setattr(split, "GMSH_SPLIT_FROM_POINTS", 0)
     monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 0)
+    outcomes = splits_counted(monkeypatch)
     tri, choice = backends.delaunay(points, None)
     ref = triangulate(points)
-    if choice.backend == "gmsh" and not choice.note:
-        assert_same_cells(tri, ref)
-        return
-    assert "not split in two halves: " in choice.note or "gmsh not used: " in choice.note
-    assert np.array_equal(cell_set(tri.cells), cell_set(ref.cells))
+    assert len(outcomes) == 1 and outcomes[0] != "split"  # the halves were tried, and failed
+    assert choice.backend == "qhull" and choice.note.startswith("gmsh not used: ")
+    assert choice.note.endswith(f"; not split in two halves: {outcomes[0]}")
+    assert np.array_equal(tri.cells, ref.cells)
+    assert np.array_equal(tri.neighbors, ref.neighbors)
 
 
 def test_the_automatic_choice_splits_large_inputs(monkeypatch) -> None:
@@ -74,6 +76,7 @@ def test_the_automatic_choice_splits_large_inputs(monkeypatch) -> None:
     points = np.random.default_rng(21).uniform(size=(6000, 3)) * 10.0
     monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 0)
     monkeypatch.setattr(split, "GMSH_SPLIT_FROM_POINTS", 1 << 40)
+    outcomes = splits_counted(monkeypatch)
     whole = AlphaComplex.from_points(points)
     calls = []
     original = split._gmsh_halves
@@ -81,7 +84,7 @@ def test_the_automatic_choice_splits_large_inputs(monkeypatch) -> None:
                         lambda *args: calls.append(1) or original(*args))
     monkeypatch.setattr(split, "GMSH_SPLIT_FROM_POINTS", 5000)
     halves = AlphaComplex.from_points(points)
-    assert calls and halves.build_info.backend == "gmsh"
+    assert calls and outcomes == ["split"] and halves.build_info.backend == "gmsh"
     assert halves.build_info.backend_note == ""
     for k in range(4):
         (a, ia), (b, ib) = (by_rows(ac.simplices(k), ac.intervals_sq(k))
