@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import contextlib
 import fcntl
-import json
 import os
 import shutil
 import sys
@@ -46,10 +45,10 @@ from pathlib import Path
 import numpy as np
 
 from app.child_process import LOCK_NAME, LeaveRunning, make_scratch, run_in_child
+from app.messages import BuildJob, OpeningFound, TableHandedOver
 from app.shared_folder import SharedFolder, SharedTable
 from core.complex import AlphaComplex
 from core.errors import AlphaScoopError, Cancelled
-from core.modes.alpha_modes import Mode, make_mode
 from core.obtain import SAVE_START, BuildRequest, HandOver, run_here
 from core.progress import Progress
 from core.query.cursor import CursorOrders, cursor_orders
@@ -108,8 +107,8 @@ class ChildRunner:
             ended.set()
 
         try:
-            answer, taken = self._run(request, folder, shared, report, remove,
-                                      _Either(self.cancel, stopping))
+            opening_alpha, saving, taken = self._run(request, folder, shared, report, remove,
+                                                     _Either(self.cancel, stopping))
         except BaseException:
             remove()  # (again: harmless) a child that failed or was killed has ended
             raise
@@ -120,8 +119,7 @@ class ChildRunner:
             raise AlphaScoopError("the build process finished without handing its table over")
         ac, handed = taken[0]
         self._built = ac
-        self._handed = replace(handed, opening_alpha=answer["opening_alpha"],
-                               saving=bool(answer.get("saving", False)))
+        self._handed = replace(handed, opening_alpha=opening_alpha, saving=saving)
         return ac
 
     def stop(self) -> None:
@@ -142,31 +140,31 @@ class ChildRunner:
 
     def _run(self, request: BuildRequest, folder: Path, shared: SharedFolder | None,
              report: Progress, remove: Callable[[], None], cancel: _Either
-             ) -> tuple[dict, list[tuple[AlphaComplex, HandOver]]]:
-        """Run the child with its inputs in folder: its answer and what it handed over.
-        Without the signatures, a child that handed its table over in shared memory and
-        then its opening alpha is left to write the cache entry on its own (answer
-        "saving": True), killed once `cancel` (the load's, or stop()) is set meanwhile;
-        remove() once it ended."""
+             ) -> tuple[float | None, bool, list[tuple[AlphaComplex, HandOver]]]:
+        """Run the child with its inputs in folder: the opening alpha it found, whether it
+        was left writing the cache entry, and what it handed over. Without the signatures,
+        a child that handed its table over in shared memory and then its opening alpha is
+        left to write the cache entry on its own (then True), killed once `cancel` (the
+        load's, or stop()) is set meanwhile; remove() once it ended."""
         source = folder / "points.npy"
         np.save(source, request.points)
         if request.weights is not None:
             np.save(folder / "weights.npy", request.weights)
         if request.mode.normals == "given" and request.normals is not None:
             np.save(folder / "normals.npy", np.asarray(request.normals, np.float64))
-        job = {"mode": request.mode.to_dict(), "signatures": request.signatures,
-               "save_to": None if request.save_to is None else str(request.save_to),
-               "backend": request.backend,
-               "shared": None if shared is None else str(shared.path)}
+        job = BuildJob(request.mode, request.signatures,
+                       None if request.save_to is None else str(request.save_to),
+                       request.backend, None if shared is None else str(shared.path))
         taken: list[tuple[AlphaComplex, HandOver]] = []
         opening: list[float | None] = []
 
-        def handed(text: str) -> None:
-            message = json.loads(text)
-            if "opening_alpha" not in message:
+        def handed(message: object) -> None:
+            if isinstance(message, TableHandedOver):
                 taken.append(self._take(message, request, shared, report))
                 return
-            opening.append(message["opening_alpha"])
+            if not isinstance(message, OpeningFound):
+                raise AlphaScoopError(f"the build process sent {message!r}")
+            opening.append(message.opening_alpha)
             if taken and not request.signatures and request.save_to is not None:
                 raise LeaveRunning  # only the entry's write is left: the window goes on
 
@@ -178,26 +176,27 @@ class ChildRunner:
                 raise
             print(f"alphascoop: the build process failed after handing its table over "
                   f"({error}); the window finds the opening alpha itself", file=sys.stderr)
-            return {"opening_alpha": opening[0] if opening else None}, taken
+            return opening[0] if opening else None, False, taken
         if result is None:
-            return {"opening_alpha": opening[0], "saving": True}, taken
-        return json.loads(result), taken
+            return opening[0], True, taken
+        if not isinstance(result, OpeningFound):
+            raise AlphaScoopError(f"the build process answered {result!r}")
+        return result.opening_alpha, False, taken
 
-    def _take(self, answer: dict, request: BuildRequest, shared: SharedFolder | None,
-              report: Progress) -> tuple[AlphaComplex, HandOver]:
-        """The table a child handed over ({"table": its file or shared folder, "mapped":
-        whether it is that folder, "orders": the cursor's orders (file or folder) or None})
-        and the cursor made from those orders; on_saved is told then when the table is, or
-        is about to be written to, the cache entry without signatures."""
+    def _take(self, handed: TableHandedOver, request: BuildRequest,
+              shared: SharedFolder | None, report: Progress) -> tuple[AlphaComplex, HandOver]:
+        """The table a child handed over and the cursor made from its orders; on_saved is
+        told then when the table is, or is about to be written to, the cache entry without
+        signatures."""
         self._check_cancel()  # no load for a table nobody will use
-        mapped = bool(answer["mapped"]) and shared is not None
-        taken = _load_handed(answer, mapped, report)
+        mapped = handed.mapped and shared is not None
+        taken = _load_handed(handed, mapped, report)
         self._check_cancel()  # nor a topology process
         if (self.on_saved is not None and not request.signatures
                 and request.save_to is not None
-                and (mapped or answer["table"] == str(request.save_to))):
+                and (mapped or handed.table == str(request.save_to))):
             self.on_saved(request.save_to, len(request.points),
-                          SharedTable(shared, Path(answer["saving"])) if mapped else None)
+                          SharedTable(shared, Path(handed.saving)) if mapped else None)
         if shared is not None:
             shared.release()  # mapped here: only the topology process may still need it
         return taken
@@ -220,44 +219,41 @@ class _Either:
         return any(event.is_set() for event in self._events)
 
 
-def _load_handed(answer: dict, mapped: bool, report: Progress
+def _load_handed(handed: TableHandedOver, mapped: bool, report: Progress
                  ) -> tuple[AlphaComplex, HandOver]:
     """The table and cursor orders a child handed over, as a complex and its cursor."""
     report(1.0, "loading the table")
-    if answer["orders"] is None:
-        return AlphaComplex.load(answer["table"], verify=False), HandOver()
-    arrays = (map_arrays(answer["orders"]) if mapped
-              else read_npz(answer["orders"], trusted=True))
+    if handed.orders is None:
+        return AlphaComplex.load(handed.table, verify=False), HandOver()
+    arrays = (map_arrays(handed.orders) if mapped
+              else read_npz(handed.orders, trusted=True))
     # our child wrote both just now: the table is not re-checked, its spectrum not re-sorted
-    ac = AlphaComplex.load(answer["table"], verify=False, spectrum=arrays.get(SPECTRUM_NAME))
+    ac = AlphaComplex.load(handed.table, verify=False, spectrum=arrays.get(SPECTRUM_NAME))
     return ac, HandOver(cursor=ac.cursor(CursorOrders.from_arrays(arrays, ac.dim)))
 
 
-def build_in_child(source: str, target: str, job: dict, progress: Progress,
-                   hand_over: Callable[[str], None]) -> str:
+def build_in_child(source: str, target: str, job: BuildJob, progress: Progress,
+                   hand_over: Callable[[object], None]) -> OpeningFound:
     """Body of the build process: build (and the signatures if asked), hand the table over,
-    save it to the cache entry; then return JSON {"opening_alpha": the quick opening alpha,
-    or None when the signatures hold it or it could not be found}.
+    save it to the cache entry; then return the quick opening alpha (None when the
+    signatures hold it or it could not be found).
 
-    The hand-over is JSON {"table", "mapped", "orders", "saving"}: with a shared folder
-    (job "shared") that has the room, the table and the cursor's orders are written there
-    (core.storage.mapped) and handed over before the cache entry is written, while this process
-    holds a lock on the file "saving" (beside `target`) until that write is done; else (no shared
-    memory, or too little) the table is handed over as the cache entry once written, or as
-    `target` when it cannot be, with the orders in a file beside. "orders" is None when they
-    could not be found.
+    The hand-over is a TableHandedOver: with a shared folder (job.shared) that has the
+    room, the table and the cursor's orders are written there (core.storage.mapped) and
+    handed over before the cache entry is written, while this process holds a lock on the
+    file "saving" (beside `target`) until that write is done, and an OpeningFound follows
+    at once; else (no shared memory, or too little) the table is handed over as the cache
+    entry once written, or as `target` when it cannot be, with the orders in a file beside.
+    Its orders are None when they could not be found.
 
-    `job` holds "mode" (Mode.to_dict()), "signatures" (bool), "save_to" (the cache entry
-    or None), "backend" (str or None) and "shared" (a folder or None); weights.npy and
-    normals.npy beside the points hold those when given."""
+    weights.npy and normals.npy beside the points hold those when given."""
     points = np.load(source, allow_pickle=False)
     weights = _optional(Path(source).with_name("weights.npy"))
-    mode = _saved_mode(job["mode"])
+    mode = job.mode
     normals = (_optional(Path(source).with_name("normals.npy"))
                if mode.normals == "given" else None)
-    request = BuildRequest(points, weights, mode, normals, bool(job["signatures"]),
-                           None if job["save_to"] is None else Path(job["save_to"]),
-                           job["backend"])
+    request = BuildRequest(points, weights, mode, normals, job.signatures,
+                           None if job.save_to is None else Path(job.save_to), job.backend)
     saving = Path(target).with_name(SAVING_NAME)
     with open(saving, "wb") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)  # the kernel drops it if this process dies
@@ -268,14 +264,13 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress,
         finder = (_beside(lambda: opening.append(opening_alpha_of(ac.index, len(ac.points))),
                           "alphascoop-opening") if not request.signatures else lambda: None)
         sorter = _beside(lambda: orders.append(_orders_and_spectrum(ac)), "alphascoop-orders")
-        shared = job.get("shared")
+        shared = job.shared
         if shared is not None and _share(ac, Path(shared), progress):
             sorter()
             orders_folder = _share_orders(orders, Path(shared) / ORDERS_FOLDER)
-            hand_over(json.dumps({"table": shared, "mapped": True, "orders": orders_folder,
-                                  "saving": str(saving)}))
+            hand_over(TableHandedOver(shared, True, orders_folder, str(saving)))
             finder()
-            hand_over(json.dumps({"opening_alpha": float(opening[0]) if opening else None}))
+            hand_over(OpeningFound(float(opening[0]) if opening else None))
             if not request.signatures and request.save_to is not None:
                 with contextlib.suppress(OSError):  # left to write alone: the cores go to
                     os.nice(SAVE_NICENESS)  # the window and the topology process
@@ -290,11 +285,11 @@ def build_in_child(source: str, target: str, job: dict, progress: Progress,
             if orders:
                 orders_file = Path(target).with_name(ORDERS_NAME)
                 np.savez(orders_file, **orders[0])  # scratch: no atomic write
-            hand_over(json.dumps({"table": str(written), "mapped": False,
-                                  "orders": None if orders_file is None else str(orders_file),
-                                  "saving": str(saving)}))
+            hand_over(TableHandedOver(str(written), False,
+                                      None if orders_file is None else str(orders_file),
+                                      str(saving)))
     finder()
-    return json.dumps({"opening_alpha": float(opening[0]) if opening else None})
+    return OpeningFound(float(opening[0]) if opening else None)
 
 
 def _orders_and_spectrum(ac: AlphaComplex) -> dict[str, np.ndarray]:
@@ -361,10 +356,3 @@ def _optional(path: Path) -> np.ndarray | None:
     """The array saved at path, None when there is none."""
     return np.load(path, allow_pickle=False) if path.is_file() else None
 
-
-def _saved_mode(saved: dict | None) -> Mode:
-    """The Mode of Mode.to_dict() (classic when None)."""
-    if saved is None:
-        return Mode()
-    return make_mode(saved["density"], saved["combine"], saved["anisotropy"],
-                     saved["normals"] == "given")

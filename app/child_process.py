@@ -2,8 +2,10 @@
 the window's GIL (the build: app.build_process; the topology: app.topology_process).
 
 The child runs `work(*args, progress)` (or `work(*args, progress, hand_over)`, see
-run_in_child) and answers through a pipe: ("progress", fraction, stage), ("handed", text)
-for each hand_over(text), then ("done", text) or ("error", class name, message). Its files
+run_in_child) and answers through a pipe with the messages of app.messages: Reported for
+each progress report, each message it hands over, then Finished (its result) or Failed (its
+error). Those messages, and the job in `args`, cross the process boundary as plain data
+(app.messages.to_plain), here only. Its files
 live in a temporary folder named after the window's pid (`scratch`, `make_scratch`; a table
 handed over in shared memory lives in one on /dev/shm: app.shared_folder), so a window that
 was killed leaves folders the next window can recognise and remove (`remove_orphans`, in the
@@ -26,6 +28,7 @@ from multiprocessing.connection import Connection
 from pathlib import Path
 from typing import BinaryIO, Protocol
 
+from app.messages import Failed, Finished, Reported, from_plain, to_plain
 from core import errors
 from core.progress import Progress
 
@@ -128,24 +131,26 @@ class LeaveRunning(Exception):
     finishes its work on its own (run_in_child's `finish`)."""
 
 
-def run_in_child(work: Callable[..., str], args: tuple, progress: Progress,
+def run_in_child(work: Callable[..., object], args: tuple, progress: Progress,
                  cancel: CancelFlag, name: str,
-                 handed: Callable[[str], None] | None = None,
-                 finish: Callable[[], None] | None = None) -> str | None:
-    """Run work(*args, progress) in a spawned process; the text it returned. Its errors are
-    raised here as the same core.errors class (MemoryError as MemoryError); Cancelled as
-    soon as `cancel` is set (the child is killed).
+                 handed: Callable[[object], None] | None = None,
+                 finish: Callable[[], None] | None = None) -> object:
+    """Run work(*args, progress) in a spawned process; what it returned (an app.messages
+    message or plain text; args too are messages or plain values). Its errors are raised
+    here as the same core.errors class (MemoryError as MemoryError); Cancelled as soon as
+    `cancel` is set (the child is killed).
 
-    With `handed`, work gets a third callable, hand_over(text), to pass a result before it
-    is done (a file it has finished writing, say): handed(text) runs here as soon as it
-    comes, while the child goes on; its errors stop the child too. When it raises
+    With `handed`, work gets a third callable, hand_over(message), to pass a result before
+    it is done (a file it has finished writing, say): handed(message) runs here as soon as
+    it comes, while the child goes on; its errors stop the child too. When it raises
     LeaveRunning, None is returned at once and the child is left to end on its own,
     followed by a thread (killed as soon as `cancel` is set); `finish()` runs once it has
     ended (else right here, when this returns or raises)."""
     context = multiprocessing.get_context("spawn")  # forking a process with Qt threads is unsafe
     receiver, sender = context.Pipe(duplex=False)
+    plain_args = tuple(to_plain(arg) for arg in args)
     child = context.Process(target=child_main,
-                            args=(work, args, sender, os.getpid(), handed is not None),
+                            args=(work, plain_args, sender, os.getpid(), handed is not None),
                             name=name, daemon=True)
     child.start()
     sender.close()
@@ -188,31 +193,33 @@ def _end(child, receiver: Connection, cancel: CancelFlag,
 
 
 def _follow(child, receiver: Connection, progress: Progress, cancel: CancelFlag,
-            handed: Callable[[str], None] | None = None) -> str:
+            handed: Callable[[object], None] | None = None) -> object:
     """Relay the child's messages until it is done; Cancelled as soon as cancel is set."""
     while True:
         if cancel.is_set():
             raise errors.Cancelled("cancelled by the user")
         try:
-            message = receiver.recv() if receiver.poll(POLL_SECONDS) else None
+            message = from_plain(receiver.recv()) if receiver.poll(POLL_SECONDS) else None
         except EOFError:
-            message = ("died",)
+            message = _DIED
         if message is None:
             continue
-        kind, *rest = message
-        if kind == "progress":
-            progress(*rest)
-        elif kind == "handed" and handed is not None:
-            handed(rest[0])
-        elif kind == "done":
-            return rest[0]
-        elif kind == "error":
-            raise _error(*rest)
+        if isinstance(message, Reported):
+            progress(message.fraction, message.stage)
+        elif isinstance(message, Finished):
+            return message.result
+        elif isinstance(message, Failed):
+            raise _error(message.error, message.text)
+        elif handed is not None and message is not _DIED:
+            handed(message)
         else:
             child.join(1.0)
             raise errors.AlphaScoopError(
                 f"the background process stopped without a result (exit code "
                 f"{child.exitcode}; out of memory?)")
+
+
+_DIED = object()  # the pipe closed before Finished or Failed came
 
 
 def _error(name: str, text: str) -> Exception:
@@ -225,24 +232,28 @@ def _error(name: str, text: str) -> Exception:
     return errors.AlphaScoopError(text)
 
 
-def child_main(work: Callable[..., str], args: tuple, sender: Connection, parent: int,
+def child_main(work: Callable[..., object], args: tuple, sender: Connection, parent: int,
                hands_over: bool = False) -> None:
-    """Body of a child process: run work (given hand_over too when `hands_over`), send its
-    result or its error as one line."""
+    """Body of a child process: run work on the messages in args (given hand_over too when
+    `hands_over`), send its result (Finished) or its error (Failed), as plain data."""
     _show_name(multiprocessing.current_process().name)
     threading.Thread(target=_exit_with_parent, args=(parent,), daemon=True).start()
-    callbacks: list[Callable] = [lambda f, s: sender.send(("progress", f, s))]
+
+    def send(message: object) -> None:
+        sender.send(to_plain(message))
+
+    callbacks: list[Callable] = [lambda f, s: send(Reported(f, s))]
     if hands_over:
-        callbacks.append(lambda text: sender.send(("handed", text)))
+        callbacks.append(send)
     try:
-        sender.send(("done", work(*args, *callbacks)))
+        send(Finished(work(*(from_plain(arg) for arg in args), *callbacks)))
     except errors.AlphaScoopError as error:
-        sender.send(("error", type(error).__name__, str(error)))
+        send(Failed(type(error).__name__, str(error)))
     except MemoryError:
-        sender.send(("error", "MemoryError", "not enough memory for this point set"))
+        send(Failed("MemoryError", "not enough memory for this point set"))
     except Exception as error:  # reported to the user as one line, never a traceback
-        sender.send(("error", "AlphaScoopError", f"unexpected error in the background process "
-                                                 f"({type(error).__name__}: {error})"))
+        send(Failed("AlphaScoopError", f"unexpected error in the background process "
+                                       f"({type(error).__name__}: {error})"))
     finally:
         sender.close()
 

@@ -26,11 +26,12 @@ import time
 from pathlib import Path
 
 from app.child_process import POLL_SECONDS, CancelFlag, run_in_child, scratch
+from app.messages import TableRead, TopologyJob, TopologyWritten
 from app.shared_folder import SharedTable
 from app.topology_file import TopologyParts, read_topology
-from app.topology_process import HANDED_OVER, NAME, READ, topology_in_child
+from app.topology_process import NAME, topology_in_child
 from core.complex import AlphaComplex
-from core.errors import Cancelled
+from core.errors import AlphaScoopError, Cancelled
 from core.progress import Progress
 
 
@@ -131,14 +132,19 @@ class TopologyChild:
                 return
 
     def _note(self, fraction: float, stage: str) -> None:
-        """The child's progress (follower thread): queue it for parts(); at HANDED_OVER the
-        result is ready."""
+        """The child's progress (follower thread): queue it for parts()."""
         self._stages.put((fraction, stage))
-        if stage == READ:
+
+    def _take(self, message: object) -> None:
+        """What the child handed over (follower thread): TableRead, then TopologyWritten
+        (the result is ready)."""
+        if isinstance(message, TableRead):
             self._release()  # mapped: the shared folder may go
-        if stage == HANDED_OVER:
+        elif isinstance(message, TopologyWritten) and Path(message.target) == self._target:
             self._written = self._target
             self._handed.set()
+        else:
+            raise AlphaScoopError(f"the topology process sent {message!r}")
 
     def _follow(self, entry: Path | None, copy: AlphaComplex | None,
                 shared: SharedTable | None) -> None:
@@ -154,10 +160,9 @@ class TopologyChild:
                         table = Path(folder) / "table.npz"
                         copy.save(table)
                     self._target = Path(folder) / "topology.npz"
-                    run_in_child(topology_in_child,
-                                 (str(table), None if entry is None else str(entry),
-                                  str(self._target), saving),
-                                 self._note, self, NAME)
+                    job = TopologyJob(str(table), None if entry is None else str(entry),
+                                      str(self._target), saving)
+                    run_in_child(topology_in_child, (job,), self._note, self, NAME, self._take)
                 except BaseException as error:
                     self._keep(error)
                 finally:

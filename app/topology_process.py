@@ -24,8 +24,10 @@ app.topology_child.
 from __future__ import annotations
 
 import fcntl
+from collections.abc import Callable
 from pathlib import Path
 
+from app.messages import TableRead, TopologyJob, TopologyWritten
 from app.topology_file import write_topology
 from core.cache import save_entry
 from core.complex import AlphaComplex
@@ -33,31 +35,36 @@ from core.progress import Progress
 
 IN_THREAD_BELOW = 20_000  # points: below this the pass takes well under a second in a thread
 NAME = "alphascoop-topology"  # the process's name (ps, top)
-READ = "topology: signatures"  # the table is read (a shared folder: mapped, may go)
-HANDED_OVER = "topology: handed over"  # the stage the child reports once its file is written
+READ = "topology: signatures"  # the table is read (then TableRead: a shared folder may go)
+HANDED_OVER = "topology: handed over"  # its file is written (then TopologyWritten)
 SAVING = "topology: saving the signatures to the cache"  # after HANDED_OVER, when it rewrites
 
 
-def topology_in_child(table: str, entry: str | None, target: str, saving: str | None,
-                      progress: Progress) -> str:
-    """Body of the topology process: read the table (a file, or a shared folder it maps:
-    core.storage.mapped; it reports READ then), compute its topology, write it to target and report
-    HANDED_OVER; then, given the cache `entry`, wait until the build process no longer holds
-    its lock on the file `saving` (it writes that entry meanwhile: app.build_process) and
-    rewrite the entry with the signatures if it exists. Returns target."""
+def topology_in_child(job: TopologyJob, progress: Progress,
+                      hand_over: Callable[[object], None]) -> TopologyWritten:
+    """Body of the topology process: read job.table (a file, or a shared folder it maps:
+    core.storage.mapped; it reports READ and hands TableRead over then), compute its
+    topology, write it to job.target, report HANDED_OVER and hand TopologyWritten over; then,
+    given the cache job.entry, wait until the build process no longer holds its lock on the
+    file job.saving (it writes that entry meanwhile: app.build_process) and rewrite the entry
+    with the signatures if it exists. Returns TopologyWritten."""
+    table, entry = job.table, job.entry
     progress(0.0, "topology: loading the table")
     ac = AlphaComplex.load(table, verify=not Path(table).is_dir())  # a folder: just written
     progress(0.2, READ)
+    hand_over(TableRead())
     ac.signatures()
     progress(0.8, "topology: persistence")
-    write_topology(target, ac, entry is not None)
+    write_topology(job.target, ac, entry is not None)
     progress(0.9, HANDED_OVER)
+    written = TopologyWritten(job.target)
+    hand_over(written)
     if entry is not None:
-        _wait_for_build(saving)
+        _wait_for_build(job.saving)
         if Path(entry).is_file():  # else the build process could not write it: no cache
             progress(0.95, SAVING)
             save_entry(ac, Path(entry))
-    return target
+    return written
 
 
 def _wait_for_build(saving: str | None) -> None:

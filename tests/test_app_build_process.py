@@ -11,6 +11,7 @@ import pytest
 from child_cancel import cancel_at
 
 from app import build_process, child_process
+from app.messages import BuildJob, OpeningFound, TableHandedOver
 from core import AlphaComplex
 from core.cache import entry_path, read_entry
 from core.errors import AlphaScoopError, Cancelled, InputError
@@ -128,24 +129,21 @@ def test_the_child_finds_the_quick_opening_alpha_while_it_saves(in_process):
 def test_an_opening_alpha_the_child_cannot_find_is_left_to_the_window(tmp_path, monkeypatch):
     """The child's body, run here: a failing search beside the save leaves the table
     written and the opening alpha to the window (None), with no traceback."""
-    import json
-
     def out_of_memory(*_args):
         raise MemoryError("no room beside the save")
 
     monkeypatch.setattr(build_process, "opening_alpha_of", out_of_memory)
     points = np.random.default_rng(6).random((3000, 3))
     np.save(tmp_path / "points.npy", points)
-    job = {"mode": None, "signatures": False, "save_to": None, "backend": None}
-    handed: list[dict] = []
-    answer = json.loads(build_process.build_in_child(
-        str(tmp_path / "points.npy"), str(tmp_path / "table.npz"), job, never,
-        lambda text: handed.append(json.loads(text))))
-    assert answer == {"opening_alpha": None}
-    assert handed == [{"table": str(tmp_path / "table.npz"), "mapped": False,
-                       "orders": str(tmp_path / build_process.ORDERS_NAME),
-                       "saving": str(tmp_path / build_process.SAVING_NAME)}]
-    assert len(AlphaComplex.load(handed[0]["table"]).simplices(3)) == len(
+    job = BuildJob(Mode(), False, None, None, None)
+    handed: list[object] = []
+    answer = build_process.build_in_child(
+        str(tmp_path / "points.npy"), str(tmp_path / "table.npz"), job, never, handed.append)
+    assert answer == OpeningFound(None)
+    assert handed == [TableHandedOver(str(tmp_path / "table.npz"), False,
+                                      str(tmp_path / build_process.ORDERS_NAME),
+                                      str(tmp_path / build_process.SAVING_NAME))]
+    assert len(AlphaComplex.load(handed[0].table).simplices(3)) == len(
         AlphaComplex.from_points(points).simplices(3))
 
 
@@ -191,12 +189,10 @@ def test_a_child_killed_while_it_saves_leaves_no_partial_entry(in_process):
 def test_a_child_that_dies_after_the_hand_over_leaves_the_table(tmp_path, monkeypatch):
     """The table and orders were handed over, then the child died (out of memory, say):
     the runner keeps the table and its cursor and leaves the opening alpha to the window."""
-    import json
-
     points = np.random.default_rng(9).random((3000, 3))
     np.save(tmp_path / "points.npy", points)
-    job = {"mode": None, "signatures": False, "save_to": None, "backend": None}
-    handed: list[str] = []
+    job = BuildJob(Mode(), False, None, None, None)
+    handed: list[object] = []
     build_process.build_in_child(str(tmp_path / "points.npy"), str(tmp_path / "table.npz"),
                                  job, never, handed.append)
 
@@ -211,6 +207,6 @@ def test_a_child_that_dies_after_the_hand_over_leaves_the_table(tmp_path, monkey
     monkeypatch.setattr(build_process, "run_in_child", dies_after_handing_over)
     runner = build_process.ChildRunner(threading.Event())
     ac = runner(BuildRequest(points))
-    assert len(ac.points) == 3000 and json.loads(handed[0])["orders"] is not None
+    assert len(ac.points) == 3000 and handed[0].orders is not None
     assert runner.handed_over(ac).opening_alpha is None
     assert runner.handed_over(ac).cursor is not None

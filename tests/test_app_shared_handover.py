@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import fcntl
 import gc
-import json
 import multiprocessing
 import os
 import subprocess
@@ -15,12 +14,14 @@ import sys
 import tempfile
 import threading
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from app import build_process, child_process
+from app.messages import BuildJob, OpeningFound, TableHandedOver, TopologyJob
 from app.shared_folder import SharedFolder, SharedTable
 from app.topology_child import TopologyChild
 from app.topology_process import HANDED_OVER, topology_in_child
@@ -72,17 +73,16 @@ def mapped_here(folder: Path) -> list[str]:
 
 
 def run_body(tmp_path: Path, points: np.ndarray, shared: Path | None,
-             save_to: Path | None) -> tuple[list[dict], list[bool]]:
+             save_to: Path | None) -> tuple[list[object], list[bool]]:
     """build_in_child run here: what it handed over, and whether the entry existed then."""
     np.save(tmp_path / "points.npy", points)
-    job = {"mode": None, "signatures": False, "backend": None,
-           "save_to": None if save_to is None else str(save_to),
-           "shared": None if shared is None else str(shared)}
-    handed: list[dict] = []
+    job = BuildJob(Mode(), False, None if save_to is None else str(save_to), None,
+                   None if shared is None else str(shared))
+    handed: list[object] = []
     entry_then: list[bool] = []
 
-    def hand_over(text: str) -> None:
-        handed.append(json.loads(text))
+    def hand_over(message: object) -> None:
+        handed.append(message)
         entry_then.append(save_to is not None and save_to.exists())
 
     build_process.build_in_child(str(tmp_path / "points.npy"), str(tmp_path / "table.npz"),
@@ -95,18 +95,18 @@ def test_the_table_is_handed_over_in_shared_memory_before_the_entry_is_written(t
     shared, entry = tmp_path / "shared", tmp_path / "cache" / "entry.npz"
     shared.mkdir()
     handed, entry_then = run_body(tmp_path, points, shared, entry)
-    assert [h.get("mapped") for h in handed] == [True, None]  # the table, then ...
-    assert entry_then == [False, False]  # ... the opening alpha, both before the entry
-    assert handed[1] == {"opening_alpha": opening_alpha_of(AlphaComplex.from_points(
-        points).index, len(points))}
-    assert handed[0]["table"] == str(shared)
+    assert [type(h) for h in handed] == [TableHandedOver, OpeningFound]  # the table, then
+    assert handed[0].mapped and entry_then == [False, False]  # the opening, before the entry
+    assert handed[1] == OpeningFound(opening_alpha_of(AlphaComplex.from_points(
+        points).index, len(points)))
+    assert handed[0].table == str(shared)
     here = AlphaComplex.from_points(points)
     got = AlphaComplex.load(shared, verify=False)
     for k in range(4):
         assert got.simplices(k).tobytes() == here.simplices(k).tobytes()
         assert got.intervals(k).tobytes() == here.intervals(k).tobytes()
     assert AlphaComplex.load(entry).intervals(3).tobytes() == here.intervals(3).tobytes()
-    orders = mapped.map_arrays(handed[0]["orders"])
+    orders = mapped.map_arrays(handed[0].orders)
     assert not orders["regular"].flags.writeable
     assert orders["spectrum"].tobytes() == here.spectrum().tobytes()  # found beside
 
@@ -144,8 +144,8 @@ def test_too_little_shared_memory_hands_the_entry_over_as_before(tmp_path, monke
     shared, entry = tmp_path / "shared", tmp_path / "cache" / "entry.npz"
     shared.mkdir()
     handed, entry_then = run_body(tmp_path, points, shared, entry)
-    assert [h["mapped"] for h in handed] == [False] and entry_then == [True]
-    assert handed[0]["table"] == str(entry) and list(shared.iterdir()) == []
+    assert [h.mapped for h in handed] == [False] and entry_then == [True]
+    assert handed[0].table == str(entry) and list(shared.iterdir()) == []
 
 
 def test_without_shared_memory_the_runner_hands_a_file_over(monkeypatch, tmp_path):
@@ -230,11 +230,11 @@ def test_a_child_that_dies_after_a_shared_hand_over_leaves_a_working_table(tmp_p
 
     def dies_after_handing_over(work, args, _progress, _cancel, _name, hand, finish) -> str:
         source, target, job = args
-        job = {**job, "save_to": None}  # the body stops before its entry is written
-        texts: list[str] = []
+        job = replace(job, save_to=None)  # the body stops before its entry is written
+        messages: list[object] = []
         try:
-            work(source, target, job, never, texts.append)
-            hand(texts[0])  # the table; the process dies before its opening alpha
+            work(source, target, job, never, messages.append)
+            hand(messages[0])  # the table; the process dies before its opening alpha
             raise AlphaScoopError("the background process stopped without a result")
         finally:
             finish()
@@ -271,8 +271,9 @@ def test_the_topology_process_rewrites_the_entry_only_after_the_build_wrote_it(t
 
     with open(saving, "wb") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        body = threading.Thread(target=topology_in_child, args=(
-            str(shared), str(entry), str(tmp_path / "topology.npz"), str(saving), progress))
+        body = threading.Thread(target=topology_in_child, args=(TopologyJob(
+            str(shared), str(entry), str(tmp_path / "topology.npz"), str(saving)), progress,
+            lambda _message: None))
         body.start()
         assert handed.wait(60)
         body.join(0.5)
@@ -288,8 +289,8 @@ def test_an_entry_the_build_could_not_write_is_not_made_by_the_topology(tmp_path
     shared.mkdir()
     from core.storage.tables import save_mapped
     assert save_mapped(AlphaComplex.from_points(points), shared)
-    topology_in_child(str(shared), str(entry), str(tmp_path / "topology.npz"),
-                      str(tmp_path / "gone.lock"), never)
+    topology_in_child(TopologyJob(str(shared), str(entry), str(tmp_path / "topology.npz"),
+                                  str(tmp_path / "gone.lock")), never, lambda _message: None)
     assert not entry.exists()
 
 

@@ -5,7 +5,6 @@ failed after that start leaves no process, no scratch folder and no topology beh
 
 from __future__ import annotations
 
-import json
 import multiprocessing
 import os
 import signal
@@ -20,6 +19,7 @@ from conftest import BUILD_TIMEOUT_MS
 
 import app.worker
 from app import build_process, topology_process
+from app.messages import OpeningFound
 from app.topology_child import TopologyChild
 from core import AlphaComplex
 from core.cache import load_cached
@@ -92,13 +92,13 @@ def freeze_the_entry_writer(monkeypatch) -> list[int]:
     real, frozen = build_process.run_in_child, []
 
     def run(work, args, progress, cancel, name, handed=None, finish=None):
-        def freeze_then(text: str) -> None:
-            if "opening_alpha" in json.loads(text):
+        def freeze_then(message: object) -> None:
+            if isinstance(message, OpeningFound):
                 for child in multiprocessing.active_children():
                     if child.name == name:
                         os.kill(child.pid, signal.SIGSTOP)
                         frozen.append(child.pid)
-            handed(text)
+            handed(message)
 
         return real(work, args, progress, cancel, name,
                     None if handed is None else freeze_then, finish)

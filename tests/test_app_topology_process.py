@@ -20,6 +20,7 @@ import pytest
 from child_cancel import cancel_at
 
 from app import child_process, topology_process
+from app.messages import TopologyJob
 from app.topology_child import TopologyChild, start_topology
 from app.topology_file import read_topology, write_topology
 from core import AlphaComplex
@@ -136,7 +137,8 @@ def test_the_child_hands_over_before_it_rewrites_the_entry(tmp_path):
     def progress(_fraction: float, stage: str) -> None:
         seen.append((stage, target.is_file(), load_cached(points).has_signatures))
 
-    topology_process.topology_in_child(str(entry), str(entry), str(target), None, progress)
+    topology_process.topology_in_child(TopologyJob(str(entry), str(entry), str(target), None),
+                                       progress, lambda _message: None)
     stages = [stage for stage, _, _ in seen]
     handed, saving = stages.index(topology_process.HANDED_OVER), stages.index(
         topology_process.SAVING)
