@@ -128,6 +128,25 @@ def take(source: np.ndarray, ids: np.ndarray, dtype: type | None = None) -> np.n
     return out
 
 
+def inverse_permutation(order: np.ndarray) -> np.ndarray:
+    """(n,) int32 inverse of the permutation `order`: the new row of each old row of an
+    array reordered by it; its two halves scattered at once."""
+    inverse = np.empty(len(order), dtype=np.int32)
+
+    def part(lo: int, hi: int) -> None:
+        inverse[order[lo:hi]] = np.arange(lo, hi, dtype=np.int32)
+
+    halves(part, len(order), PASSES)
+    return inverse
+
+
+def renumber(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
+    """int32 `ids` (-1 = none) renumbered by an int32 `inverse` (inverse_permutation; -1
+    for rows not kept): one gather in halves from the inverse with -1 appended, which index
+    -1 reads."""
+    return take(np.append(inverse, np.int32(-1)), ids.ravel()).reshape(ids.shape)
+
+
 def nonzero(test: Callable[[int, int], np.ndarray], n: int) -> np.ndarray:
     """(k,) int64 flat indices, ascending, of the True items of the (n, ...) boolean array
     whose rows [lo, hi) test(lo, hi) gives (as np.flatnonzero of the whole): each half's

@@ -17,6 +17,7 @@ import numpy as np
 from core.backends import BACKENDS, Choice, check_backend, delaunay, regular
 from core.build.certify import Certified, certified_triangulation
 from core.build.delaunay import Triangulation
+from core.build.levels import Table
 from core.build.points import (
     Frame,
     as_points,
@@ -24,7 +25,7 @@ from core.build.points import (
     merge_duplicates,
     spatial_order,
 )
-from core.build.table import Table, build_table
+from core.build.table import build_table
 from core.build.weights import as_weights, hide_light_duplicates
 from core.errors import InputError
 from core.modes.alpha_modes import (

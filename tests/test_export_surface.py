@@ -210,7 +210,7 @@ def test_manifold_split_on_lattices(seed, alpha):
                                         (178, 0.2)])
 def test_regular_boundary_volume_on_folded_lattices(seed, alpha):
     # found by search: Qhull fills flat groups of these lattices with noise-volume cells that
-    # overlap across a facet; they must count as flat (core.build.table._folded)
+    # overlap across a facet; they must count as flat (core.build.folds.folded_cells)
     rng = np.random.default_rng(seed)
     points = np.unique(np.round(rng.uniform(size=(150, 3)), 1), axis=0)
     ac = AlphaComplex.from_points(points)

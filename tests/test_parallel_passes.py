@@ -12,7 +12,9 @@ import numpy as np
 import pytest
 
 import core.backends.gmsh
-import core.build.table
+import core.build.sorting
+import core.build.table_edges
+import core.build.table_facets
 import core.geometry.circumspheres
 import core.parallel
 from core.complex import AlphaComplex
@@ -35,10 +37,11 @@ def everything_split():
     """Split every pass of more than 2 items; chunks of 7 rows."""
     with contextlib.ExitStack() as stack:
         stack.enter_context(mock.patch.object(core.parallel, "PARALLEL_ABOVE", 2))
-        stack.enter_context(mock.patch.object(core.build.table, "PARALLEL_ABOVE", 2))
+        stack.enter_context(mock.patch.object(core.build.sorting, "PARALLEL_ABOVE", 2))
         stack.enter_context(mock.patch.object(core.geometry.circumspheres, "CHUNK", 7))
         stack.enter_context(mock.patch.object(core.geometry.circumspheres, "CACHE_CHUNK", 7))
-        stack.enter_context(mock.patch.object(core.build.table, "CACHE_CHUNK", 7))
+        stack.enter_context(mock.patch.object(core.build.table_facets, "CACHE_CHUNK", 7))
+        stack.enter_context(mock.patch.object(core.build.table_edges, "CACHE_CHUNK", 7))
         yield
 
 
@@ -192,10 +195,10 @@ def test_split_argsort_radii_equals_a_stable_argsort(n: int) -> None:
     zeros = np.where(rng.random(n) < 0.5, -0.0, 0.0)
     with everything_split(), np.errstate(over="ignore"):
         for values in cases:
-            np.testing.assert_array_equal(core.build.table.argsort_radii(values),
+            np.testing.assert_array_equal(core.build.sorting.argsort_radii(values),
                                           np.argsort(values, kind="stable"))
         for values in [*cases, zeros]:
-            np.testing.assert_array_equal(core.build.table.argsort_radii(values),
+            np.testing.assert_array_equal(core.build.sorting.argsort_radii(values),
                                           _argsort_radii_whole(values))
 
 
@@ -204,9 +207,9 @@ def test_stable_fix_joins_its_parts_only_where_the_cut_is_sound() -> None:
     order = np.arange(6)
     want = np.argsort(values, kind="stable")
     for cut in range(7):  # most cuts are not sound here: the parts are not ordered
-        np.testing.assert_array_equal(core.build.table.stable_fix(values, order, cut), want)
+        np.testing.assert_array_equal(core.build.sorting.stable_fix(values, order, cut), want)
     values = np.array([2.0, 1.0, 1.0, 5.0, 4.0, 4.0])
-    np.testing.assert_array_equal(core.build.table.stable_fix(values, order, 3),
+    np.testing.assert_array_equal(core.build.sorting.stable_fix(values, order, 3),
                                   np.argsort(values, kind="stable"))
 
 
@@ -248,7 +251,7 @@ def test_edge_pass_reads_triangles_packed_or_not_the_same() -> None:
     column reads (larger point sets) give the same table."""
     points = np.random.default_rng(5).random((500, 3))
     packed = _table_arrays(build_complex(points))
-    with mock.patch.object(core.build.table, "WORDS_UP_TO", 0):
+    with mock.patch.object(core.build.table_edges, "WORDS_UP_TO", 0):
         columns = _table_arrays(build_complex(points))
     for name, array in packed.items():
         np.testing.assert_array_equal(array, columns[name], err_msg=name)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.spatial import Delaunay
 
-from core.build.table import _thin_pairs
+from core.build.folds import thin_pairs
 
 
 def _reference(neighbors: np.ndarray, thin: np.ndarray, flat: np.ndarray) -> set:
@@ -30,6 +30,6 @@ def test_thin_pairs_equal_the_whole_table_masks(dim: int, share: float) -> None:
     neighbors = Delaunay(rng.random((400, dim))).neighbors.astype(np.int32)
     thin = rng.random(len(neighbors)) < share
     flat = ~thin & (rng.random(len(neighbors)) < 0.1)
-    got = _thin_pairs(neighbors, thin, flat)
+    got = thin_pairs(neighbors, thin, flat)
     assert len(got[0]) == len(set(zip(*(a.tolist() for a in got), strict=True)))  # once each
     assert set(zip(*(a.tolist() for a in got), strict=True)) == _reference(neighbors, thin, flat)

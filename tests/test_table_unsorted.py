@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from scipy.spatial import Delaunay
 
-from core.build.table import Table, build_table
+from core.build.levels import Table
+from core.build.table import build_table
 
 
 def _table(points: np.ndarray, **kwargs) -> Table:

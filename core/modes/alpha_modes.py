@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.build.table import Table
+from core.build.levels import Table
 from core.errors import InputError
 from core.geometry.neighbourhood import neighbours, orient, pca_normals, spacing
 from core.modes.filtration import repaired, resorted

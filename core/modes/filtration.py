@@ -6,8 +6,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.build.table import Table, argsort_radii
-from core.parallel import take, together
+from core.build.levels import Table
+from core.build.sorting import argsort_radii
+from core.parallel import inverse_permutation, renumber, take, together
 
 
 def _orders(enters: list[np.ndarray]) -> list[np.ndarray]:
@@ -48,19 +49,6 @@ def repaired(table: Table, own: list[np.ndarray]) -> list[tuple[np.ndarray, ...]
     return out[::-1]
 
 
-def _renumber(ids: np.ndarray, inverse: np.ndarray) -> np.ndarray:
-    """Apply a new numbering (int32 `inverse`) to int32 ids, -1 = none kept: one gather (in
-    halves) from the inverse with -1 appended, which index -1 reads."""
-    return take(np.append(inverse, np.int32(-1)), ids.ravel()).reshape(ids.shape)
-
-
-def _inverse(order: np.ndarray) -> np.ndarray:
-    """(n,) int32 new row of each old row of a level sorted by `order`."""
-    inverse = np.empty(len(order), dtype=np.int32)
-    inverse[order] = np.arange(len(order), dtype=np.int32)
-    return inverse
-
-
 def resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
     """`table` with the new values, each level sorted by enter and the ids into it
     renumbered, in place (the count of exact sign decisions kept: the mode's classic radii
@@ -83,12 +71,12 @@ def resorted(table: Table, values: list[tuple[np.ndarray, ...]]) -> Table:
         del row
         level.simplices = take(level.simplices, order)
         if below is not None:  # renumbered before the rows move: the same ids
-            level.face_ids = _renumber(level.face_ids, below)
+            level.face_ids = renumber(level.face_ids, below)
         level.face_ids = take(level.face_ids, order)
-        below = _inverse(order)
+        below = inverse_permutation(order)
     by_interior = together(lambda: argsort_radii(levels[d - 1].interior).astype(np.int32))
     facets = orders[d - 1]
-    table.facet_cells = _renumber(take(table.facet_cells, facets), below)
+    table.facet_cells = renumber(take(table.facet_cells, facets), below)
     table.facet_flip = take(table.facet_flip, facets)
     table.cell_measure = take(table.cell_measure, orders[d])
     table.facet_interior_order = by_interior()

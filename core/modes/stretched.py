@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.build.table import Table
+from core.build.levels import Table
 from core.modes.anisotropy import (
     Vec,
     combined_normals,

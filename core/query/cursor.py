@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from core.arrays import readonly
-from core.build.table import argsort_radii
+from core.build.sorting import argsort_radii
 from core.errors import InputError
 from core.parallel import (
     PASSES,

@@ -15,7 +15,7 @@ from functools import cached_property
 import numpy as np
 
 from core.arrays import first_cofaces, readonly
-from core.build.table import Level, Table
+from core.build.levels import Level, Table
 from core.parallel import take
 
 

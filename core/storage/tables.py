@@ -35,8 +35,8 @@ from typing import Protocol
 import numpy as np
 
 from core.arrays import readonly
+from core.build.levels import Level, Table
 from core.build.points import Frame
-from core.build.table import Level, Table
 from core.errors import FileFormatError, InputError
 from core.modes.alpha_modes import Mode, make_mode
 from core.pipeline import BuildInfo

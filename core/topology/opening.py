@@ -15,7 +15,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from core.arrays import ascends
-from core.build.table import argsort_radii
+from core.build.sorting import argsort_radii
 from core.query.index import TableIndex
 from core.topology.union_find import ordered_forest
 
