@@ -240,8 +240,11 @@ def gudhi_measure(points: np.ndarray, table: dict, alpha: float) -> float:
     return float(simplex_measures(points, cells[keep]).sum())
 
 
-# The one skip reason CI accepts (tests/skip_guard.py), and only while the folder is absent.
+# The skip reasons CI accepts (tests/skip_guard.py): the shared data's absence, only while
+# the folder is absent; and a comparison with a library of the `compare` extra, which CI does
+# not install (it pins matplotlib below the version the window uses).
 DATA_ABSENT = "shared real-scan data absent (../shared/data or $ALPHASCOOP_DATA)"
+COMPARE_EXTRA = "a comparison in the `compare` extra, which CI does not install"
 
 
 def data_dir() -> Path | None:

@@ -11,15 +11,16 @@ from core.complex import AlphaComplex
 from core.io.molecule import atom_labels, read_molecule
 from core.molecule.analysis import measure_molecule
 from tests.molecule_reference import shared_molecule
+from tests.reference import COMPARE_EXTRA, DATA_ABSENT
 
 PDB = shared_molecule("1A8O.pdb")
-pytestmark = pytest.mark.skipif(PDB is None or not PDB.is_file(), reason="no shared data")
+pytestmark = pytest.mark.skipif(PDB is None, reason=DATA_ABSENT)
 
 
 def _kvfinder_residues(tmp_path) -> list[set]:
     """pyKVFinder's cavities (default parameters) on 1A8O without its waters, largest first:
     each a set of (chain, residue number)."""
-    kv = pytest.importorskip("pyKVFinder", reason="pyKVFinder is in the `compare` extra")
+    kv = pytest.importorskip("pyKVFinder", reason=COMPARE_EXTRA)
     dry = tmp_path / "1a8o_dry.pdb"
     dry.write_text("".join(line for line in PDB.read_text().splitlines(keepends=True)
                            if not (line.startswith("HETATM") and "HOH" in line)))

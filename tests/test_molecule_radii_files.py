@@ -81,7 +81,6 @@ def _write(mol, path, kind):
 @pytest.mark.parametrize("kind", ["pqr", "xyzr"])
 def test_1a8o_as_radii_file_matches_freesasa(tmp_path, kind, capsys):
     """Radii changed in the file (x 1.1) are the ones measured: freesasa's area with them."""
-    pytest.importorskip("freesasa")
     mol = read_molecule(PDB)
     scaled = type(mol)(mol.centres, mol.elements, mol.atomic_numbers, mol.vdw_radii * 1.1,
                        mol.residues, mol.report, mol.atom_names)

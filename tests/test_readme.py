@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from reference import data_dir
+from reference import DATA_ABSENT, data_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
@@ -56,7 +56,7 @@ def test_the_readme_has_the_examples_this_file_runs() -> None:
 def test_python_example_runs(number: int, workdir: Path) -> None:
     code = blocks("python")[number]
     if "1A8O.pdb" in code and not (workdir / "1A8O.pdb").exists():
-        pytest.skip("the shared data (1A8O.pdb) is not here")
+        pytest.skip(DATA_ABSENT)
     done = subprocess.run([sys.executable, "-c", code], cwd=workdir, capture_output=True,
                           text=True, timeout=300, env=dict(os.environ, PYTHONPATH=str(ROOT)))
     assert done.returncode == 0, done.stderr
@@ -77,7 +77,7 @@ def test_console_transcript_prints_what_the_readme_shows(workdir: Path) -> None:
 
 def test_molecule_output_is_the_real_one(workdir: Path) -> None:
     if not (workdir / "1A8O.pdb").exists():
-        pytest.skip("the shared data (1A8O.pdb) is not here")
+        pytest.skip(DATA_ABSENT)
     shown = next(body for body in blocks("text") if body.startswith("atoms "))
     printed = run_cli(["info", "1A8O.pdb"], workdir)
     assert printed.endswith(shown)

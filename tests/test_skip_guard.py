@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from reference import DATA_ABSENT
+from reference import COMPARE_EXTRA, DATA_ABSENT
 from skip_guard import accepted, in_ci
 
 TESTS = Path(__file__).resolve().parent
@@ -97,3 +97,4 @@ def test_only_the_data_reason_is_accepted_and_only_without_the_data():
     assert accepted(DATA_ABSENT, data_present=False)
     assert not accepted(DATA_ABSENT, data_present=True)
     assert not accepted("could not import 'gudhi': No module named 'gudhi'", data_present=False)
+    assert accepted(COMPARE_EXTRA, data_present=True)
