@@ -15,9 +15,10 @@ from core.io import read_points
 from core.io.molecule import read_molecule
 from core.molecule.analysis import measure_molecule
 from tests.molecule_reference import freesasa_area, shared_molecule
+from tests.reference import DATA_ABSENT
 
 PDB = shared_molecule("1A8O.pdb")
-needs_data = pytest.mark.skipif(PDB is None or not PDB.is_file(), reason="no shared data")
+needs_data = pytest.mark.skipif(PDB is None, reason=DATA_ABSENT)
 
 PQR = """\
 REMARK   written by PDB2PQR
