@@ -25,7 +25,7 @@ from core.query.classes import CLASSES
 
 SIMPLEX_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
 SOURCE_TEXT = {"built": " (built in {seconds:.2f} s)", "cache": " (from cache)",
-               "rebuilt": " (rebuilt in {seconds:.2f} s: the cached table was damaged)"}
+               "rebuilt": " (rebuilt in {seconds:.2f} s: the cached table was damaged: {damage})"}
 
 
 class UsageError(Exception):
@@ -143,6 +143,9 @@ def load(args) -> tuple:
                           progress=update)
     finally:
         close()
+    if obtained.damage is not None:  # export prints no source: say it here, for both commands
+        print(f"alphascoop: note: the cached table was damaged ({obtained.damage}); "
+              "it was rebuilt", file=sys.stderr)
     return ps, obtained, time.perf_counter() - start
 
 
@@ -248,6 +251,7 @@ def summary(ps, obtained, seconds: float, at: dict | None) -> dict:
     return {
         "load": ps.report.to_dict(),
         "source": obtained.source,
+        "damage": obtained.damage,
         "mode": ac.mode.to_dict(),
         "build": ac.build_info.to_dict(),
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
@@ -304,7 +308,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"mode        {info['mode_text']}",
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
-        + SOURCE_TEXT[info["source"]].format(seconds=cx["seconds"]),
+        + SOURCE_TEXT[info["source"]].format(seconds=cx["seconds"], damage=info["damage"]),
         f"build       {info['build_text']}",
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),

@@ -86,7 +86,15 @@ def _read_stored(fh: BinaryIO, member: _Member, path: Path) -> np.ndarray:
     return out.T if member.fortran else out
 
 
-def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> dict[str, np.ndarray]:
+class Arrays(dict):
+    """An archive's arrays by name; `crcs`: the CRC-32 the archive records for each member
+    (by member name, "points.npy"), checked against the bytes read unless the read was
+    trusted (core.storage.checksums compares them with the ones written last)."""
+
+    crcs: dict[str, int]
+
+
+def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> Arrays:
     """Every array of the archive at `path` by name, after checking the declared sizes.
 
     FileFormatError (naming the file) for a missing, broken or lying archive. `trusted`: a
@@ -101,15 +109,19 @@ def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> dict[str, np.
             with zipfile.ZipFile(fh) as zf:
                 members = [_check_member(zf, info, archive_bytes, path)
                            for info in zf.infolist()]
+            out = Arrays()
+            out.crcs = {m.info.filename: m.info.CRC for m in members}
             if trusted and all(m.info.compress_type == zipfile.ZIP_STORED
                                and m.info.compress_size == m.info.file_size for m in members):
-                return {m.name: _read_stored(fh, m, path) for m in members}
+                out.update((m.name, _read_stored(fh, m, path)) for m in members)
+                return out
             fh.seek(0)
             data = np.load(fh, allow_pickle=False)
             if not isinstance(data, np.lib.npyio.NpzFile):
                 raise ValueError("a single array, not an archive")
             with data:
-                return {name: data[name] for name in data.files}
+                out.update((name, data[name]) for name in data.files)
+            return out
     except FileNotFoundError:
         raise FileFormatError(f"{path}: no such file") from None
     except FileFormatError:
