@@ -143,6 +143,11 @@ def load(args) -> tuple:
                           progress=update)
     finally:
         close()
+    estimated = obtained.complex.build_info.estimated_normals
+    if estimated:
+        print(f"alphascoop: note: {estimated:,} of {len(obtained.complex.points):,} points had "
+              "a zero normal in the file; their normals were estimated from their neighbours",
+              file=sys.stderr)
     if obtained.damage is not None:  # export prints no source: say it here, for both commands
         print(f"alphascoop: note: the cached table was damaged ({obtained.damage}); "
               "it was rebuilt", file=sys.stderr)

@@ -71,6 +71,7 @@ def points_key(points: np.ndarray, mode: Mode | None = None,
         digest.update(f"mode:{mode.key()}".encode())
         if mode.normals == "given" and normals is not None:
             digest.update(memoryview(np.ascontiguousarray(normals, dtype=np.float64)).cast("B"))
+            digest.update(b":zero-normals-estimated")  # earlier builds left zero ones classic
     if weights is not None:
         w = np.ascontiguousarray(weights, dtype=np.float64)
         digest.update(f":weights{w.shape}".encode())

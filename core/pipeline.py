@@ -30,6 +30,7 @@ from core.errors import InputError
 from core.modes.alpha_modes import (
     Mode,
     check_normals,
+    directionless,
     local_geometry_beside,
     make_mode,
     scaled_table,
@@ -61,6 +62,7 @@ class BuildInfo:
     exact_predicates: int = 0
     flips: int = 0
     uncertified: int = -1
+    estimated_normals: int = 0
 
     def to_dict(self) -> dict[str, str | int | float]:
         """The fields by name (JSON-ready: for `alphascoop info --json`)."""
@@ -70,7 +72,8 @@ class BuildInfo:
         """One line for people: "backend qhull" (every field that is not empty, name then
         value)."""
         return ", ".join(f"{name.replace('_', ' ')} {value}"
-                         for name, value in self.to_dict().items() if value != "")
+                         for name, value in self.to_dict().items()
+                         if value != "" and (value != 0 or name != "estimated_normals"))
 
     def to_arrays(self) -> dict[str, np.ndarray]:
         """The fields as 0-d arrays named `build_<field>` (for core/storage/tables.py)."""
@@ -281,5 +284,8 @@ def build_complex(points: object, progress: Progress | None = None, *,
     info = BuildInfo(choice.backend, choice.note) if certified is None else BuildInfo(
         choice.backend, choice.note, certified.exact_predicates + table.exact_predicates,
         certified.flips, certified.uncertified)
+    if given.mode.anisotropy > 0.0 and given.normals is not None:
+        info = dataclasses.replace(info, estimated_normals=int(directionless(_point_normals(
+            given.normals, prep.input_index, len(prep.coords), prep.frame)).sum()))
     return BuiltComplex(np.ascontiguousarray(prep.coords), prep.input_index, table, prep.frame,
                         given.points.shape[1], given.mode, prep.weights, info)
