@@ -19,6 +19,7 @@ from typing import BinaryIO
 import numpy as np
 
 from core.errors import FileFormatError
+from core.storage.memory import available_memory
 
 MAX_DEFLATE_RATIO = 1100  # deflate expands at most ~1032:1; beyond that a size is a lie
 _LOCAL_HEADER = struct.Struct("<4s5H3L2H")  # a zip member's local header (30 bytes)
@@ -52,6 +53,19 @@ def _check_member(zf: zipfile.ZipFile, info: zipfile.ZipInfo, archive_bytes: int
         raise _bad(path, f"{name} declares shape {shape} ({data_bytes:,} bytes) but holds "
                          f"{max(info.file_size - header_bytes, 0):,}")
     return _Member(info, shape, fortran, dtype, header_bytes)
+
+
+def _check_total(members: list[_Member], archive_bytes: int, path: Path) -> None:
+    """The members hold no more bytes than the file (members that overlap are a zip bomb:
+    each within its ratio, together thousands of times the file), and their arrays fit in
+    the memory this process may still take."""
+    if sum(m.info.compress_size for m in members) > archive_bytes:
+        raise _bad(path, "its members overlap")
+    total = sum(m.info.file_size for m in members)
+    room = available_memory()
+    if total > room:
+        raise _bad(path, f"its arrays would take {total / 1e9:.3g} GB of memory; "
+                         f"{room / 1e9:.3g} GB is available")
 
 
 @dataclass(frozen=True)
@@ -109,6 +123,7 @@ def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> Arrays:
             with zipfile.ZipFile(fh) as zf:
                 members = [_check_member(zf, info, archive_bytes, path)
                            for info in zf.infolist()]
+            _check_total(members, archive_bytes, path)
             out = Arrays()
             out.crcs = {m.info.filename: m.info.CRC for m in members}
             if trusted and all(m.info.compress_type == zipfile.ZIP_STORED
@@ -124,6 +139,8 @@ def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> Arrays:
             return out
     except FileNotFoundError:
         raise FileFormatError(f"{path}: no such file") from None
+    except MemoryError:
+        raise _bad(path, "too large to read into the memory available") from None
     except FileFormatError:
         raise
     except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError, SyntaxError,
