@@ -19,7 +19,15 @@ from pathlib import Path
 
 import numpy as np
 
-from app.args import add_mode_options, count, mode_of, probe_radius, radius, squared_radius
+from app.args import (
+    add_mode_options,
+    count,
+    mode_of,
+    negative_values_joined,
+    probe_radius,
+    radius,
+    squared_radius,
+)
 from core.errors import AlphaScoopError, InputError
 from core.query.classes import CLASSES
 
@@ -64,7 +72,7 @@ def _common(sub: argparse.ArgumentParser) -> None:
                        help="weighted points: radii from this column (squared)")
     sub.add_argument("--radius-add", type=probe_radius, metavar="R",
                      help="add R to every point's radius before squaring (a probe radius)")
-    sub.add_argument("--probe", type=probe_radius, default=1.4, metavar="R",
+    sub.add_argument("--probe", type=probe_radius, metavar="R",
                      help="molecules: solvent probe radius in Å added to every atom "
                      "(default 1.4; 0 = van der Waals surface)")
     sub.add_argument("--keep-water", action="store_true", help="molecules: keep water atoms")
@@ -143,6 +151,11 @@ def load(args) -> tuple:
                           progress=update)
     finally:
         close()
+    asked, used = obtained.complex.mode.density, obtained.complex.build_info.density_neighbours
+    if used:
+        print(f"alphascoop: note: --density {asked} asks for more neighbours than the "
+              f"{len(obtained.complex.points):,} points have; each point's spacing is "
+              f"measured to its {used:,}th nearest neighbour instead", file=sys.stderr)
     estimated = obtained.complex.build_info.estimated_normals
     if estimated:
         print(f"alphascoop: note: {estimated:,} of {len(obtained.complex.points):,} points had "
@@ -174,6 +187,9 @@ def _read(args):
     from core.io import read_points
 
     if not is_molecule(args):
+        if args.probe is not None:
+            raise UsageError("--probe applies to molecule files (PDB, mmCIF) only; for "
+                             "points with a radius column use --radius-add")
         return read_points(args.file, columns=args.columns, subsample=args.subsample,
                            weights=args.weights, radius=args.radius,
                            radius_add=args.radius_add, scan=args.scan)
@@ -183,7 +199,14 @@ def _read(args):
         if getattr(args, option) is not None:
             raise UsageError(f"--{option.replace('_', '-')} does not apply to molecule files "
                              "(use --probe)")
-    return read_molecule_pointset(args.file, probe=args.probe, keep_water=args.keep_water)[0]
+    return read_molecule_pointset(args.file, probe=probe(args), keep_water=args.keep_water)[0]
+
+
+def probe(args) -> float:
+    """The probe radius of a molecule (Å): --probe, else the water molecule's."""
+    from core.io.molecule import DEFAULT_PROBE
+
+    return DEFAULT_PROBE if args.probe is None else args.probe
 
 
 def _molecule_point_data(args, ac) -> dict | None:
@@ -192,7 +215,7 @@ def _molecule_point_data(args, ac) -> dict | None:
         return None
     from core.molecule.analysis import measure_molecule
 
-    return {"atom_area": measure_molecule(ac, args.probe).point_area}
+    return {"atom_area": measure_molecule(ac, probe(args)).point_area}
 
 
 def molecule_summary(ac, probe: float, mol=None) -> dict:
@@ -353,7 +376,7 @@ def cmd_info(args) -> int:
     if is_molecule(args):
         from core.io.molecule import read_molecule
 
-        info["molecule"] = molecule_summary(ac, args.probe,
+        info["molecule"] = molecule_summary(ac, probe(args),
                                             read_molecule(args.file, keep_water=args.keep_water))
     text = None if args.json else _text({**info, "mode_text": ac.mode.describe(),
                                          "build_text": ac.build_info.describe()},
@@ -448,7 +471,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _run(argv: list[str]) -> int:
     """main's body: the command, and every failure turned into one line and a status."""
     try:
-        args = build_parser().parse_args(argv)
+        args = build_parser().parse_args(negative_values_joined(argv))
         return cmd_info(args) if args.command == "info" else cmd_export(args)
     except UsageError as exc:
         print(f"alphascoop: error: {exc} (see alphascoop {' '.join(argv[:1])} --help)",

@@ -11,6 +11,8 @@ import numpy as np
 from core.errors import FileFormatError
 from core.io.columns import clean_name
 
+MAX_RADIUS = float(np.sqrt(np.finfo(np.float64).max))  # larger radii have no float64 square
+
 WEIGHT_ALIASES = ("weights", "weight", "w")
 RADIUS_ALIASES = ("radius", "radii", "r")
 
@@ -62,12 +64,26 @@ def choose_weights(attributes: dict[str, np.ndarray], path: Path, *, weights: st
         return out, None
     if radius_add:
         radii = _radii(values, path, name) if not squared else _roots(values, path, name)
-        values, squared = (radii + radius_add) ** 2, True
+        values, squared = _squared(radii + radius_add, path, name), True
         what += f", {radius_add:g} added to every radius"
     elif not squared:
-        values = _radii(values, path, name) ** 2
+        values = _squared(_radii(values, path, name), path, name)
     out["weights"] = values
     return out, what
+
+
+def _squared(radii: np.ndarray, path: Path, name: str) -> np.ndarray:
+    """The weights radii**2; a finite radius whose square overflows float64 is refused,
+    named with its row (it is no NaN or infinity of the file's)."""
+    with np.errstate(over="ignore"):
+        weights = radii * radii
+    over = np.isinf(weights) & np.isfinite(radii)
+    if over.any():
+        row = int(np.flatnonzero(over)[0])
+        raise FileFormatError(f"{path}: radius {radii[row]:.6g} (column {name!r}, row {row}) "
+                              f"is too large: its square, the weight, overflows float64 (radii "
+                              f"up to {MAX_RADIUS:.3g} can be squared)")
+    return weights
 
 
 def _radii(values: np.ndarray, path: Path, name: str) -> np.ndarray:
