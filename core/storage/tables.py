@@ -283,10 +283,10 @@ def load(path: str | os.PathLike, *, verify: bool = True,
             index = TableIndex(table, "weights" in a, spectrum)
         topology, signatures = (_derived(index, len(a["points"]), a, check) if saved
                                 else (None, None))
-        if verify:
+        mode, build_info = _mode(a, path), _build_info(a, path)
+        if verify:  # last: the checks above name what is wrong more precisely
             _check_sums(check, a)
         return Saved(a["points"], a["input_index"], index, frame, int(a["ambient_dim"]),
-                     _mode(a, path), a.get("weights"), _build_info(a, path), topology,
-                     signatures)
+                     mode, a.get("weights"), build_info, topology, signatures)
     except KeyError as exc:
         raise check.error(f"missing {exc}") from None
