@@ -92,7 +92,7 @@ from fuzz_inputs import MAKERS, cases, original, write_case  # noqa: E402
 from app.cli import main  # noqa: E402
 
 SEED = 17
-READ_CASES_PER_KIND = 35  # 7 mutations five times over, for each of the 21 kinds
+READ_CASES_PER_KIND = 35  # 7 mutations five times over, for each of the 27 kinds
 CLI_CASES_PER_KIND = 10
 BUDGET_S = 20.0  # CPU seconds per test: cases past it are skipped (each case is seeded)
 PEAK_BASE = 32 << 20  # bytes a reader may use beyond twice the file's size

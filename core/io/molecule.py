@@ -135,6 +135,15 @@ def read_molecule(path: str | Path, *, keep_water: bool = False) -> Molecule:
     if ext in RADII_READERS:
         return _from_table(path, RADII_READERS[ext](path, keep_water))
     st = _structure(path, ext)
+    try:
+        return _cleaned(path, st, keep_water)
+    except UnicodeDecodeError:  # gemmi hands names over as UTF-8 text
+        raise FileFormatError(f"{path}: unreadable {ext.lstrip('.').upper()} file (names of "
+                              "atoms, residues or chains that are not text)") from None
+
+
+def _cleaned(path: Path, st, keep_water: bool) -> Molecule:
+    """The first model of `st`, other conformers and (unless kept) waters removed."""
     n_models = len(st)
     if n_models == 0:
         raise FileFormatError(f"{path}: no atoms (no model in the file)")

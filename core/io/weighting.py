@@ -90,7 +90,7 @@ def _radii(values: np.ndarray, path: Path, name: str) -> np.ndarray:
     """Radii checked to be >= 0 where finite (non-finite rows are reported by the loader)."""
     if (values < 0).any():
         raise FileFormatError(f"{path}: column {name!r} has negative radii "
-                              f"(first: row {int(np.flatnonzero(values < 0)[0])})")
+                              f"(the first in row {int(np.flatnonzero(values < 0)[0])})")
     return values
 
 
@@ -98,6 +98,6 @@ def _roots(weights: np.ndarray, path: Path, name: str) -> np.ndarray:
     """Radii sqrt(w) of weights, which must then be >= 0."""
     if (weights < 0).any():
         raise FileFormatError(f"{path}: --radius-add needs weights >= 0, but column {name!r} "
-                              f"has negative ones (first: row "
+                              f"has negative ones (the first in row "
                               f"{int(np.flatnonzero(weights < 0)[0])})")
     return np.sqrt(weights)
