@@ -436,9 +436,9 @@ def _export_pockets(args) -> int:
         raise UsageError(str(exc)) from None
     _, obtained, _ = load(args)
     ac = obtained.complex
-    pockets = measure_molecule(ac, args.probe).pockets
+    pockets = measure_molecule(ac, probe(args)).pockets
     if ext == ".vtu":
-        count = write_pockets_vtu(args.output, ac, pockets, {"probe": args.probe})
+        count = write_pockets_vtu(args.output, ac, pockets, {"probe": probe(args)})
         print(f"{args.output}: {len(pockets)} pockets, {count:,} cells (cell data pocket, mouth)")
     else:
         labels = atom_labels(read_molecule(args.file, keep_water=args.keep_water), ac.points)
