@@ -10,7 +10,7 @@ import os
 import sys
 from collections.abc import Sequence
 
-from app.args import add_mode_options, count, mode_of, radius
+from app.args import add_mode_options, count, mode_of, negative_values_joined, radius
 
 SUBCOMMANDS = ("info", "export")
 NO_DISPLAY_MESSAGE = (
@@ -81,7 +81,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return run_subcommand(args_list)
     parser = window_parser()
     try:
-        args = parser.parse_args(args_list)
+        args = parser.parse_args(negative_values_joined(args_list))
         try:
             args.mode = mode_of(args)
         except ValueError as exc:

@@ -5,6 +5,11 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
+
+#: The largest radius to add (probe, --radius-add): the sum with any atom or point radius
+#: must still have a float64 square.
+MAX_ADDED_RADIUS = math.sqrt(sys.float_info.max) / 2
 
 
 def radius(text: str) -> float:
@@ -24,6 +29,28 @@ def radius(text: str) -> float:
     if not (value >= 0.0 and math.isfinite(value)):
         raise argparse.ArgumentTypeError(f"alpha must be a finite radius >= 0, not {text!r}")
     return value
+
+
+def negative_values_joined(argv: list[str]) -> list[str]:
+    """argv with each '--option -1e-3' written '--option=-1e-3': argparse takes a value
+    that starts with '-' for an option unless it looks like '-1' or '-.5', so negative
+    numbers with an exponent ('--alpha2 -1e-3') failed to parse."""
+    out: list[str] = []
+    for i, arg in enumerate(argv):
+        if (out and out[-1].startswith("--") and "=" not in out[-1] and arg.startswith("-")
+                and _is_number(arg) and argv[i - 1] == out[-1]):
+            out[-1] = f"{out[-1]}={arg}"
+        else:
+            out.append(arg)
+    return out
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def neighbour_count(text: str) -> int:
@@ -91,6 +118,10 @@ def probe_radius(text: str) -> float:
         raise argparse.ArgumentTypeError(f"expected a radius, not {text!r}") from None
     if not (value >= 0.0 and math.isfinite(value)):
         raise argparse.ArgumentTypeError(f"expected a finite radius >= 0, not {text!r}")
+    if value > MAX_ADDED_RADIUS:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is too large: radii are squared into weights, and float64 squares "
+            f"radii up to about {MAX_ADDED_RADIUS:.3g} only")
     return value
 
 

@@ -19,13 +19,21 @@ from pathlib import Path
 
 import numpy as np
 
-from app.args import add_mode_options, count, mode_of, probe_radius, radius, squared_radius
+from app.args import (
+    add_mode_options,
+    count,
+    mode_of,
+    negative_values_joined,
+    probe_radius,
+    radius,
+    squared_radius,
+)
 from core.errors import AlphaScoopError, InputError
 from core.query.classes import CLASSES
 
 SIMPLEX_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
 SOURCE_TEXT = {"built": " (built in {seconds:.2f} s)", "cache": " (from cache)",
-               "rebuilt": " (rebuilt in {seconds:.2f} s: the cached table was damaged)"}
+               "rebuilt": " (rebuilt in {seconds:.2f} s: the cached table was damaged: {damage})"}
 
 
 class UsageError(Exception):
@@ -64,7 +72,7 @@ def _common(sub: argparse.ArgumentParser) -> None:
                        help="weighted points: radii from this column (squared)")
     sub.add_argument("--radius-add", type=probe_radius, metavar="R",
                      help="add R to every point's radius before squaring (a probe radius)")
-    sub.add_argument("--probe", type=probe_radius, default=1.4, metavar="R",
+    sub.add_argument("--probe", type=probe_radius, metavar="R",
                      help="molecules: solvent probe radius in Å added to every atom "
                      "(default 1.4; 0 = van der Waals surface)")
     sub.add_argument("--keep-water", action="store_true", help="molecules: keep water atoms")
@@ -143,6 +151,19 @@ def load(args) -> tuple:
                           progress=update)
     finally:
         close()
+    asked, used = obtained.complex.mode.density, obtained.complex.build_info.density_neighbours
+    if used:
+        print(f"alphascoop: note: --density {asked} asks for more neighbours than the "
+              f"{len(obtained.complex.points):,} points have; each point's spacing is "
+              f"measured to its {used:,}th nearest neighbour instead", file=sys.stderr)
+    estimated = obtained.complex.build_info.estimated_normals
+    if estimated:
+        print(f"alphascoop: note: {estimated:,} of {len(obtained.complex.points):,} points had "
+              "a zero normal in the file; their normals were estimated from their neighbours",
+              file=sys.stderr)
+    if obtained.damage is not None:  # export prints no source: say it here, for both commands
+        print(f"alphascoop: note: the cached table was damaged ({obtained.damage}); "
+              "it was rebuilt", file=sys.stderr)
     return ps, obtained, time.perf_counter() - start
 
 
@@ -166,6 +187,9 @@ def _read(args):
     from core.io import read_points
 
     if not is_molecule(args):
+        if args.probe is not None:
+            raise UsageError("--probe applies to molecule files (PDB, mmCIF) only; for "
+                             "points with a radius column use --radius-add")
         return read_points(args.file, columns=args.columns, subsample=args.subsample,
                            weights=args.weights, radius=args.radius,
                            radius_add=args.radius_add, scan=args.scan)
@@ -175,7 +199,14 @@ def _read(args):
         if getattr(args, option) is not None:
             raise UsageError(f"--{option.replace('_', '-')} does not apply to molecule files "
                              "(use --probe)")
-    return read_molecule_pointset(args.file, probe=args.probe, keep_water=args.keep_water)[0]
+    return read_molecule_pointset(args.file, probe=probe(args), keep_water=args.keep_water)[0]
+
+
+def probe(args) -> float:
+    """The probe radius of a molecule (Å): --probe, else the water molecule's."""
+    from core.io.molecule import DEFAULT_PROBE
+
+    return DEFAULT_PROBE if args.probe is None else args.probe
 
 
 def _molecule_point_data(args, ac) -> dict | None:
@@ -184,7 +215,7 @@ def _molecule_point_data(args, ac) -> dict | None:
         return None
     from core.molecule.analysis import measure_molecule
 
-    return {"atom_area": measure_molecule(ac, args.probe).point_area}
+    return {"atom_area": measure_molecule(ac, probe(args)).point_area}
 
 
 def molecule_summary(ac, probe: float, mol=None) -> dict:
@@ -248,6 +279,7 @@ def summary(ps, obtained, seconds: float, at: dict | None) -> dict:
     return {
         "load": ps.report.to_dict(),
         "source": obtained.source,
+        "damage": obtained.damage,
         "mode": ac.mode.to_dict(),
         "build": ac.build_info.to_dict(),
         "complex": {"dim": ac.dim, "ambient_dim": ac.ambient_dim, "seconds": round(seconds, 3),
@@ -304,7 +336,7 @@ def _text(info: dict, lines: list[str]) -> str:
         f"mode        {info['mode_text']}",
         f"complex     {cx['dim']}D, " + ", ".join(
             f"{cx[n]:,} {n}" for n in SIMPLEX_NAMES if n in cx)
-        + SOURCE_TEXT[info["source"]].format(seconds=cx["seconds"]),
+        + SOURCE_TEXT[info["source"]].format(seconds=cx["seconds"], damage=info["damage"]),
         f"build       {info['build_text']}",
         f"spectrum    {sp['count']:,} critical alphas, {sp['min']:.6g} .. {sp['max']:.6g}"
         + (f" (squared {sp['min2']:.6g} .. {sp['max2']:.6g})" if info["weighted"] else ""),
@@ -344,7 +376,7 @@ def cmd_info(args) -> int:
     if is_molecule(args):
         from core.io.molecule import read_molecule
 
-        info["molecule"] = molecule_summary(ac, args.probe,
+        info["molecule"] = molecule_summary(ac, probe(args),
                                             read_molecule(args.file, keep_water=args.keep_water))
     text = None if args.json else _text({**info, "mode_text": ac.mode.describe(),
                                          "build_text": ac.build_info.describe()},
@@ -404,9 +436,9 @@ def _export_pockets(args) -> int:
         raise UsageError(str(exc)) from None
     _, obtained, _ = load(args)
     ac = obtained.complex
-    pockets = measure_molecule(ac, args.probe).pockets
+    pockets = measure_molecule(ac, probe(args)).pockets
     if ext == ".vtu":
-        count = write_pockets_vtu(args.output, ac, pockets, {"probe": args.probe})
+        count = write_pockets_vtu(args.output, ac, pockets, {"probe": probe(args)})
         print(f"{args.output}: {len(pockets)} pockets, {count:,} cells (cell data pocket, mouth)")
     else:
         labels = atom_labels(read_molecule(args.file, keep_water=args.keep_water), ac.points)
@@ -439,7 +471,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _run(argv: list[str]) -> int:
     """main's body: the command, and every failure turned into one line and a status."""
     try:
-        args = build_parser().parse_args(argv)
+        args = build_parser().parse_args(negative_values_joined(argv))
         return cmd_info(args) if args.command == "info" else cmd_export(args)
     except UsageError as exc:
         print(f"alphascoop: error: {exc} (see alphascoop {' '.join(argv[:1])} --help)",

@@ -60,6 +60,7 @@ class Dataset:
     cursor: ShapeCursor | None = None  # the slider's incremental shape (None: made on use)
     source: Source = "built"  # where the table came from (core.obtain): built, cache, rebuilt
     entry: Path | None = None  # its cache file (None: not cached)
+    damage: str | None = None  # "rebuilt": what was wrong with the cached table (core.obtain)
     topology_seconds: float | None = None  # the topology pass (0 when it came with the table)
     attributes: dict = field(default_factory=dict)  # name -> per-point values, rows of ac.points
     frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
@@ -97,8 +98,10 @@ class Dataset:
         """How the table came and which backend triangulated it: 'built in 12.3 s (gmsh)',
         'loaded from cache in 0.4 s (qhull)' or 'rebuilt (its cached table was damaged) in
         12.3 s (qhull)'."""
-        return (f"{SOURCE_WORDS[self.source]} in {self.build_seconds:.2f} s "
-                f"({self.ac.build_info.backend})")
+        words = SOURCE_WORDS[self.source]
+        if self.source == "rebuilt" and self.damage:
+            words = f"rebuilt (its cached table was damaged: {self.damage})"
+        return f"{words} in {self.build_seconds:.2f} s ({self.ac.build_info.backend})"
 
     def topology_line(self) -> str:
         """'topology: computing…', or how long it took ('topology in 3.1 s'; 'topology
@@ -179,7 +182,8 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
         path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=None, default_alpha=alpha,
         signatures=None, n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
-        source=obtained.source, entry=obtained.entry, frame=frame_for(path, pointset.report),
+        source=obtained.source, entry=obtained.entry, damage=obtained.damage,
+        frame=frame_for(path, pointset.report),
         molecule=molecule, atomic_numbers=numbers, atom_labels=labels,
         attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )
@@ -226,7 +230,7 @@ def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> 
     came = ac.has_signatures
     check = check or (lambda: None)
     check()
-    obtained = add_topology(Obtained(ac, dataset.source, dataset.entry))
+    obtained = add_topology(Obtained(ac, dataset.source, dataset.entry, dataset.damage))
     for stage in (ac.default_alpha, ac.persistence):  # default_alpha: the optimal one too
         check()
         stage()

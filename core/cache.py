@@ -71,6 +71,7 @@ def points_key(points: np.ndarray, mode: Mode | None = None,
         digest.update(f"mode:{mode.key()}".encode())
         if mode.normals == "given" and normals is not None:
             digest.update(memoryview(np.ascontiguousarray(normals, dtype=np.float64)).cast("B"))
+            digest.update(b":zero-normals-estimated")  # earlier builds left zero ones classic
     if weights is not None:
         w = np.ascontiguousarray(weights, dtype=np.float64)
         digest.update(f":weights{w.shape}".encode())
@@ -99,29 +100,37 @@ def is_cached(pointset, mode: Mode | None = None, normals: np.ndarray | None = N
                                normals, pointset_weights(pointset)))
 
 
-def read_entry(path: Path, n_points: int, mode: Mode) -> tuple[AlphaComplex | None, bool]:
-    """(the cached complex, False), or (None, damaged?) when it is missing (False) or
-    unusable (True: the entry is then removed). Stale temporaries of killed stores are
-    cleaned from its folder first; a good entry is marked as recently used."""
+def read_entry(path: Path, n_points: int, mode: Mode) -> tuple[AlphaComplex | None, str | None]:
+    """(the cached complex, None), (None, None) when there is no entry, or (None, why) when
+    it is unusable (damaged, or built from other points or in another mode: the entry is
+    then removed). Stale temporaries of killed stores are cleaned from its folder first; a
+    good entry is marked as recently used."""
     with contextlib.suppress(OSError):
         remove_stale_temporaries(path.parent)
     if not entry_exists(path):
-        return None, False
+        return None, None
     try:
         if not zipfile.is_zipfile(path):
             raise ValueError("not an .npz archive")
         ac = AlphaComplex.load(path)
         if len(ac.input_index) != n_points:
-            raise ValueError("cached table was built from other points")
+            raise ValueError("it was built from other points")
         if ac.mode != mode:
-            raise ValueError("cached table was built in another mode")
-    except (AlphaScoopError, OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            raise ValueError("it was built in another mode")
+    except (AlphaScoopError, OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
         with contextlib.suppress(OSError):
             path.unlink()
-        return None, True
+        return None, _reason(exc, path)
     with contextlib.suppress(OSError):
         os.utime(path)  # mark as recently used
-    return ac, False
+    return ac, None
+
+
+def _reason(exc: BaseException, path: Path) -> str:
+    """Why an entry was refused, in a few words without its (long, hashed) file name."""
+    text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    text = text.removeprefix(f"{path}: ").removeprefix(f"{path.name}: ")
+    return text.removeprefix("not a valid Alpha Scoop table ").strip("()") or "unreadable"
 
 
 def save_entry(ac: AlphaComplex, path: Path) -> Path | None:

@@ -147,7 +147,7 @@ class AlphaComplex:
                  alpha2: float | None = None) -> np.ndarray:
         """(n_k,) int8 class of every k-simplex: 0 exterior, 1 singular, 2 regular, 3 interior
         (alpha = inf is the convex hull: hull simplices stay REGULAR, never INTERIOR)."""
-        alpha = threshold(table_value(alpha, alpha2))
+        alpha = threshold(table_value(alpha, alpha2, self.index.weighted))
         if k is None:
             raise InputError("classify needs k, the dimension of the simplices")
         level = self.index.level(k)
@@ -159,7 +159,7 @@ class AlphaComplex:
     def shape(self, alpha: float | None = None, *, alpha2: float | None = None) -> AlphaShape:
         """The alpha shape at `alpha` (a radius) or `alpha2` (squared); arrays are computed
         when first used. Its `alpha` attribute is the table value (signed radius)."""
-        return AlphaShape(self.index, self.points, table_value(alpha, alpha2),
+        return AlphaShape(self.index, self.points, table_value(alpha, alpha2, self.index.weighted),
                           None if alpha2 is None else float(alpha2))
 
     def cursor(self, orders: CursorOrders | None = None) -> ShapeCursor:
@@ -226,7 +226,8 @@ class AlphaComplex:
     def betti(self, alpha: float | None = None, *, alpha2: float | None = None
               ) -> tuple[int, ...]:
         """Betti numbers at alpha: (components, holes) in 2D, (components, tunnels, voids) in 3D."""
-        at = np.array([threshold(table_value(alpha, alpha2))], dtype=np.float64)
+        value = threshold(table_value(alpha, alpha2, self.index.weighted))
+        at = np.array([value], dtype=np.float64)
         return tuple(int(b) for b in self.topology().betti_many(at)[0])
 
     def persistence(self) -> Persistence:
@@ -267,7 +268,7 @@ class AlphaComplex:
         Queries are (k, ambient_dim) input-space points (planar 3D input: projected onto the
         plane) or (k, dim) complex coordinates.
         """
-        value = threshold(table_value(alpha, alpha2))
+        value = threshold(table_value(alpha, alpha2, self.index.weighted))
         queries = checked_queries(query_points, self.dim, self.ambient_dim, self.to_ambient)
         if self._locator is None:
             self._locator = Locator(self.points, self.simplices(self.dim),

@@ -118,13 +118,15 @@ run_here = BuildHere()
 
 @dataclass(frozen=True, eq=False)
 class Obtained:
-    """A complex and where it came from ("built", "cache" or "rebuilt"); `entry` is its cache
+    """A complex and where it came from ("built", "cache" or "rebuilt", then `damage` says
+    why the entry was not used); `entry` is its cache
     file (None when the cache was not used or could not be written; a runner may still be
     writing it: HandOver.saving)."""
 
     complex: AlphaComplex
     source: Source
     entry: Path | None = None
+    damage: str | None = None  # "rebuilt": what was wrong with the entry, in a few words
 
     @property
     def from_cache(self) -> bool:
@@ -159,14 +161,14 @@ def obtain(points: object, *, weights: object = None, mode: Mode | None = None,
     if not use_cache:
         return Obtained(runner(request, progress), "built")
     path = entry_path(coords, mode, normals, w, folder=cache_dir)
-    ac, damaged = read_entry(path, len(coords), mode)
+    ac, damage = read_entry(path, len(coords), mode)
     if ac is not None and backend not in (None, ac.build_info.backend):
         ac = None  # the same table, but the caller asked for the other backend's build
     if ac is None:
         built = runner(replace(request, save_to=path), progress)
         saving = runner.handed_over(built).saving  # then the entry is on its way
-        return Obtained(built, "rebuilt" if damaged else "built",
-                        path if saving or entry_exists(path) else None)
+        return Obtained(built, "built" if damage is None else "rebuilt",
+                        path if saving or entry_exists(path) else None, damage)
     if progress is not None:
         progress(1.0, "loaded from cache")
     obtained = Obtained(ac, "cache", path)
@@ -185,4 +187,4 @@ def add_topology(obtained: Obtained) -> Obtained:
         return obtained
     ac.signatures()
     entry = None if obtained.entry is None else save_entry(ac, obtained.entry)
-    return Obtained(ac, obtained.source, entry)
+    return Obtained(ac, obtained.source, entry, obtained.damage)

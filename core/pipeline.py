@@ -31,12 +31,16 @@ from core.errors import InputError
 from core.modes.alpha_modes import (
     Mode,
     check_normals,
+    directionless,
     local_geometry_beside,
     make_mode,
     scaled_table,
     unit_rows,
 )
 from core.progress import Progress, Stepper
+
+_SAID_WHEN_SET = ("estimated_normals", "density_neighbours")  # BuildInfo fields, 0 = unsaid
+MAX_WEIGHT_RATIO = 1e100  #: |weight| / extent² beyond which power computations overflow
 
 __all__ = ["BACKENDS", "BuildInfo", "BuiltComplex", "build_complex", "check_backend"]
 
@@ -54,7 +58,11 @@ class BuildInfo:
     filter could not settle and exact arithmetic decided; `flips`: cells the certification
     changed (flips and hull repairs, core/build/certify.py); `uncertified`: facets it could not
     certify (left as the backend made them; 0 = a certified Delaunay triangulation, -1 = not
-    certified: weighted builds, tables saved before certification).
+    certified: weighted builds, tables saved before certification); `estimated_normals`:
+    points of an anisotropic build with given normals whose normal was zero (no direction),
+    so was estimated from the neighbours as the "estimate" mode does; `density_neighbours`:
+    the k a density build used when the points were too few for the k asked (every other
+    point). These last two are 0 when nothing happened, and then not said by `describe`.
     """
 
     backend: str = "qhull"
@@ -62,6 +70,8 @@ class BuildInfo:
     exact_predicates: int = 0
     flips: int = 0
     uncertified: int = -1
+    estimated_normals: int = 0
+    density_neighbours: int = 0
 
     def to_dict(self) -> dict[str, str | int | float]:
         """The fields by name (JSON-ready: for `alphascoop info --json`)."""
@@ -71,7 +81,8 @@ class BuildInfo:
         """One line for people: "backend qhull" (every field that is not empty, name then
         value)."""
         return ", ".join(f"{name.replace('_', ' ')} {value}"
-                         for name, value in self.to_dict().items() if value != "")
+                         for name, value in self.to_dict().items()
+                         if value != "" and (value != 0 or name not in _SAID_WHEN_SET))
 
     def to_arrays(self) -> dict[str, np.ndarray]:
         """The fields as 0-d arrays named `build_<field>` (for core/storage/tables.py)."""
@@ -146,6 +157,8 @@ def _checked_input(points: object, weights: object, density: int | None, combine
     """Stage 1: points, weights and mode checked together (InputError otherwise)."""
     raw = as_points(points)
     w = as_weights(weights, len(raw))
+    if w is not None:
+        check_weight_range(w, raw)
     mode = make_mode(density, combine, anisotropy, normals is not None)
     if w is not None and mode.active:
         raise InputError("weights cannot be combined with the density or anisotropy "
@@ -153,6 +166,21 @@ def _checked_input(points: object, weights: object, density: int | None, combine
     if mode.anisotropy > 0.0 and normals is not None:
         normals = check_normals(normals, len(raw), raw.shape[1])
     return _Input(raw, w, mode, normals)  # type: ignore[arg-type]
+
+
+def check_weight_range(weights: np.ndarray, points: np.ndarray) -> None:
+    """InputError for weights out of proportion to the points: beyond MAX_WEIGHT_RATIO
+    times the squared extent, the powers of the orthogonal spheres (squares of weights over
+    squared distances) overflow float64, and the table would hold infinities, not values."""
+    extent = float(np.ptp(points, axis=0).max()) if len(points) else 0.0
+    largest = float(np.abs(weights).max())
+    with np.errstate(over="ignore"):
+        bound = MAX_WEIGHT_RATIO * extent * extent
+    if extent > 0 and largest > bound:
+        raise InputError(f"weights up to {largest:.3g} (squared radii) are out of proportion to "
+                         f"points spread over {extent:.3g}: beyond {MAX_WEIGHT_RATIO:.0e} times "
+                         "the squared extent their powers overflow float64; rescale the "
+                         "weights or the points")
 
 
 def _prepared(given: _Input) -> _Prepared:
@@ -282,5 +310,10 @@ def build_complex(points: object, progress: Progress | None = None, *,
     info = BuildInfo(choice.backend, choice.note) if certified is None else BuildInfo(
         choice.backend, choice.note, certified.exact_predicates + table.exact_predicates,
         certified.flips, certified.uncertified)
+    if given.mode.density is not None and given.mode.density > len(prep.coords) - 1:
+        info = dataclasses.replace(info, density_neighbours=len(prep.coords) - 1)
+    if given.mode.anisotropy > 0.0 and given.normals is not None:
+        info = dataclasses.replace(info, estimated_normals=int(directionless(_point_normals(
+            given.normals, prep.input_index, len(prep.coords), prep.frame)).sum()))
     return BuiltComplex(np.ascontiguousarray(prep.coords), prep.input_index, table, prep.frame,
                         given.points.shape[1], given.mode, prep.weights, info)

@@ -10,8 +10,11 @@ from pathlib import Path
 
 import numpy as np
 
-E57_SAMPLE = (Path(__file__).parent / "data" / "corpus" / "e57"
-              / "pye57_translationWithoutRotation.e57")
+DATA = Path(__file__).parent / "data"
+E57_SAMPLE = DATA / "corpus" / "e57" / "pye57_translationWithoutRotation.e57"
+E57_BOUNDED = DATA / "corpus" / "e57" / "libe57_ColourRepresentation.e57"  # 153 points
+MOLECULE = DATA / "molecules" / "gemmi_4hhh_frag.pdb"  # alternate conformations A and B
+LIGAND = DATA / "molecules" / "gemmi_HEM.pdb"
 SPARSE_BYTES = 64 << 20  # apparent size of a sparse file (holes cost no disk)
 ENDLESS_BYTES = 4 << 20  # junk appended without a line break
 
@@ -62,6 +65,32 @@ def _meshio(path: Path) -> None:
                  **({"binary": False} if path.suffix == ".vtk" else {}))
 
 
+def _mmcif(path: Path) -> None:
+    """The 4HHH fragment as mmCIF (gemmi's writer)."""
+    import gemmi
+
+    structure = gemmi.read_structure(str(MOLECULE))
+    structure.setup_entities()
+    structure.make_mmcif_document().write_file(str(path))
+
+
+def _weighted(path: Path) -> None:
+    """x, y, z and a radius column: read as a weighted set (squared radii)."""
+    radii = np.random.default_rng(1).uniform(0.05, 0.3, 30)
+    rows = np.column_stack([_points(), radii])
+    path.write_text("x,y,z,radius\n" + "".join(",".join(f"{v:.6g}" for v in row) + "\n"
+                                             for row in rows))
+
+
+def _geographic(path: Path) -> None:
+    """lon, lat, ele rows of a small track near Paris (projected to metres when read)."""
+    pts = _points().astype(np.float64)
+    rows = np.column_stack([2.35 + 0.01 * pts[:, 0], 48.85 + 0.01 * pts[:, 1],
+                            100.0 + 10.0 * pts[:, 2]])
+    path.write_text("lon,lat,ele\n" + "".join(",".join(f"{v:.7f}" for v in row) + "\n"
+                                            for row in rows))
+
+
 MAKERS: dict[str, tuple[str, Callable[[Path], None]]] = {
     "ply-ascii": (".ply", lambda p: _ply(p, True)),
     "ply-binary": (".ply", lambda p: _ply(p, False)),
@@ -84,6 +113,12 @@ MAKERS: dict[str, tuple[str, Callable[[Path], None]]] = {
     "vtk": (".vtk", _meshio),
     "vtu": (".vtu", _meshio),
     "e57": (".e57", lambda p: p.write_bytes(E57_SAMPLE.read_bytes())),  # from the corpus
+    "e57-bounded": (".e57", lambda p: p.write_bytes(E57_BOUNDED.read_bytes())),
+    "pdb": (".pdb", lambda p: p.write_bytes(MOLECULE.read_bytes())),
+    "pdb-ligand": (".pdb", lambda p: p.write_bytes(LIGAND.read_bytes())),
+    "cif": (".cif", _mmcif),
+    "weighted": (".csv", _weighted),
+    "geographic": (".csv", _geographic),
 }
 
 

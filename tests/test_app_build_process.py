@@ -180,7 +180,7 @@ def test_a_child_killed_while_it_saves_leaves_no_partial_entry(in_process):
     entry = entry_path(points)
     if entry.exists():  # it finished the rename before the kill: a whole table
         assert len(AlphaComplex.load(entry).points) == len(points)
-    assert read_entry(entry, len(points), Mode())[1] is False  # never a damaged entry
+    assert read_entry(entry, len(points), Mode())[1] is None  # never a damaged entry
     left = [path.name for path in entry.parent.iterdir()] if entry.parent.exists() else []
     assert left in ([], [entry.name])
     assert multiprocessing.active_children() == []

@@ -219,7 +219,7 @@ def test_cancel_at_every_stage_leaves_nothing_in_shared_memory(stage):
     for child in started:
         child.stop()
     assert multiprocessing.active_children() == [] and my_shared() == []  # killed at once
-    assert read_entry(entry_path(points), len(points), Mode())[1] is False
+    assert read_entry(entry_path(points), len(points), Mode())[1] is None
 
 
 def test_a_child_that_dies_after_a_shared_hand_over_leaves_a_working_table(tmp_path,
@@ -365,5 +365,5 @@ def test_the_runner_leaves_the_entry_to_its_child_which_a_cancel_still_stops(can
     assert wait_until(lambda: not multiprocessing.active_children() and my_scratch() == [])
     if not cancel_after:
         assert entry_path(points).is_file()
-    assert read_entry(entry_path(points), len(points), Mode())[1] is False
+    assert read_entry(entry_path(points), len(points), Mode())[1] is None
     assert my_shared() == []

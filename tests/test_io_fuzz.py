@@ -92,7 +92,7 @@ from fuzz_inputs import MAKERS, MUTATIONS, cases, original, write_case  # noqa: 
 from app.cli import main  # noqa: E402
 
 SEED = 17
-READ_CASES_PER_KIND = 35  # 7 mutations five times over, for each of the 21 kinds
+READ_CASES_PER_KIND = 35  # 7 mutations five times over, for each of the 27 kinds
 CLI_CASES_PER_KIND = 10
 BUDGET_S = 20.0  # CPU seconds per test: cases past it are not run (each case is seeded), but
 # a test that ran out before every kind met every mutation (or, for `info`, every kind once)

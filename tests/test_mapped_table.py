@@ -38,6 +38,7 @@ def built(request, tmp_path):
 def test_a_mapped_table_holds_the_saved_files_arrays_bit_for_bit(built):
     _, folder = built
     theirs, mine = read_npz(folder / "table.npz"), mapped.map_arrays(folder / "shared")
+    theirs.pop("checksums")  # an archive's only: the folder is read just after it is written
     assert sorted(theirs) == sorted(mine) and "sig_betti" in mine
     for name, array in theirs.items():
         assert mine[name].dtype == array.dtype and mine[name].shape == array.shape, name

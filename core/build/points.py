@@ -174,7 +174,10 @@ def spatial_order(points: np.ndarray) -> np.ndarray:
     code = np.empty(len(points), dtype=np.uint64)
 
     def part(start: int, stop: int) -> None:  # element by element: chunks change nothing
-        grid = ((points[start:stop] - low) * factor).astype(np.uint64)
+        if np.isfinite(factor):
+            grid = ((points[start:stop] - low) * factor).astype(np.uint64)
+        else:  # a subnormal extent (coordinates near 1e-310): 1 / extent overflows
+            grid = ((points[start:stop] - low) / extent * (2**bits - 1)).astype(np.uint64)
         mine = code[start:stop]
         mine[:] = 0
         for axis in range(dim):

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import shapely
 
+from core.errors import InputError
 from core.geometry.georef import WGS84, WGS84_NAME, Georef
 from core.storage.atomic import atomic_write_text
 
@@ -19,11 +20,15 @@ WORLD = shapely.box(-180.0, -90.0, 180.0, 90.0)
 CUT_SEGMENT_M = 1000.0  # edges crossing the antimeridian are split this finely before the cut
 
 
-def to_lonlat(ac, georef: Georef, geometry):
+def to_lonlat(ac, georef: Georef, geometry, *, cut: bool = True):
     """`geometry` (complex coordinates, metres) in longitude/latitude degrees, cut at +-180.
 
     A geometry that crosses the antimeridian is densified in metres first, so the cut (a
-    straight line in degrees) follows its edges to within centimetres.
+    straight line in degrees) follows its edges to within centimetres. `cut=False`: the
+    longitudes unwrapped around the data's centre (may pass +-180), not cut: for measuring
+    on the ellipsoid, where the cut's edges along +-180 are no part of the shape. An
+    InputError when the cut cannot be made (a shape around a pole has no polygon in
+    longitude/latitude).
     """
     def transform(xy: np.ndarray) -> np.ndarray:
         if ac.dim < ac.ambient_dim:  # planar 3D input: back to the input's x, y first
@@ -31,10 +36,15 @@ def to_lonlat(ac, georef: Georef, geometry):
         return georef.to_lonlat(xy)
 
     lonlat = shapely.transform(geometry, transform)
-    if lonlat.is_empty or WORLD.covers(shapely.envelope(lonlat)):
+    if not cut or lonlat.is_empty or WORLD.covers(shapely.envelope(lonlat)):
         return lonlat
     dense = shapely.segmentize(geometry, CUT_SEGMENT_M)
-    return cut_antimeridian(shapely.transform(dense, transform))
+    try:
+        return cut_antimeridian(shapely.transform(dense, transform))
+    except shapely.errors.GEOSException:
+        raise InputError("the shape goes around a pole, so it has no polygon in longitude/"
+                         "latitude (GeoJSON, WKT, CSV of rings); export it as .svg (metres in "
+                         f"the projection, {georef.name}) or as a mesh") from None
 
 
 def cut_antimeridian(geometry):

@@ -148,10 +148,10 @@ def geographic_metadata(ac, shape, georef: Georef) -> dict:
     """Metadata of a geographic export: the projection (lengths in metres), and for 2D shapes
     the area, perimeter and dangling-edge length measured on the WGS 84 ellipsoid."""
     meta: dict = {"units": "m", "georef": georef.to_dict()}
-    if ac.dim == 2:
-        polygons = to_lonlat(ac, georef, shape_polygons(ac, shape))
+    if ac.dim == 2:  # measured uncut: edges along +-180 of a cut shape are not its own
+        polygons = to_lonlat(ac, georef, shape_polygons(ac, shape), cut=False)
         area, perimeter = (0.0, 0.0) if polygons.is_empty else geodesic_area_perimeter(polygons)
-        lines = to_lonlat(ac, georef, singular_lines(ac, shape))
+        lines = to_lonlat(ac, georef, singular_lines(ac, shape), cut=False)
         meta["area_m2"] = area
         meta["perimeter_m"] = perimeter
         meta["singular_length_m"] = 0.0 if lines.is_empty else geodesic_length(lines)

@@ -147,7 +147,8 @@ def _read(path: Path, ext: str, columns, extra: tuple[str, ...] = (), scan: int 
         if names is None or _by_index(columns):
             return points, attrs, notes, None
         points, attrs, more, georef = geographic_points(points, attrs, names,
-                                                        explicit=columns is not None)
+                                                        explicit=columns is not None,
+                                                        source=str(path))
         return points, attrs, tuple(notes) + more, georef
     if ext == ".e57":
         reader = functools.partial(read_e57, scan=scan)

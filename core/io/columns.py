@@ -11,9 +11,9 @@ from core.errors import FileFormatError
 COORDINATE_NAMES = (
     (("x",), ("y",), ("z",)),
     (("lon", "lng", "long", "longitude"), ("lat", "latitude"),
-     ("alt", "altitude", "elevation", "elev", "height", "z")),
+     ("alt", "altitude", "elevation", "elev", "ele", "height", "z")),
     (("easting", "east"), ("northing", "north"),
-     ("elevation", "elev", "height", "alt", "altitude", "z")),
+     ("elevation", "elev", "ele", "height", "alt", "altitude", "z")),
 )
 ATTRIBUTE_NAMES = {
     "normals": (("nx", "normal_x", "normalx"), ("ny", "normal_y", "normaly"),

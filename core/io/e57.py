@@ -3,6 +3,9 @@ coordinates, invalid points dropped, intensity and colour (scaled by the file's 
 
 from __future__ import annotations
 
+import contextlib
+import os
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -14,17 +17,31 @@ from core.io.sizes import check_memory
 CARTESIAN = ("cartesianX", "cartesianY", "cartesianZ")
 SPHERICAL = ("sphericalRange", "sphericalAzimuth", "sphericalElevation")
 COLOURS = ("colorRed", "colorGreen", "colorBlue")
+BOUNDS_RTOL = 1e-6  # points may pass the declared bounds by this share of their size (rounding)
 
 
-def _open(path: Path):
-    """The pye57 reader, or a clear error when the file (or the library) is missing or bad."""
+def _open(path: Path, stack: contextlib.ExitStack):
+    """The pye57 reader, or a clear error when the file (or the library) is missing or bad.
+    A file name that is not UTF-8 (the library takes only UTF-8 text) is opened through a
+    link of a plain name in a temporary folder, which `stack` removes."""
     try:
         import pye57
     except ImportError:  # pragma: no cover - pye57 is a dependency; a broken install says so
         raise FileFormatError(f"{path}: reading E57 needs the 'pye57' package "
                               "(pip install pye57)") from None
+    name = str(path)
     try:
-        return pye57.E57(str(path))
+        name.encode("utf-8")
+    except UnicodeEncodeError:  # undecodable bytes of the name, kept as surrogates
+        folder = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="alphascoop-")))
+        link = folder / "scan.e57"
+        try:
+            os.symlink(os.path.abspath(os.fsencode(path)), os.fsencode(link))
+        except OSError as exc:
+            raise unreadable(path, "E57", exc) from exc
+        name = str(link)
+    try:
+        return pye57.E57(name)
     except Exception as exc:  # libE57Format raises its own exception types
         raise unreadable(path, "E57", exc) from exc
 
@@ -97,6 +114,8 @@ def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray
         local = spherical_to_cartesian(local)
     valid = raw[state] == 0 if state in raw else np.ones(len(local), dtype=bool)
     points = local @ header.rotation_matrix.T + header.translation if header.has_pose() else local
+    if system == CARTESIAN:
+        check_bounds(header, local[valid], points[valid], index, path)
     attrs = {}
     if "intensity" in raw:
         attrs["intensity"] = raw["intensity"]
@@ -105,9 +124,57 @@ def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray
     return points[valid], {k: v[valid] for k, v in attrs.items()}, int((~valid).sum())
 
 
+def declared_bounds(header) -> np.ndarray | None:
+    """(2, 3) [min, max] of x, y, z that the scan's header declares (cartesianBounds), None
+    when it declares none (or not all six, or not finite)."""
+    node = header.node
+    if not node.isDefined("cartesianBounds"):
+        return None
+    box = node["cartesianBounds"]
+    names = [f"{axis}{end}" for end in ("Minimum", "Maximum") for axis in "xyz"]
+    if not all(box.isDefined(name) for name in names):
+        return None
+    try:
+        bounds = np.array([float(box[name].value()) for name in names]).reshape(2, 3)
+    except (TypeError, ValueError):
+        return None
+    return bounds if bool(np.isfinite(bounds).all()) else None
+
+
+def check_bounds(header, local: np.ndarray, posed: np.ndarray, index: int, path: Path) -> None:
+    """FileFormatError when valid points lie outside the bounds the scan declares: the
+    library read a damaged file as points that are not the scan's. Writers give the bounds
+    before the pose (as ASTM E2807 says), after it, or (pye57) as the two corners moved by
+    the pose: points inside any of these boxes pass."""
+    bounds = declared_bounds(header)
+    if bounds is None or len(local) == 0:
+        return
+    boxes = [(local, bounds), (posed, bounds)]
+    if header.has_pose():  # the corners moved back: the local box they came from
+        corners = (bounds - header.translation) @ header.rotation_matrix
+        boxes.append((local, corners))
+    slack = BOUNDS_RTOL * max(float(np.abs(bounds).max()), 1.0)
+    outside = [np.any((pts < box.min(axis=0) - slack) | (pts > box.max(axis=0) + slack), axis=1)
+               for pts, box in boxes]
+    bad = min(outside, key=lambda flags: int(flags.sum()))
+    if not bad.any():
+        return
+    first = local[np.argmax(bad)]
+    box = ", ".join(f"{a} {lo:.6g}..{hi:.6g}" for a, lo, hi in zip("xyz", *bounds, strict=True))
+    raise FileFormatError(
+        f"{path}: E57 scan {index} is damaged: {int(bad.sum()):,} of {len(local):,} points lie "
+        f"outside the bounds the file declares ({box}), e.g. "
+        f"({', '.join(f'{v:.6g}' for v in first)})")
+
+
 def read_e57(path: Path, columns=None, *, scan: int | None = None) -> tuple:
     """(n, 3) points of every scan (or scan number `scan`), attributes and notes."""
-    e57 = _open(path)
+    stack = contextlib.ExitStack()
+    try:
+        e57 = _open(path, stack)
+    except BaseException:
+        stack.close()
+        raise
     try:
         count = e57.scan_count
         if count == 0:
@@ -122,6 +189,7 @@ def read_e57(path: Path, columns=None, *, scan: int | None = None) -> tuple:
         raise unreadable(path, "E57", exc) from exc
     finally:
         e57.close()
+        stack.close()
     points = np.concatenate([p[0] for p in parts])
     shared = set.intersection(*(set(p[1]) for p in parts))
     attrs = {k: np.concatenate([p[1][k] for p in parts]) for k in sorted(shared)}

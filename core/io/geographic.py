@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from core.errors import FileFormatError
 from core.geometry.georef import Georef
 
 LON_NAMES = ("lon", "lng", "long", "longitude")
@@ -39,6 +40,23 @@ def degrees_problem(lon: np.ndarray, lat: np.ndarray) -> str | None:
             row = int(np.flatnonzero(bad)[0])
             return f"{name} {values[row]:.6g} at row {row + 1} is not in degrees"
     return None
+
+
+def refuse_stray_rows(lonlat: np.ndarray, source: str) -> None:
+    """FileFormatError when most rows are longitude/latitude degrees but some are not (a
+    latitude of 95 among degrees is a wrong row, not a file of plain numbers): the first
+    such row is named. Files whose rows are mostly out of range are left to be read as
+    plain numbers (columns named lon/lat that hold metres)."""
+    with np.errstate(invalid="ignore"):
+        bad = (np.abs(lonlat[:, 0]) > 360.0) | (np.abs(lonlat[:, 1]) > 90.0)
+    n_bad = int(bad.sum())
+    if n_bad == 0 or 2 * n_bad >= len(bad):
+        return
+    problem = degrees_problem(lonlat[:, 0], lonlat[:, 1])
+    more = f" (and {n_bad - 1:,} more row(s))" if n_bad > 1 else ""
+    raise FileFormatError(f"{source}: {problem}{more}, while {len(bad) - n_bad:,} rows are: "
+                          "fix or remove that row, or pick the columns by index (--columns "
+                          "0,1) to read them as plain numbers")
 
 
 def _unit_vectors(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
@@ -144,18 +162,21 @@ def _scale_range(crs: str, lonlat: np.ndarray) -> tuple[float, float]:
 
 
 def geographic_points(points: np.ndarray, attributes: dict[str, np.ndarray], names: list[str],
-                      explicit: bool) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, object]:
+                      explicit: bool, source: str = "the file"
+                      ) -> tuple[np.ndarray, dict[str, np.ndarray], tuple, object]:
     """Project named longitude/latitude columns to metres: (points, attributes, notes, georef).
 
     Picked automatically, a third (height) column becomes the attribute 'altitude' and the
     footprint is 2D; named explicitly (`--columns lon,lat,alt`), it is z in metres (3D).
     Columns not named as geographic, or not in degrees, are returned as they are (with a note
-    in the second case).
+    in the second case); a few rows out of range among degrees are a FileFormatError naming
+    `source` and the row.
     """
     axes = geographic_axes(names)
     if axes is None:
         return points, attributes, (), None
     lonlat = points[:, list(axes)]
+    refuse_stray_rows(lonlat, source)
     height = None if points.shape[1] == 2 else ("z" if explicit else "altitude")
     columns = tuple(names[i] for i in axes) + tuple(names[2:3])
     result = localize(lonlat, columns, height)

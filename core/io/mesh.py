@@ -64,14 +64,24 @@ def _trimesh_vertices(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], tu
     return vertices, attrs, (note,)
 
 
+def _holds(path: Path, needle: bytes, chunk: int = 1 << 20) -> bool:
+    """Whether the file holds `needle`, read in chunks (never the whole file at once)."""
+    with open(path, "rb") as fh:
+        carry = b""
+        while block := fh.read(chunk):
+            if needle in carry + block:
+                return True
+            carry = block[-len(needle):]
+    return False
+
+
 def _without_strings(path: Path, folder: str) -> Path:
     """A copy of a VTU without its String arrays (meshio refuses the type; VTK and our own
     export write them as field data), or the file itself when it has none."""
     from xml.etree import ElementTree
 
-    with open(path, "rb") as fh:
-        if b'type="String"' not in fh.read():
-            return path
+    if not _holds(path, b'type="String"'):
+        return path
     try:
         tree = ElementTree.parse(path)
     except ElementTree.ParseError:

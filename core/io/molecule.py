@@ -1,7 +1,8 @@
 """PDB and mmCIF molecules (gzip too) through gemmi: atoms as balls with van der Waals radii;
 PQR and XYZR files with their own radii (`radii_files`).
 
-First model only, first alternate location, waters dropped unless asked for, hydrogens kept.
+First model only, the first alternate location (drop_other_conformers), waters dropped unless
+asked for, hydrogens kept.
 Radii: gemmi's `Element.vdw_r` (Bondi 1964 for H, C, N, O, S, P and the halogens; other
 elements from the same table gemmi ships); an unknown element ('X', or a radius gemmi does not
 know) gets UNKNOWN_RADIUS and is named in the report.
@@ -97,8 +98,29 @@ def _structure(path: Path, ext: str):
                               ) from None
 
 
-def _count_atoms(model) -> int:
-    return sum(len(res) for chain in model for res in chain)
+def drop_other_conformers(model) -> int:
+    """Remove from the gemmi `model` the atoms of alternate conformations other than the one
+    kept; returns how many went. Only atoms whose altloc is set may go: in each residue
+    position (chain, number, insertion code) the first altloc met is kept, with every atom
+    that has none. Atoms that merely share a name (ligands written with one name per
+    element, residues numbered alike) all stay: gemmi's remove_alternative_conformations
+    keeps one atom per name, and so dropped them."""
+    kept: dict[tuple[str, str], str] = {}
+    removed = 0
+    for chain in model:
+        for residue in chain:
+            position = (chain.name, str(residue.seqid))
+            first = kept.get(position) or next(
+                (atom.altloc for atom in residue if atom.has_altloc()), "")
+            kept[position] = first
+            for i in range(len(residue) - 1, -1, -1):
+                if residue[i].has_altloc() and residue[i].altloc != first:
+                    del residue[i]
+                    removed += 1
+        for i in range(len(chain) - 1, -1, -1):
+            if len(chain[i]) == 0:  # a residue made only of another conformer
+                del chain[i]
+    return removed
 
 
 def read_molecule(path: str | Path, *, keep_water: bool = False) -> Molecule:
@@ -113,14 +135,21 @@ def read_molecule(path: str | Path, *, keep_water: bool = False) -> Molecule:
     if ext in RADII_READERS:
         return _from_table(path, RADII_READERS[ext](path, keep_water))
     st = _structure(path, ext)
+    try:
+        return _cleaned(path, st, keep_water)
+    except UnicodeDecodeError:  # gemmi hands names over as UTF-8 text
+        raise FileFormatError(f"{path}: unreadable {ext.lstrip('.').upper()} file (names of "
+                              "atoms, residues or chains that are not text)") from None
+
+
+def _cleaned(path: Path, st, keep_water: bool) -> Molecule:
+    """The first model of `st`, other conformers and (unless kept) waters removed."""
     n_models = len(st)
     if n_models == 0:
         raise FileFormatError(f"{path}: no atoms (no model in the file)")
     for extra in range(n_models - 1, 0, -1):
         del st[extra]
-    before = _count_atoms(st[0])
-    st.remove_alternative_conformations()
-    altlocs = before - _count_atoms(st[0])
+    altlocs = drop_other_conformers(st[0])
     waters = sum(len(res) for chain in st[0] for res in chain if res.is_water())
     if not keep_water:
         st.remove_waters()

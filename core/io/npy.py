@@ -10,24 +10,32 @@ import numpy as np
 from core.errors import FileFormatError
 from core.io.columns import clean_name, explicit_columns
 from core.io.problems import unreadable
-from core.io.sizes import check_npy, check_npz_member
+from core.io.sizes import check_npy, check_npz_archive
 
 POINT_KEYS = ("points", "xyz", "coords", "coordinates", "positions", "vertices")
 ATTRIBUTE_KEYS = {"normals": "normals", "colors": "colors", "colours": "colors",
                   "weights": "weights", "radius": "radius", "radii": "radius"}
 
 
-def _from_array(arr: np.ndarray, path: Path, columns=None) -> np.ndarray:
-    """(n, d) float64 coordinates from a plain or structured array (`columns` picks 2 or 3)."""
+def _from_array(arr: np.ndarray, path: Path, columns=None) -> tuple[np.ndarray, tuple]:
+    """(n, d) float64 coordinates from a plain or structured array (`columns` picks 2 or 3),
+    and notes. A (2, n) or (3, n) array with more than 3 columns holds one coordinate per
+    row: it is read transposed, and the note says so."""
     if arr.dtype.names:
-        return _from_fields(arr, path, columns)
+        return _from_fields(arr, path, columns), ()
     if arr.ndim != 2 or arr.shape[1] < 2:
         raise FileFormatError(f"{path}: expected an (n, 2) or (n, 3) array, got shape {arr.shape}")
     if not np.issubdtype(arr.dtype, np.number) or np.iscomplexobj(arr):
         raise FileFormatError(f"{path}: array of {arr.dtype} is not real numbers")
+    notes: tuple = ()
+    if arr.shape[0] in (2, 3) and arr.shape[1] > 3:
+        notes = (f"array of shape {arr.shape} read as {arr.shape[1]:,} points of "
+                 f"{arr.shape[0]} coordinates (one coordinate per row: transposed)",)
+        arr = arr.T
     if columns is not None:
-        return arr[:, explicit_columns(columns, None, arr.shape[1], str(path))].astype(np.float64)
-    return arr[:, : min(arr.shape[1], 3)].astype(np.float64)
+        picked = arr[:, explicit_columns(columns, None, arr.shape[1], str(path))]
+        return picked.astype(np.float64), notes
+    return arr[:, : min(arr.shape[1], 3)].astype(np.float64), notes
 
 
 def _from_fields(arr: np.ndarray, path: Path, columns) -> np.ndarray:
@@ -55,7 +63,8 @@ def read_npy(path: Path, columns=None, extra: tuple[str, ...] = ()
                 check_npy(path, fh)
             data = np.load(fh, allow_pickle=False)
             if isinstance(data, np.ndarray):
-                return _from_array(data, path, columns), {}, ()
+                points, notes = _from_array(data, path, columns)
+                return points, {}, notes
             return _from_archive(data, path, columns, extra)
         except FileFormatError:  # already says what is wrong (it is also a ValueError)
             raise
@@ -71,12 +80,13 @@ def _from_archive(data, path: Path, columns, extra: tuple[str, ...] = ()
     if key is None:
         raise FileFormatError(f"{path}: no points array (looked for {', '.join(POINT_KEYS)};"
                               f" found {', '.join(keys) or 'nothing'})")
-    check_npz_member(path, data.zip, key)
-    points = _from_array(data[key], path, columns)
-    for k in keys:
-        if k in ATTRIBUTE_KEYS:
-            check_npz_member(path, data.zip, k)
+    read = [key, *(k for k in keys if k in ATTRIBUTE_KEYS or k in extra)]
+    check_npz_archive(path, data.zip, read)
+    points, notes = _from_array(data[key], path, columns)
     attrs = {ATTRIBUTE_KEYS[k]: data[k] for k in keys if k in ATTRIBUTE_KEYS}
     attrs.update({k: data[k] for k in extra if k in keys})
+    if notes:  # attributes stored the same way, one value per column
+        attrs = {k: v.T if v.ndim == 2 and v.shape[0] == points.shape[1] and v.shape[1] == len(
+            points) else v for k, v in attrs.items()}
     attrs = {k: v for k, v in attrs.items() if len(v) == len(points)}
-    return points, attrs, (f"points from array {key!r}",)
+    return points, attrs, (f"points from array {key!r}", *notes)

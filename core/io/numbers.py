@@ -49,8 +49,15 @@ class NumberStyle:
 
 
 def _cells(line: str) -> list[str]:
-    """Cells of a data line split on anything but commas (quotes removed)."""
-    return [c.strip("\"'") for c in CELL_SPLIT.split(line.strip()) if c]
+    """Cells of a data line split on anything but commas (quotes removed); a comma ending a
+    cell ("x, y, z" rows: a space after each comma) is a delimiter, not part of the number."""
+    return [c.rstrip(",").strip("\"'") for c in CELL_SPLIT.split(line.strip())
+            if c.rstrip(",")]
+
+
+def _comma_delimited(line: str) -> bool:
+    """True when a comma ends a cell of the line (commas delimit it: "1.5, 2.5, 3.5")."""
+    return any(c.endswith(",") for c in CELL_SPLIT.split(line.strip()))
 
 
 def number_style(lines: list[str], where: str) -> NumberStyle:
@@ -69,7 +76,8 @@ def number_style(lines: list[str], where: str) -> NumberStyle:
     has_comma = any("," in c for r in rows for c in r)
     if not rows or not has_comma or any(len(r) < 2 for r in rows):
         return NumberStyle(fortran=fortran)
-    if all(COMMA_DECIMAL.match(c) or INTEGER.match(c) for r in rows for c in r):
+    delimiting = any(_comma_delimited(ln) for ln in lines)
+    if not delimiting and all(COMMA_DECIMAL.match(c) or INTEGER.match(c) for r in rows for c in r):
         return NumberStyle(decimal_comma=True, fortran=fortran)
     if any(COMMA_DECIMAL.match(c) for r in rows for c in r):
         raise FileFormatError(f"{where}: ',' is used both as a decimal separator and otherwise "

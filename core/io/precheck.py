@@ -2,7 +2,8 @@
 
 Text formats must hold no NUL bytes (binary data, or a damaged or sparse file whose holes
 would otherwise be parsed as gigabytes of text); binary STL and GLB must be as long as their
-headers say. Each check reads the file in bounded chunks and allocates nothing big.
+headers say; a VTU must end with its closing tag. Each check reads the file in bounded chunks
+and allocates nothing big.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from core.errors import FileFormatError
 CHUNK = 1 << 20
 TEXT_FORMATS = {".xyz", ".pts", ".txt", ".csv", ".obj", ".off", ".gltf"}
 STL_HEADER, STL_TRIANGLE = 84, 50
+VTU_TAIL = 4096  # bytes read from a VTU's end to find its closing tag
 
 
 def first_nul(path: Path, start: int = 0) -> int | None:
@@ -83,6 +85,45 @@ def _check_ply(path: Path) -> None:
         check_text(path, "PLY")
 
 
+def _check_vtu(path: Path, size: int) -> None:
+    """VTK XML: the file ends with </VTKFile> (a cut file, or one padded with gigabytes of
+    zeros, is refused before any parser reads it), and its XML up to any raw appended data
+    holds no NUL byte."""
+    with open(path, "rb") as fh:
+        fh.seek(max(size - VTU_TAIL, 0))
+        tail = fh.read().rstrip(b" \t\r\n\0")
+    if not tail.endswith(b"</VTKFile>"):
+        padded = " (it ends in NUL bytes: padded or sparse)" if size and _last_byte(path) == 0 \
+            else ""
+        raise FileFormatError(f"{path}: not a complete VTU file: it does not end with "
+                              f"</VTKFile>{padded}")
+    at = first_nul(path)
+    if at is not None and at < _appended_at(path, at):
+        raise FileFormatError(f"{path}: not a valid VTU file: its XML holds binary (NUL) "
+                              f"bytes from byte {at:,}")
+
+
+def _last_byte(path: Path) -> int:
+    with open(path, "rb") as fh:
+        fh.seek(-1, os.SEEK_END)
+        return fh.read(1)[0]
+
+
+def _appended_at(path: Path, limit: int) -> int:
+    """Offset of '<AppendedData' within the first `limit` bytes (+ its length), or `limit`
+    + 1 when it is not there (NUL bytes are then inside the XML)."""
+    marker = b"<AppendedData"
+    with open(path, "rb") as fh:
+        pos, carry = 0, b""
+        while pos < limit + len(marker) and (chunk := fh.read(CHUNK)):
+            at = (carry + chunk).find(marker)
+            if at >= 0:
+                return pos - len(carry) + at
+            carry = (carry + chunk)[-len(marker):]
+            pos += len(chunk)
+    return limit + 1
+
+
 def precheck(path: Path, ext: str) -> None:
     """Run the checks for this extension (raises FileFormatError naming the file)."""
     size = os.path.getsize(path)
@@ -96,3 +137,5 @@ def precheck(path: Path, ext: str) -> None:
         _check_vtk(path)
     elif ext == ".ply":
         _check_ply(path)
+    elif ext == ".vtu":
+        _check_vtu(path, size)

@@ -14,25 +14,10 @@ from pathlib import Path
 import numpy as np
 
 from core.errors import FileFormatError
+from core.storage.memory import available_memory
 
 MEMORY_FRACTION = 0.5  # compressed data may expand to at most this share of available memory
 MAX_DEFLATE_RATIO = 1032  # deflate cannot expand more than this (RFC 1951's longest match)
-UNKNOWN_MEMORY = 1 << 34  # assumed when the system does not say (16 GiB)
-
-
-def available_memory() -> int:
-    """Bytes of memory available to this process now (Linux MemAvailable, else sysconf)."""
-    try:
-        with open("/proc/meminfo", encoding="ascii") as fh:
-            for line in fh:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        pass
-    try:
-        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (ValueError, OSError, AttributeError):
-        return UNKNOWN_MEMORY
 
 
 def _gb(nbytes: int) -> str:
@@ -87,3 +72,17 @@ def check_npz_member(path: Path, archive: zipfile.ZipFile, key: str) -> None:
                               f"{nbytes:,} bytes, its zip entry holds {max(holds, 0):,})")
     if not stored:
         check_memory(path, nbytes, f"the array {key!r}")
+
+
+def check_npz_archive(path: Path, archive: zipfile.ZipFile, keys: list[str]) -> None:
+    """The archive's members do not overlap (a zip bomb), and the arrays `keys` to be read
+    each pass check_npz_member and together fit in memory (as float64 coordinates too)."""
+    infos = archive.infolist()
+    if sum(info.compress_size for info in infos) > os.fstat(archive.fp.fileno()).st_size:
+        raise FileFormatError(f"{path}: corrupt NumPy archive (its members overlap)")
+    total = 0
+    for key in dict.fromkeys(keys):
+        check_npz_member(path, archive, key)
+        name = key if key in archive.namelist() else f"{key}.npy"
+        total += archive.getinfo(name).file_size
+    check_memory(path, total, f"the arrays {', '.join(dict.fromkeys(keys))}")

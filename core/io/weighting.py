@@ -11,6 +11,8 @@ import numpy as np
 from core.errors import FileFormatError
 from core.io.columns import clean_name
 
+MAX_RADIUS = float(np.sqrt(np.finfo(np.float64).max))  # larger radii have no float64 square
+
 WEIGHT_ALIASES = ("weights", "weight", "w")
 RADIUS_ALIASES = ("radius", "radii", "r")
 
@@ -62,19 +64,33 @@ def choose_weights(attributes: dict[str, np.ndarray], path: Path, *, weights: st
         return out, None
     if radius_add:
         radii = _radii(values, path, name) if not squared else _roots(values, path, name)
-        values, squared = (radii + radius_add) ** 2, True
+        values, squared = _squared(radii + radius_add, path, name), True
         what += f", {radius_add:g} added to every radius"
     elif not squared:
-        values = _radii(values, path, name) ** 2
+        values = _squared(_radii(values, path, name), path, name)
     out["weights"] = values
     return out, what
+
+
+def _squared(radii: np.ndarray, path: Path, name: str) -> np.ndarray:
+    """The weights radii**2; a finite radius whose square overflows float64 is refused,
+    named with its row (it is no NaN or infinity of the file's)."""
+    with np.errstate(over="ignore"):
+        weights = radii * radii
+    over = np.isinf(weights) & np.isfinite(radii)
+    if over.any():
+        row = int(np.flatnonzero(over)[0])
+        raise FileFormatError(f"{path}: radius {radii[row]:.6g} (column {name!r}, row {row}) "
+                              f"is too large: its square, the weight, overflows float64 (radii "
+                              f"up to {MAX_RADIUS:.3g} can be squared)")
+    return weights
 
 
 def _radii(values: np.ndarray, path: Path, name: str) -> np.ndarray:
     """Radii checked to be >= 0 where finite (non-finite rows are reported by the loader)."""
     if (values < 0).any():
         raise FileFormatError(f"{path}: column {name!r} has negative radii "
-                              f"(first: row {int(np.flatnonzero(values < 0)[0])})")
+                              f"(the first in row {int(np.flatnonzero(values < 0)[0])})")
     return values
 
 
@@ -82,6 +98,6 @@ def _roots(weights: np.ndarray, path: Path, name: str) -> np.ndarray:
     """Radii sqrt(w) of weights, which must then be >= 0."""
     if (weights < 0).any():
         raise FileFormatError(f"{path}: --radius-add needs weights >= 0, but column {name!r} "
-                              f"has negative ones (first: row "
+                              f"has negative ones (the first in row "
                               f"{int(np.flatnonzero(weights < 0)[0])})")
     return np.sqrt(weights)

@@ -171,9 +171,19 @@ def local_geometry(points: np.ndarray, mode: Mode,
     spacing_ = None
     if mode.density is not None:
         spacing_ = spacing(dist[:, : min(mode.density, dist.shape[1])])
-    if mode.anisotropy > 0.0 and normals is None:
-        normals = point_normals(points, ids[:, :NORMAL_NEIGHBOURS])
+    missing = None if normals is None else directionless(normals)
+    if mode.anisotropy > 0.0 and (missing is None or missing.any()):
+        estimated = point_normals(points, ids[:, :NORMAL_NEIGHBOURS])
+        # given normals without a direction (all zero) are estimated too, never left zero
+        normals = estimated if missing is None else np.where(missing[:, None], estimated,
+                                                             normals)
     return LocalGeometry(spacing_, normals if mode.anisotropy > 0.0 else None)
+
+
+def directionless(normals: np.ndarray) -> np.ndarray:
+    """(n,) bool: the rows of (n, d) normals that give no direction (all zero), whose
+    normals the anisotropic mode estimates from the neighbours instead."""
+    return ~np.any(normals != 0.0, axis=1)
 
 
 def local_geometry_beside(points: np.ndarray, mode: Mode,
@@ -226,7 +236,8 @@ def file_normals(mode: Mode, attributes: dict, source: str) -> np.ndarray | None
 
 
 def check_normals(normals: object, n: int, dim: int) -> np.ndarray:
-    """(n, dim) float64 normals (any length; 0 = no direction); InputError otherwise."""
+    """(n, dim) float64 normals (any length; 0 = no direction: estimated, local_geometry);
+    InputError otherwise."""
     try:
         arr = np.array(normals, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -234,13 +245,19 @@ def check_normals(normals: object, n: int, dim: int) -> np.ndarray:
     if arr.shape != (n, dim):
         raise InputError(f"normals must be an ({n}, {dim}) array like the points, got "
                          f"shape {arr.shape}")
-    if not np.isfinite(arr).all():
-        raise InputError("normals have NaN or infinite values")
+    bad = ~np.isfinite(arr).all(axis=1)
+    if bad.any():
+        raise InputError(f"{int(bad.sum()):,} of {n:,} normals have NaN or infinite values "
+                         f"(the first in row {int(np.argmax(bad))}): fix them, or estimate "
+                         "the normals")
     return arr
 
 
 def unit_rows(vectors: np.ndarray) -> np.ndarray:
-    """(n, d) rows scaled to length 1 (zero rows stay zero)."""
-    length = np.sqrt(np.einsum("nd,nd->n", vectors, vectors))
-    return vectors / np.where(length > 0, length, 1.0)[:, None]
+    """(n, d) rows scaled to length 1 (zero rows stay zero; rows of any finite size, the
+    largest component scaled to 1 first, so no length over- or underflows)."""
+    big = np.abs(vectors).max(axis=1, initial=0.0)
+    scaled = vectors / np.where(big > 0, big, 1.0)[:, None]
+    length = np.sqrt(np.einsum("nd,nd->n", scaled, scaled))
+    return scaled / np.where(length > 0, length, 1.0)[:, None]
 

@@ -15,26 +15,31 @@ from core.geometry.power import signed_sqrt
 LARGEST = float(np.finfo(np.float64).max)
 
 
-def radius(alpha: object) -> float:
-    """`alpha` as a float radius >= 0 (inf allowed); an InputError (a ValueError) otherwise."""
+def radius(alpha: object, signed: bool = False) -> float:
+    """`alpha` as a float radius >= 0 (inf allowed); an InputError (a ValueError) otherwise.
+    `signed` (a weighted table, whose values are signed radii): a finite negative alpha is
+    taken as the table value it is (what optimal_alpha and the spectrum return there)."""
     try:
         value = float(alpha)  # type: ignore[arg-type]
     except (TypeError, ValueError):
         raise InputError(f"alpha must be a number (a radius), not {alpha!r}") from None
+    if signed and value < 0 and value != -np.inf:
+        return value
     if not value >= 0:
         raise InputError(f"alpha is a radius and must be >= 0, not {alpha!r}; pass a "
                          "squared value (which may be negative) as alpha2=")
     return value
 
 
-def table_value(alpha: object = None, alpha2: object = None) -> float:
-    """The table's value for a query given as exactly one of `alpha` (a radius >= 0) or
-    `alpha2` (its square; any real, negative below zero radius): sign(a2) * sqrt(|a2|)."""
+def table_value(alpha: object = None, alpha2: object = None, signed: bool = False) -> float:
+    """The table's value for a query given as exactly one of `alpha` (a radius >= 0; a
+    signed radius for a `signed`, weighted, table) or `alpha2` (its square; any real,
+    negative below zero radius): sign(a2) * sqrt(|a2|)."""
     if (alpha is None) == (alpha2 is None):
         raise InputError("give exactly one of alpha (a radius) and alpha2 (a squared radius), "
                          f"not {'both' if alpha is not None else 'neither'}")
     if alpha is not None:
-        return radius(alpha)
+        return radius(alpha, signed)
     try:
         value = float(alpha2)  # type: ignore[arg-type]
     except (TypeError, ValueError):

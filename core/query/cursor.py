@@ -238,7 +238,7 @@ class ShapeCursor:
     def move(self, alpha: float | None = None, *, alpha2: float | None = None) -> AlphaShape:
         """The shape at alpha (a radius) or alpha2 (squared), from the previous one by the
         simplices that changed."""
-        value = table_value(alpha, alpha2)
+        value = table_value(alpha, alpha2, self._index.weighted)
         at = threshold(value)  # inf (the hull) keeps hull facets REGULAR
         for tracked in self._sets():
             if self.alpha is None:

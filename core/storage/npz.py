@@ -19,6 +19,7 @@ from typing import BinaryIO
 import numpy as np
 
 from core.errors import FileFormatError
+from core.storage.memory import available_memory
 
 MAX_DEFLATE_RATIO = 1100  # deflate expands at most ~1032:1; beyond that a size is a lie
 _LOCAL_HEADER = struct.Struct("<4s5H3L2H")  # a zip member's local header (30 bytes)
@@ -54,6 +55,19 @@ def _check_member(zf: zipfile.ZipFile, info: zipfile.ZipInfo, archive_bytes: int
     return _Member(info, shape, fortran, dtype, header_bytes)
 
 
+def _check_total(members: list[_Member], archive_bytes: int, path: Path) -> None:
+    """The members hold no more bytes than the file (members that overlap are a zip bomb:
+    each within its ratio, together thousands of times the file), and their arrays fit in
+    the memory this process may still take."""
+    if sum(m.info.compress_size for m in members) > archive_bytes:
+        raise _bad(path, "its members overlap")
+    total = sum(m.info.file_size for m in members)
+    room = available_memory()
+    if total > room:
+        raise _bad(path, f"its arrays would take {total / 1e9:.3g} GB of memory; "
+                         f"{room / 1e9:.3g} GB is available")
+
+
 @dataclass(frozen=True)
 class _Member:
     """An archive member and what its .npy header declares."""
@@ -86,7 +100,15 @@ def _read_stored(fh: BinaryIO, member: _Member, path: Path) -> np.ndarray:
     return out.T if member.fortran else out
 
 
-def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> dict[str, np.ndarray]:
+class Arrays(dict):
+    """An archive's arrays by name; `crcs`: the CRC-32 the archive records for each member
+    (by member name, "points.npy"), checked against the bytes read unless the read was
+    trusted (core.storage.checksums compares them with the ones written last)."""
+
+    crcs: dict[str, int]
+
+
+def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> Arrays:
     """Every array of the archive at `path` by name, after checking the declared sizes.
 
     FileFormatError (naming the file) for a missing, broken or lying archive. `trusted`: a
@@ -101,17 +123,24 @@ def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> dict[str, np.
             with zipfile.ZipFile(fh) as zf:
                 members = [_check_member(zf, info, archive_bytes, path)
                            for info in zf.infolist()]
+            _check_total(members, archive_bytes, path)
+            out = Arrays()
+            out.crcs = {m.info.filename: m.info.CRC for m in members}
             if trusted and all(m.info.compress_type == zipfile.ZIP_STORED
                                and m.info.compress_size == m.info.file_size for m in members):
-                return {m.name: _read_stored(fh, m, path) for m in members}
+                out.update((m.name, _read_stored(fh, m, path)) for m in members)
+                return out
             fh.seek(0)
             data = np.load(fh, allow_pickle=False)
             if not isinstance(data, np.lib.npyio.NpzFile):
                 raise ValueError("a single array, not an archive")
             with data:
-                return {name: data[name] for name in data.files}
+                out.update((name, data[name]) for name in data.files)
+            return out
     except FileNotFoundError:
         raise FileFormatError(f"{path}: no such file") from None
+    except MemoryError:
+        raise _bad(path, "too large to read into the memory available") from None
     except FileFormatError:
         raise
     except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError, SyntaxError,

@@ -1,11 +1,12 @@
 """Saving and loading interval tables as .npz (no pickles), with atomic writes.
 
-Layout (format "alphascoop-table", version 1): `points` (m, dim) float64, `input_index` (n,)
-int64, `dim`, `ambient_dim`, optional `frame_origin` (3,) / `frame_basis` (2, 3); for each
-k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter, `enter_k`/`regular_k`/`interior_k`
-(n_k,) float64 radii (inf = never), `face_ids_k` (n_k, k+1) int32 for k >= 1; `facet_cells`
-(f, 2) int32 (-1 = outside), `facet_flip` (f,) bool, `cell_measure` (c,) float64,
-`facet_interior_order` (f,) int32 (facet rows by ascending interior).
+Layout (format "alphascoop-table", version 2; version 1 lacks `checksums`): `points` (m, dim)
+float64, `input_index` (n,) int64, `dim`, `ambient_dim`, optional `frame_origin` (3,) /
+`frame_basis` (2, 3); for each k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter,
+`enter_k`/`regular_k`/`interior_k` (n_k,) float64 radii (inf = never), `face_ids_k`
+(n_k, k+1) int32 for k >= 1; `facet_cells` (f, 2) int32 (-1 = outside), `facet_flip` (f,)
+bool, `cell_measure` (c,) float64, `facet_interior_order` (f,) int32 (facet rows by
+ascending interior).
 
 Weighted tables (tables without it are classic, so older files load unchanged) add `weights`
 (m,) float64 squared radii aligned with `points`; their values are signed radii and
@@ -23,6 +24,10 @@ scalar for every other BuildInfo field.
 
 Optional, for a table built in a mode (core/modes/alpha_modes.py; absent = classic): `mode_density`
 (int, 0 = off), `mode_combine` (str), `mode_anisotropy` (float), `mode_normals` (str).
+
+Last, `checksums` (core/storage/checksums.py): the CRC-32 of every other member as written. A
+file of version 2 whose arrays do not match them is damaged (a FileFormatError naming the
+array); version 1 files, which have none, rely on the array checks alone.
 """
 
 from __future__ import annotations
@@ -50,13 +55,16 @@ from core.storage.checks import (
     check_table,
     scalar,
 )
+from core.storage.checksums import problem as checksum_problem
+from core.storage.checksums import write_npz
 from core.storage.mapped import map_arrays, write_arrays
 from core.storage.npz import read_npz
 from core.topology.betti import Topology, ascending
 from core.topology.opening import opening_alpha_of
 from core.topology.signatures import Signatures, level_columns
 
-FORMAT, VERSION = "alphascoop-table", 1
+FORMAT, VERSION = "alphascoop-table", 2
+VERSIONS = ("1", "2")  # what `load` reads: version 1 has no checksums
 
 
 class Saveable(Protocol):
@@ -207,7 +215,7 @@ def _build_info(a: dict[str, np.ndarray], path: Path) -> BuildInfo:
 
 def save(ac: Saveable, path: str | os.PathLike) -> None:
     """Write `ac` to `path` (.npz) atomically."""
-    atomic_write(path, lambda handle: np.savez(handle, **_arrays(ac)))
+    atomic_write(path, lambda handle: write_npz(handle, _arrays(ac)))
 
 
 def save_mapped(ac: Saveable, folder: str | os.PathLike) -> bool:
@@ -225,8 +233,17 @@ def _read(path: Path, trusted: bool = False) -> dict[str, np.ndarray]:
     check = Checker(path)
     check.that(str(arrays.get("format", "")) == FORMAT, "missing format tag")
     check.that(arrays.get("version", np.array(-1)).shape == ()
-               and str(arrays.get("version")) == str(VERSION), "unknown version")
+               and str(arrays.get("version")) in VERSIONS, "unknown version")
     return arrays
+
+
+def _check_sums(check: Checker, arrays: dict[str, np.ndarray]) -> None:
+    """A version-2 archive's arrays are the ones written (their CRCs, checked against the
+    bytes read, match the checksums written last); folders and version-1 files have none."""
+    crcs = getattr(arrays, "crcs", None)
+    if crcs is not None and str(arrays["version"]) != "1":
+        found = checksum_problem(arrays, crcs)
+        check.that(found is None, str(found))
 
 
 def load(path: str | os.PathLike, *, verify: bool = True,
@@ -266,8 +283,10 @@ def load(path: str | os.PathLike, *, verify: bool = True,
             index = TableIndex(table, "weights" in a, spectrum)
         topology, signatures = (_derived(index, len(a["points"]), a, check) if saved
                                 else (None, None))
+        mode, build_info = _mode(a, path), _build_info(a, path)
+        if verify:  # last: the checks above name what is wrong more precisely
+            _check_sums(check, a)
         return Saved(a["points"], a["input_index"], index, frame, int(a["ambient_dim"]),
-                     _mode(a, path), a.get("weights"), _build_info(a, path), topology,
-                     signatures)
+                     mode, a.get("weights"), build_info, topology, signatures)
     except KeyError as exc:
         raise check.error(f"missing {exc}") from None

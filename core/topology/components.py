@@ -18,7 +18,7 @@ def solid_labels(ac, alpha: float) -> np.ndarray:
     """(c,) int64 component of each cell in the complex at alpha (cells are the first c rows
     of simplices(dim), sorted by enter). Label 0 is the largest component (by cell count),
     1 the next, and so on; ties go to the component whose first cell entered first."""
-    alpha = radius(alpha)
+    alpha = radius(alpha, ac.weights is not None)
     count = int(np.searchsorted(ac.intervals(ac.dim)[:, 0], alpha, side="right"))
     if count == 0:
         return np.zeros(0, dtype=np.int64)
