@@ -212,7 +212,7 @@ def quick_alpha(ac: AlphaComplex) -> float:
     alpha whose triangles join 99 % of the points, core.topology.opening), which needs only the
     table. ac.default_alpha() is the same value unless CGAL's optimal alpha, known with the
     topology, is smaller."""
-    return float(opening_alpha_of(ac.index, len(ac.points)))
+    return float(opening_alpha_of(ac.index, ac.points))
 
 
 def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> Dataset:
