@@ -186,7 +186,8 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
         optimal_alpha=None, default_alpha=alpha,
         signatures=None, n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
-        source=obtained.source, entry=obtained.entry, frame=frame_for(path, pointset.report),
+        source=obtained.source, entry=obtained.entry,
+        frame=frame_for(path, pointset.report, pointset.points),
         molecule=molecule, atomic_numbers=numbers, atom_labels=labels,
         attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )

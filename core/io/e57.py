@@ -11,6 +11,7 @@ from core.errors import FileFormatError
 from core.io.problems import unreadable
 from core.io.report import Skipped
 from core.io.sizes import check_memory
+from core.io.view_hint import pose_hint
 
 CARTESIAN = ("cartesianX", "cartesianY", "cartesianZ")
 SPHERICAL = ("sphericalRange", "sphericalAzimuth", "sphericalElevation")
@@ -85,9 +86,9 @@ def _colours(header, raw: dict) -> np.ndarray:
     return np.column_stack(out).astype(np.uint8)
 
 
-def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]:
+def _scan(e57, index: int, path: Path) -> tuple:
     """(valid points with the scan's pose applied, attributes, (3,) int64 records in each
-    invalid state 0..2 (0: none left out)) of one scan."""
+    invalid state 0..2 (0: none left out), the pose's ViewHint or None) of one scan."""
     header = e57.get_header(index)
     fields = set(header.point_fields)
     system = CARTESIAN if fields.issuperset(CARTESIAN) else SPHERICAL
@@ -109,7 +110,8 @@ def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray
         attrs["intensity"] = raw["intensity"]
     if fields.issuperset(COLOURS):
         attrs["colors"] = _colours(header, raw)
-    return points[valid], {k: v[valid] for k, v in attrs.items()}, invalid
+    hint = pose_hint(header.rotation_matrix) if header.has_pose() else None
+    return points[valid], {k: v[valid] for k, v in attrs.items()}, invalid, hint
 
 
 def read_e57(path: Path, columns=None, *, scan: int | None = None) -> tuple:
@@ -137,4 +139,5 @@ def read_e57(path: Path, columns=None, *, scan: int | None = None) -> tuple:
     invalid = sum(p[2] for p in parts)
     skipped = [Skipped(int(invalid[state]), reason) for state, reason in INVALID_REASONS.items()
                if invalid[state]]
-    return points, attrs, (*notes, *skipped)
+    hints = [p[3] for p in parts if p[3] is not None][:1]  # the first scan with a pose
+    return points, attrs, (*notes, *skipped, *hints)

@@ -14,6 +14,7 @@ from core.build.points import clearly_spread, first_too_large, flatness, too_lar
 from core.errors import FileFormatError
 from core.geometry.georef import Georef
 from core.io.subsample import first_unique, subsample_indices
+from core.io.view_hint import ViewHint
 from core.parallel import both
 from core.tolerances import FLAT_RTOL
 
@@ -54,6 +55,8 @@ class LoadReport:
     weights_from: str | None = None  # where the weights (squared radii) came from; None: none
     #: records the reader left out before these counts (in n_read too), with their reasons
     skipped: tuple[Skipped, ...] = ()
+    #: which way is up (and forward) where the file says it (core.io.view_hint), else None
+    view: ViewHint | None = None
 
     def to_dict(self) -> dict:
         """Plain JSON-ready dict (lists instead of tuples)."""
@@ -178,6 +181,7 @@ def finish(
     georef: Georef | None = None,
     weights_from: str | None = None,
     skipped: tuple[Skipped, ...] = (),
+    view: ViewHint | None = None,
 ) -> PointSet:
     """Drop non-finite rows, merge duplicates, subsample, and measure: the common reader tail
     (`skipped`: records the reader left out, counted in the records read)."""
@@ -222,6 +226,7 @@ def finish(
         georef=georef,
         weights_from=weights_from,
         skipped=tuple(skipped),
+        view=view,
     )
     return PointSet(
         points=contiguous_readonly(points),
