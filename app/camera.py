@@ -28,6 +28,9 @@ PRESETS = ("top", "front", "side", "iso")  # the View menu's
 OPENING = "thinnest"  # the preset a dataset opens with when its thinnest axis is known
 PCA_SAMPLE = 100_000  # points used to find the principal axes
 ALONG = 0.95  # |cos| above which two directions count as the same line
+#: The thinnest axis counts only when the points spread along it less than this share of
+#: their spread along the next one (a cube has none: it opens with the iso preset).
+DISTINCT = 0.9
 
 
 @dataclass(frozen=True)
@@ -89,14 +92,14 @@ Y_UP = ViewFrame(up=(0.0, 1.0, 0.0), front=(0.0, 0.0, -1.0))
 def thinnest_axis(points: np.ndarray) -> tuple[float, float, float] | None:
     """(3,) unit direction in which the (n, 3) points spread least (the last right singular
     vector of the centred points, on an even sample of PCA_SAMPLE); None for 2D points, fewer
-    than 3 points, or no spread."""
+    than 3 points, no spread, or no distinctly thinnest direction (DISTINCT)."""
     points = np.asarray(points, dtype=np.float64)
     if points.ndim != 2 or points.shape[1] != 3 or len(points) < 3:
         return None
     sample = points[:: max(1, len(points) // PCA_SAMPLE)]
     centred = sample - sample.mean(axis=0)
     _, spread, axes = np.linalg.svd(centred, full_matrices=False)
-    if not np.all(np.isfinite(spread)) or spread[0] == 0:
+    if not np.all(np.isfinite(spread)) or spread[0] == 0 or spread[2] >= DISTINCT * spread[1]:
         return None
     return tuple(float(c) for c in axes[-1])
 
@@ -113,7 +116,8 @@ def up_frame(path: Path, report) -> ViewFrame | None:
         base = Z_UP if abs(up[2]) >= abs(up[1]) else Y_UP
         front = np.asarray(base.front, dtype=float)
         front = front - (front @ up) * up  # across the file's up
-        return ViewFrame(up=tuple(hint.up), front=tuple(front / np.linalg.norm(front)))
+        return ViewFrame(up=tuple(hint.up),
+                         front=tuple(float(c) for c in front / np.linalg.norm(front)))
     suffix = Path(path).suffix.lower()
     if suffix == ".e57":
         return None

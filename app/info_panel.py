@@ -11,7 +11,7 @@ import html
 
 import numpy as np
 from PySide6.QtCore import QSize, Qt
-from PySide6.QtWidgets import QLabel, QSizePolicy, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QFrame, QLabel, QScrollArea, QSizePolicy, QVBoxLayout, QWidget
 
 from app.model import ExplorerModel
 from app.numbers import coordinate, plural, quantity, with_unit
@@ -175,15 +175,27 @@ class InfoPanel(QWidget):
         self.model = model
         self.data = QLabel("No data yet: File → Open, or drop a file on the window.")
         self.shape = QLabel()
-        column = QVBoxLayout(self)
+        # the text scrolls when the dock is short, so wrapped lines are never drawn over
+        scroll = QScrollArea(self)
+        scroll.setWidgetResizable(True)
+        scroll.setFrameShape(QFrame.Shape.NoFrame)
+        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        inner = QWidget()
+        column = QVBoxLayout(inner)
+        column.setContentsMargins(0, 0, 0, 0)
         for label in (self.data, self.shape):
             label.setTextFormat(Qt.TextFormat.RichText)
             label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
             label.setWordWrap(True)
-            # the text never asks for width: the dock keeps its own (sizeHint below)
-            label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
+            # the text never asks for width: the dock keeps its own (sizeHint below); its
+            # wrapped lines keep their height
+            label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Minimum)
             column.addWidget(label)
         column.addStretch(1)
+        scroll.setWidget(inner)
+        outer = QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        outer.addWidget(scroll)
         model.datasetChanged.connect(self.show_data)
         model.alphaChanged.connect(self.show_shape)
         model.topologyChanged.connect(self.show_data)

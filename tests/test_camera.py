@@ -136,3 +136,11 @@ def test_a_pcd_scan_keeps_the_sensor_up() -> None:
     """milk.pcd (VIEWPOINT identity: y down) opens with -y up, seen from the sensor's side."""
     look, up, _ = opening_view(DATA / "milk.pcd")
     assert up[1] < -0.8 and look[2] > 0.5
+
+
+@pytest.mark.parametrize("name", ["ply/pcl_cube.ply", "gltf/trimesh_cube.glb"])
+def test_a_cube_has_no_thinnest_axis_and_opens_iso(name) -> None:
+    """A cube spreads alike along every axis: it opens with the iso preset (seen along an
+    arbitrary axis it was a square)."""
+    ps = read_points(CORPUS / name)
+    assert frame_for(CORPUS / name, ps.report, ps.points).start == "iso"
