@@ -229,9 +229,9 @@ def window_backend() -> str | None:
 
 def quick_alpha(ac: AlphaComplex) -> float:
     """Where a view opens before the topology is known: the opening rule alone (the smallest
-    alpha whose triangles join 99 % of the points, core.topology.opening), which needs only the
-    table. ac.default_alpha() is the same value unless CGAL's optimal alpha, known with the
-    topology, is smaller."""
+    alpha whose triangles put 99 % of the points in pieces, at most 5 point spacings:
+    core.topology.opening), which needs only the table. ac.default_alpha() is the same value
+    unless CGAL's optimal alpha, known with the topology, is smaller."""
     return float(opening_alpha_of(ac.index, ac.points))
 
 
