@@ -299,6 +299,11 @@ def _alpha_text(alpha: float, alpha2: float | None) -> str:
     return f"alpha² {alpha2:.6g}" + (f" (alpha {alpha:.6g})" if alpha >= 0 else "")
 
 
+def _pieces_line(info: dict) -> str:
+    """'pieces      5 pieces of 41+ points hold 99 % of the points; ...' at the opening."""
+    return f"pieces      {info['opening_pieces_text']} at the opening alpha"
+
+
 def _spacings(info: dict) -> str:
     """', 1.81 spacings' (the opening alpha in median nearest-neighbour spacings), or ''."""
     value = info.get("opening_spacings")
@@ -337,14 +342,15 @@ def _text(info: dict, lines: list[str]) -> str:
             f"opening     {_alpha_text(info['default_alpha'], info['default_alpha2'])}"
             + (" (the union of the balls: what the measures below are of)" if "molecule"
                in info else " (the shape looks like the object)"),
+            _pieces_line(info),
             f"at          {_alpha_text(info['alpha'], info['alpha2'])}"]
     else:
         lines += [
             f"optimal     alpha {info['optimal_alpha']:.6g} (every point in one solid)",
             f"opening     alpha {info['default_alpha']:.6g}{_spacings(info)} (the shape looks "
             "like the object)",
+            _pieces_line(info),
             f"at alpha    {info['alpha']:.6g}"]
-    lines.append(f"pieces      {info['opening_pieces_text']} (at the opening alpha)")
     lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))
     if info.get("units") == "m":
         unit = "m²" if measure == "area" else "m³"
