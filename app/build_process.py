@@ -261,7 +261,7 @@ def build_in_child(source: str, target: str, job: BuildJob, progress: Progress,
         opening: list[float] = []
         orders: list[CursorOrders] = []
         # numpy's sorts and the file's writes leave the GIL: these run beside the writes
-        finder = (_beside(lambda: opening.append(opening_alpha_of(ac.index, len(ac.points))),
+        finder = (_beside(lambda: opening.append(opening_alpha_of(ac.index, ac.points)),
                           "alphascoop-opening") if not request.signatures else lambda: None)
         sorter = _beside(lambda: orders.append(_orders_and_spectrum(ac)), "alphascoop-orders")
         shared = job.shared

@@ -98,7 +98,8 @@ def build_parser() -> Parser:
     choice.add_argument("--alpha2", type=squared_radius, metavar="A2",
                         help="squared alpha (may be negative for weighted points)")
     choice.add_argument("--optimal", type=count, nargs="?", const=1, metavar="K",
-                        help="optimal alpha for at most K solid components (default)")
+                        help="optimal alpha for at most K solid components (default: the "
+                        "opening alpha, as info and the window; alpha² 0 for a molecule)")
     split = export.add_mutually_exclusive_group()
     split.add_argument("--no-manifold", dest="manifold", action="store_false",
                        help="keep the raw boundary (3D surfaces are split where the shape "
@@ -143,7 +144,8 @@ def load(args) -> tuple:
     update, close = _progress()
     start = time.perf_counter()
     try:
-        # Where the optimal alpha is needed, the topology is cached with the table too.
+        # Where the optimal or opening alpha is needed, the topology is cached with the
+        # table too.
         needs_topology = args.command == "info" or chosen_alpha(args) is None
         obtained = obtain(ps.points, weights=ps.weights, mode=mode, normals=normals,
                           signatures=needs_topology and not getattr(args, "table", False),
@@ -261,13 +263,22 @@ def chosen_alpha(args) -> dict | None:
     return None
 
 
-def summary(ps, obtained, seconds: float, at: dict | None) -> dict:
+def opening_alpha(ac, molecule: bool) -> float:
+    """Where the window opens and what `export` writes by default: alpha² = 0 for a molecule
+    (the union of its balls: the solvent-accessible surface, what its measures are of), else
+    the opening alpha (ac.default_alpha())."""
+    return 0.0 if molecule else float(ac.default_alpha())
+
+
+def summary(ps, obtained, seconds: float, at: dict | None, molecule: bool = False) -> dict:
     """Everything `info` reports, as a JSON-ready dict (`obtained`: core.obtain's result;
-    `at`: chosen_alpha's result, None: the opening alpha)."""
+    `at`: chosen_alpha's result, None: the opening alpha; `molecule`: opens at alpha² = 0)."""
     from core.complex import at_value
+    from core.topology.pieces import pieces_at
 
     ac = obtained.complex
-    optimal, opening = float(ac.optimal_alpha()), float(ac.default_alpha())
+    optimal, opening = float(ac.optimal_alpha()), opening_alpha(ac, molecule)
+    pieces = pieces_at(ac.index, ac.points, opening)
     shape = ac.shape(**(at or at_value(opening)))
     alpha = shape.alpha
     spectrum = np.asarray(ac.spectrum())
@@ -296,6 +307,9 @@ def summary(ps, obtained, seconds: float, at: dict | None) -> dict:
         "optimal_alpha2": _sq(optimal),
         "default_alpha": opening,
         "default_alpha2": _sq(opening),
+        "opening_spacings": pieces.spacings,
+        "opening_pieces": pieces.to_dict(),
+        "opening_pieces_text": pieces.line(),
         "alpha": alpha,
         "alpha2": shape.alpha2 if np.isfinite(shape.alpha2) else None,
         "betti": [int(b) for b in ac.betti(alpha2=shape.alpha2)],
@@ -315,6 +329,17 @@ def _sq(value: float) -> float | None:
 def _alpha_text(alpha: float, alpha2: float | None) -> str:
     """'alpha² A2 (alpha R)' for weighted sets (no radius below zero)."""
     return f"alpha² {alpha2:.6g}" + (f" (alpha {alpha:.6g})" if alpha >= 0 else "")
+
+
+def _pieces_line(info: dict) -> str:
+    """'pieces      5 pieces of 41+ points hold 99 % of the points; ...' at the opening."""
+    return f"pieces      {info['opening_pieces_text']} at the opening alpha"
+
+
+def _spacings(info: dict) -> str:
+    """', 1.81 spacings' (the opening alpha in median nearest-neighbour spacings), or ''."""
+    value = info.get("opening_spacings")
+    return f", {value:.3g} spacings" if value is not None else ""
 
 
 def _geographic(ps, ac, shape) -> dict:
@@ -347,12 +372,16 @@ def _text(info: dict, lines: list[str]) -> str:
             f"optimal     {_alpha_text(info['optimal_alpha'], info['optimal_alpha2'])}"
             " (every point in one solid)",
             f"opening     {_alpha_text(info['default_alpha'], info['default_alpha2'])}"
-            " (the shape looks like the object)",
+            + (" (the union of the balls: what the measures below are of)" if "molecule"
+               in info else " (the shape looks like the object)"),
+            _pieces_line(info),
             f"at          {_alpha_text(info['alpha'], info['alpha2'])}"]
     else:
         lines += [
             f"optimal     alpha {info['optimal_alpha']:.6g} (every point in one solid)",
-            f"opening     alpha {info['default_alpha']:.6g} (the shape looks like the object)",
+            f"opening     alpha {info['default_alpha']:.6g}{_spacings(info)} (the shape looks "
+            "like the object)",
+            _pieces_line(info),
             f"at alpha    {info['alpha']:.6g}"]
     lines.append("betti       " + " ".join(f"b{i} {b}" for i, b in enumerate(info["betti"])))
     if info.get("units") == "m":
@@ -360,6 +389,10 @@ def _text(info: dict, lines: list[str]) -> str:
         lines.append(f"{f'{measure} ({unit})':<12}{info[measure]:.6g} in the projection"
                      + (f", {info['area_m2']:.6g} on the WGS 84 ellipsoid (perimeter "
                         f"{info['perimeter_m']:.6g} m)" if "area_m2" in info else ""))
+    elif "molecule" in info:
+        unit = "Å²" if measure == "area" else "Å³"
+        lines.append(f"{f'{measure} ({unit})':<12}{info[measure]:.6g} of the cells (the "
+                     "balls' exact figures: below)")
     else:
         lines.append(f"{measure:<12}{info[measure]:.6g}")
     lines.append(f"{'classes':<12}" + "".join(f"{c:>10}" for c in CLASSES))
@@ -372,7 +405,7 @@ def cmd_info(args) -> int:
     """Print the load report and the shape summary (and a molecule's measures)."""
     ps, obtained, seconds = load(args)
     ac = obtained.complex
-    info = summary(ps, obtained, seconds, chosen_alpha(args))
+    info = summary(ps, obtained, seconds, chosen_alpha(args), molecule=is_molecule(args))
     if is_molecule(args):
         from core.io.molecule import read_molecule
 
@@ -412,7 +445,8 @@ def cmd_export(args) -> int:
         return 0
     from core.complex import at_value
 
-    at = chosen_alpha(args) or at_value(ac.optimal_alpha(args.optimal or 1))
+    at = chosen_alpha(args) or at_value(ac.optimal_alpha(args.optimal) if args.optimal
+                                        else opening_alpha(ac, is_molecule(args)))
     report = write_shape(ac, at.get("alpha"), args.output, alpha2=at.get("alpha2"),
                          manifold=args.manifold, sidecar=args.sidecar, source=args.file,
                          georef=ps.report.georef, point_data=_molecule_point_data(args, ac))

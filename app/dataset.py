@@ -26,6 +26,7 @@ from core.progress import Progress
 from core.query.cursor import ShapeCursor
 from core.topology.opening import opening_alpha_of
 from core.topology.persistence import Persistence
+from core.topology.pieces import Pieces, pieces_at
 from core.topology.signatures import Signatures
 from core.topology.suggest import AlphaRange
 
@@ -77,6 +78,9 @@ class Dataset:
     #: The topology process the window started for this table while it loaded it
     #: (app.worker), until the topology job takes it over; None once the topology is known.
     topology_child: TopologyChild | None = None
+    #: The pieces the triangles make at the opening alpha (found with the topology, off the
+    #: GUI thread; None before).
+    opening_pieces: Pieces | None = None
 
     @property
     def has_topology(self) -> bool:
@@ -85,8 +89,10 @@ class Dataset:
 
     @property
     def unit(self) -> str | None:
-        """The length unit the file declares ('m' for geographic data projected to metres),
-        None when unknown."""
+        """The length unit the file declares ('m' for geographic data projected to metres, 'Å'
+        for a molecule), None when unknown."""
+        if self.molecule is not None:
+            return "Å"
         return "m" if self.report is not None and self.report.georef is not None else None
 
     @property
@@ -179,11 +185,12 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     cursor = handed.cursor or ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     dataset = Dataset(
-        path=path, ac=ac, spectrum=ac.spectrum(), optimal_alpha=None, default_alpha=alpha,
+        path=path, ac=ac, spectrum=spectrum_of(ac, molecule is not None),
+        optimal_alpha=None, default_alpha=alpha,
         signatures=None, n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
         source=obtained.source, entry=obtained.entry, damage=obtained.damage,
-        frame=frame_for(path, pointset.report),
+        frame=frame_for(path, pointset.report, pointset.points),
         molecule=molecule, atomic_numbers=numbers, atom_labels=labels,
         attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
     )
@@ -191,6 +198,18 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
         dataset = with_topology(dataset)
     progress(1.0, "done")
     return dataset
+
+
+def spectrum_of(ac: AlphaComplex, molecule: bool) -> np.ndarray:
+    """(s,) float64 the values the slider stands on: the complex's critical values, and for
+    a molecule alpha² = 0 too (where it opens and its measures are; the shape there is the
+    one at the critical value below). Read-only."""
+    spectrum = ac.spectrum()
+    if not molecule or np.any(spectrum == 0.0):
+        return spectrum
+    spectrum = np.insert(spectrum, np.searchsorted(spectrum, 0.0), 0.0)
+    spectrum.flags.writeable = False
+    return spectrum
 
 
 def window_backend() -> str | None:
@@ -213,10 +232,10 @@ def window_backend() -> str | None:
 
 def quick_alpha(ac: AlphaComplex) -> float:
     """Where a view opens before the topology is known: the opening rule alone (the smallest
-    alpha whose triangles join 99 % of the points, core.topology.opening), which needs only the
-    table. ac.default_alpha() is the same value unless CGAL's optimal alpha, known with the
-    topology, is smaller."""
-    return float(opening_alpha_of(ac.index, len(ac.points)))
+    alpha whose triangles put 99 % of the points in pieces, at most 5 point spacings:
+    core.topology.opening), which needs only the table. ac.default_alpha() is the same value
+    unless CGAL's optimal alpha, known with the topology, is smaller."""
+    return float(opening_alpha_of(ac.index, ac.points))
 
 
 def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> Dataset:
@@ -256,6 +275,7 @@ def _completed(dataset: Dataset, ac: AlphaComplex, optimal: float, default: floa
     ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
     return replace(dataset, ac=ac, signatures=ac.signatures(), optimal_alpha=float(optimal),
                    default_alpha=float(default), persistence=persistence,
+                   opening_pieces=pieces_at(ac.index, ac.points, default),
                    suggestions=ac.suggest_alphas(N_SUGGESTIONS), entry=entry,
                    topology_seconds=seconds, topology_child=None)
 

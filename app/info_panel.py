@@ -11,7 +11,7 @@ import html
 
 import numpy as np
 from PySide6.QtCore import QSize, Qt
-from PySide6.QtWidgets import QLabel, QSizePolicy, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QFrame, QLabel, QScrollArea, QSizePolicy, QVBoxLayout, QWidget
 
 from app.model import ExplorerModel
 from app.numbers import coordinate, plural, quantity, with_unit
@@ -25,11 +25,14 @@ def data_lines(model: ExplorerModel) -> list[str]:
     """Lines describing the dataset: file, point counts, extent, spacing, dimension, timings."""
     ds = model.dataset
     ac = ds.ac
-    lines = [f"<b>{html.escape(ds.path.name)}</b>",
-             f"{plural(ds.n_input, 'point')} read, {len(ac.points):,} used"]
     report = ds.report
-    if report is not None and getattr(report, "n_duplicates", 0):
-        lines.append(f"{plural(report.n_duplicates, 'duplicate')} merged")
+    lines = [f"<b>{breakable(ds.path.name)}</b>"]
+    if report is not None:  # the counts `alphascoop info` prints, in the same words
+        lines.append(html.escape(report.count_line()))
+        if len(ac.points) != report.n_points:
+            lines.append(f"{len(ac.points):,} used as vertices")
+    else:
+        lines.append(f"{plural(ds.n_input, 'point')} read, {len(ac.points):,} used")
     if report is not None:
         lines.extend(box_lines(report.bbox, ds.unit))
     if report is not None and getattr(report, "spacing", 0):
@@ -41,11 +44,48 @@ def data_lines(model: ExplorerModel) -> list[str]:
     lines.append(f"alpha mode: {html.escape(ac.mode.describe())}")
     lines.append(f"build: {html.escape(ac.build_info.describe())}")
     if ac.weights is not None:
-        source = getattr(report, "weights_from", None) or "given weights"
-        hidden = int((np.asarray(ac.input_index) < 0).sum())
-        lines.append(f"weighted: {html.escape(source)}; {plural(hidden, 'hidden point')}")
+        lines.append(weights_line(ds))
+    if ds.opening_pieces is not None:
+        lines.append(opening_line(ds))
     lines.append(f"read in {ds.load_seconds:.2f} s, {ds.build_line()}, {ds.topology_line()}")
     return lines + molecule_lines(model)
+
+
+def weights_line(ds) -> str:
+    """What the balls' radii are: a molecule's atoms (Bondi van der Waals radii + the probe),
+    else where the weights came from; and how many balls are hidden (none: not said)."""
+    if ds.molecule is not None:
+        text = (f"atoms as balls: van der Waals radii (Bondi) + probe {ds.molecule.probe:g} Å")
+    else:
+        text = f"weighted: {getattr(ds.report, 'weights_from', None) or 'given weights'}"
+    hidden = int((np.asarray(ds.ac.input_index) < 0).sum())
+    if hidden:
+        text += f"; {plural(hidden, 'hidden point')} (their ball adds nothing)"
+    return html.escape(text)
+
+
+def opening_line(ds) -> str:
+    """Where the view opened and the pieces there: 'opens at 1.81 spacings: 5 pieces of 41+
+    points hold 99 % of the points; the largest 88 %, 7.9 %, 2.2 %'."""
+    pieces = ds.opening_pieces
+    if ds.molecule is not None:
+        where = "opens at alpha² 0 (the union of the balls)"
+    elif pieces.spacings is not None:
+        where = f"opens at {pieces.spacings:.3g} spacings"
+    else:
+        where = "opens"
+    return html.escape(f"{where}: {pieces.line()}")
+
+
+def breakable(text: str) -> str:
+    """text escaped for the dock; a name longer than the dock is wide gets a break
+    opportunity after each '_', '.', '-' and '/', so it wraps instead of being cut off."""
+    out = html.escape(text)
+    if len(text) < WIDTH_CHARACTERS - 4:
+        return out
+    for mark in "_.-/":
+        out = out.replace(mark, mark + "\u200b")
+    return out
 
 
 def molecule_lines(model: ExplorerModel) -> list[str]:
@@ -57,7 +97,7 @@ def molecule_lines(model: ExplorerModel) -> list[str]:
                                                                 else "")
     return [f"<b>molecule</b>, probe {m.probe:g} Å (at alpha² 0)",
             f"surface area {m.surface_area:,.2f} Å² (exact)",
-            f"volume {m.volume:,.2f} Å³ (exact)",
+            f"volume {m.volume:,.2f} Å³ (exact, union of balls)",
             f"{len(m.cavities)} cavities" + (f": {cavities} Å³" if cavities else ""),
             f"{len(m.pockets)} pockets" + (f", largest {m.pockets.volume[0]:.3g} Å³"
                                            if len(m.pockets) else "")]
@@ -113,14 +153,16 @@ def shape_lines(model: ExplorerModel) -> list[str]:
              f"{plural(cells, 'cell')}, {plural(facets, 'boundary facet')}",
              f"singular (points, edges{', triangles' if dim == 3 else ''}): "
              + ", ".join(f"{n:,}" for n in singular)]
-    betti = sig.betti[model.index]
+    row = max(sig.index(model.alpha), 0)  # the slider may stand between critical values
+    betti = sig.betti[row]
     lines.append(", ".join(plural(int(b), n) for b, n in zip(betti, BETTI_NAMES[dim],
                                                               strict=True)))
-    boundary, measure = (float(v[model.index]) for v in (sig.boundary_measure, sig.measure))
+    boundary, measure = (float(v[row]) for v in (sig.boundary_measure, sig.measure))
+    cells = " of the cells (the balls' exact figures: above)" if model.dataset.molecule else ""
     lines.append(f"{'perimeter' if dim == 2 else 'area'} "
-                 f"{with_unit(quantity(boundary, 6), unit, dim - 1)}")
+                 f"{with_unit(quantity(boundary, 6), unit, dim - 1)}{cells}")
     lines.append(f"{'area' if dim == 2 else 'volume'} "
-                 f"{with_unit(quantity(measure, 6), unit, dim)}")
+                 f"{with_unit(quantity(measure, 6), unit, dim)}{cells}")
     return lines
 
 
@@ -133,15 +175,27 @@ class InfoPanel(QWidget):
         self.model = model
         self.data = QLabel("No data yet: File → Open, or drop a file on the window.")
         self.shape = QLabel()
-        column = QVBoxLayout(self)
+        # the text scrolls when the dock is short, so wrapped lines are never drawn over
+        scroll = QScrollArea(self)
+        scroll.setWidgetResizable(True)
+        scroll.setFrameShape(QFrame.Shape.NoFrame)
+        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        inner = QWidget()
+        column = QVBoxLayout(inner)
+        column.setContentsMargins(0, 0, 0, 0)
         for label in (self.data, self.shape):
             label.setTextFormat(Qt.TextFormat.RichText)
             label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
             label.setWordWrap(True)
-            # the text never asks for width: the dock keeps its own (sizeHint below)
-            label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
+            # the text never asks for width: the dock keeps its own (sizeHint below); its
+            # wrapped lines keep their height
+            label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Minimum)
             column.addWidget(label)
         column.addStretch(1)
+        scroll.setWidget(inner)
+        outer = QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        outer.addWidget(scroll)
         model.datasetChanged.connect(self.show_data)
         model.alphaChanged.connect(self.show_shape)
         model.topologyChanged.connect(self.show_data)

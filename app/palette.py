@@ -69,14 +69,18 @@ def cpk_rgb(atomic_numbers: np.ndarray) -> np.ndarray:
 MAX_BALLS = 20_000
 BALL_STYLE = LayerStyle(False, "#8fb8de", 0.5)
 
-#: 3D: the shape reads as one object. Its lower-dimensional parts (dangling edges, lone
-#: points) take the surface's colour; singular triangles are a highlight to switch on.
+#: Singular edges (sticks) and singular points (lone points) in colours of their own, in 2D
+#: and 3D: a sparse scan's dust is named by the legend, not mistaken for the surface.
+SINGULAR_EDGE_COLOUR, SINGULAR_POINT_COLOUR = "#f3a712", "#d65ac8"
+
+#: 3D: the surface, and its lower-dimensional parts (dangling edges, lone points) each in
+#: their own colour; singular triangles are a highlight to switch on.
 DEFAULT_STYLES = {
     "surface": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
     "singular_highlight": LayerStyle(False, CLASS_COLOURS["singular"], 1.0),
     "interior": LayerStyle(False, CLASS_COLOURS["interior"], 0.35),
-    "singular_edges": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
-    "singular_points": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
+    "singular_edges": LayerStyle(True, SINGULAR_EDGE_COLOUR, 1.0),
+    "singular_points": LayerStyle(True, SINGULAR_POINT_COLOUR, 1.0),
     "points": LayerStyle(False, "#c9d1d9", 1.0),
     "delaunay": LayerStyle(False, "#9aa5b1", 0.15),
 }
@@ -86,8 +90,8 @@ DEFAULT_STYLES = {
 DEFAULT_STYLES_2D = {
     "boundary": LayerStyle(True, CLASS_COLOURS["regular"], 1.0),
     "interior": LayerStyle(True, CLASS_COLOURS["interior"], 0.6),
-    "singular_edges": LayerStyle(True, "#f3a712", 1.0),
-    "singular_points": LayerStyle(True, "#d65ac8", 1.0),
+    "singular_edges": LayerStyle(True, SINGULAR_EDGE_COLOUR, 1.0),
+    "singular_points": LayerStyle(True, SINGULAR_POINT_COLOUR, 1.0),
     "points": DEFAULT_STYLES["points"],
     "delaunay": DEFAULT_STYLES["delaunay"],
 }

@@ -68,11 +68,13 @@ def persistence_of(dataset: Dataset) -> Persistence:
     return dataset.ac.persistence() if dataset.persistence is None else dataset.persistence
 
 
-def measure_names(dim: int) -> tuple[str, str]:
-    """Titles of the measure and boundary-measure plots, with units."""
+def measure_names(dim: int, unit: str | None = None) -> tuple[str, str]:
+    """Titles of the measure and boundary-measure plots, with the data's unit ('Å', 'm';
+    'units' when the file declares none)."""
+    unit = unit or "units"
     if dim == 2:
-        return "area (units²)", "perimeter (units)"
-    return "volume (units³)", "boundary area (units²)"
+        return f"area ({unit}²)", f"perimeter ({unit})"
+    return f"volume ({unit}³)", f"boundary area ({unit}²)"
 
 
 def value_line(sig, alpha: float) -> str:
@@ -183,7 +185,7 @@ class SignaturesPanel(QWidget):
             step.set_label(label)
         axes = self.figure.axes[:3]
         axes[0].legend(handles=self.steps[:n_betti], fontsize="x-small")
-        titles = measure_names(sig.dim)
+        titles = measure_names(sig.dim, self.model.dataset.unit)
         for ax, title in zip(axes[1:], titles, strict=True):
             ax.set_title(title, **TITLE_STYLE)
             ax.set_ylabel(title.split(" (")[1].rstrip(")"), fontsize="x-small")

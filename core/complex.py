@@ -247,8 +247,9 @@ class AlphaComplex:
     def default_alpha(self) -> float:
         """The alpha a view opens at: where the shape looks like the object (core.topology.opening).
 
-        The smallest alpha at which the triangles (surface and solid) join at least 99 % of the
-        points into one piece, and never more than `optimal_alpha()` (CGAL's rule for solids).
+        The smallest alpha at which the triangles (surface and solid) put at least 99 % of the
+        points in pieces of 0.1 % of them or more (a scene's objects stay apart), at most 5
+        median point spacings, and never more than `optimal_alpha()` (CGAL's rule for solids).
         Computed with the signatures and saved with them.
         """
         return min(self.signatures().opening_alpha, self.optimal_alpha())

@@ -79,10 +79,14 @@ class BuildInfo:
 
     def describe(self) -> str:
         """One line for people: "backend qhull" (every field that is not empty, name then
-        value)."""
-        return ", ".join(f"{name.replace('_', ' ')} {value}"
-                         for name, value in self.to_dict().items()
-                         if value != "" and (value != 0 or name not in _SAID_WHEN_SET))
+        value); the sentinel uncertified -1 is said in words, "not certified (weighted points
+        or an older table)", never printed as a number."""
+        fields = {name: value for name, value in self.to_dict().items()
+                  if value != "" and (value != 0 or name not in _SAID_WHEN_SET)}
+        if fields.get("uncertified", 0) < 0:
+            del fields["uncertified"]
+            fields["not_certified"] = "(weighted points or an older table)"
+        return ", ".join(f"{name.replace('_', ' ')} {value}" for name, value in fields.items())
 
     def to_arrays(self) -> dict[str, np.ndarray]:
         """The fields as 0-d arrays named `build_<field>` (for core/storage/tables.py)."""

@@ -114,7 +114,7 @@ def test_the_child_finds_the_quick_opening_alpha_while_it_saves(in_process):
     runner = build_process.ChildRunner(threading.Event())
     ac = obtain(points, runner=runner).complex
     assert not ac.has_signatures
-    assert runner.handed_over(ac).opening_alpha == opening_alpha_of(ac.index, len(points))
+    assert runner.handed_over(ac).opening_alpha == opening_alpha_of(ac.index, ac.points)
     assert runner.handed_over(ac).opening_alpha == AlphaComplex.from_points(
         points).default_alpha()
     with_signatures = build_process.ChildRunner(threading.Event())

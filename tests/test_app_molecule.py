@@ -28,13 +28,19 @@ def test_molecule_window(window, qtbot, recwarn):
     open_and_wait(qtbot, window, PDB)
     ds, model = window.model.dataset, window.model
     assert ds.molecule is not None and ds.molecule.atoms == 556
-    # opens on the dual of the union of balls (what it measures): the last critical alpha²
-    # at or below 0, where the complex is the one at alpha² = 0
+    # opens on the dual of the union of balls (what it measures): at alpha² = 0 itself (the
+    # slider stands there), the complex of the last critical alpha² at or below 0
+    assert model.alpha2 == 0.0
     critical = ds.ac.spectrum_sq()
-    assert model.alpha2 == pytest.approx(critical[np.searchsorted(critical, 0.0, "right") - 1])
+    below = critical[np.searchsorted(critical, 0.0, "right") - 1]
+    assert len(model.shape.cells) == len(ds.ac.shape(alpha2=below).cells)
     assert ds.molecule.surface_area == pytest.approx(4668.88, abs=0.01)
     text = window.info_panel.data.text()
-    assert "4,668.88 Å²" in text and "2 cavities" in text
+    assert "4,668.88 Å²" in text and "14,036.46 Å³" in text and "2 cavities" in text
+    assert "van der Waals radii (Bondi) + probe 1.4 Å" in text
+    assert "weight column" not in text and "-1" not in text  # no internal sentinel
+    shape_text = window.info_panel.shape.text()
+    assert "<b>alpha² 0 Å² (alpha 0 Å)</b>" in shape_text and " Å³" in shape_text
     balls = window.scene.meshes["balls"]
     colours = {tuple(c) for c in np.asarray(balls.point_data["rgb"])}
     assert {(144, 144, 144), (255, 13, 13), (48, 80, 248)} <= colours  # C, O, N

@@ -97,8 +97,8 @@ def test_the_table_is_handed_over_in_shared_memory_before_the_entry_is_written(t
     handed, entry_then = run_body(tmp_path, points, shared, entry)
     assert [type(h) for h in handed] == [TableHandedOver, OpeningFound]  # the table, then
     assert handed[0].mapped and entry_then == [False, False]  # the opening, before the entry
-    assert handed[1] == OpeningFound(opening_alpha_of(AlphaComplex.from_points(
-        points).index, len(points)))
+    built = AlphaComplex.from_points(points)
+    assert handed[1] == OpeningFound(opening_alpha_of(built.index, built.points))
     assert handed[0].table == str(shared)
     here = AlphaComplex.from_points(points)
     got = AlphaComplex.load(shared, verify=False)

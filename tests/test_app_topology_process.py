@@ -57,8 +57,9 @@ def blobs(n: int, dim: int, seed: int) -> np.ndarray:
     return np.concatenate([ring, ball])
 
 
-def assert_same_topology(parts, here: AlphaComplex) -> None:
-    """parts (from the child) equal the pass computed here, array for array."""
+def assert_same_topology(parts, here: AlphaComplex, same_default: bool = True) -> None:
+    """parts (from the child) equal the pass computed here, array for array (the default
+    alpha too, with `same_default`)."""
     sig, own = parts.signatures, here.signatures()
     for name in ("alphas", "betti", "solid_components", "measure", "boundary_measure"):
         np.testing.assert_array_equal(getattr(sig, name), getattr(own, name), err_msg=name)
@@ -69,7 +70,7 @@ def assert_same_topology(parts, here: AlphaComplex) -> None:
     for k in (0, here.dim - 1):
         np.testing.assert_array_equal(parts.persistence.diagram(k), here.persistence().diagram(k))
     assert parts.optimal_alpha == here.optimal_alpha()
-    assert parts.default_alpha == here.default_alpha()
+    assert parts.default_alpha == here.default_alpha() or not same_default
 
 
 @pytest.mark.parametrize("dim", [3, 2])
@@ -261,7 +262,9 @@ def test_a_topology_file_written_before_sig_alphas_still_loads(dim):
     here = AlphaComplex.from_points(np.load(folder / f"points_{dim}d.npy"), backend="qhull")
     parts = read_topology(folder / f"topology_{dim}d.npz",
                           AlphaComplex.from_points(here.points, backend="qhull"))
-    assert_same_topology(parts, here)
+    # their default alpha is the one-piece rule's (a hand-over file lives only between a
+    # window and its own topology process); the opening alpha itself is found again
+    assert_same_topology(parts, here, same_default=False)
     assert parts.entry_saved
 
 

@@ -88,4 +88,4 @@ def test_info_reports_the_build(tmp_path, monkeypatch, capsys):
     assert main(["info", str(tmp_path / "p.xyz")]) == 0
     assert "build       backend qhull, exact predicates " in capsys.readouterr().out
     assert BuildInfo().describe() == ("backend qhull, exact predicates 0, flips 0, "
-                                      "uncertified -1")
+                                      "not certified (weighted points or an older table)")

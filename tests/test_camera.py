@@ -71,3 +71,76 @@ def test_graphics_formats_are_y_up_and_others_z_up(tmp_path) -> None:
 def test_lidar_is_z_up(name) -> None:
     path = DATA / name
     assert frame_for(path, read_points(path).report) == Z_UP
+
+
+CORPUS = Path(__file__).resolve().parent / "data" / "corpus"
+needs_data = pytest.mark.skipif(DATA is None, reason="shared real scans absent")
+
+
+def opening_view(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(look, view up, points) of the view a file opens with."""
+    ps = read_points(path)
+    frame = frame_for(path, ps.report, ps.points)
+    look, up = frame.direction(frame.start)
+    assert np.linalg.norm(look) == pytest.approx(1.0) and abs(look @ up) < 1e-9
+    return look, up, ps.points
+
+
+def spread(points: np.ndarray, direction: np.ndarray) -> float:
+    """Extent of the points along a unit direction."""
+    along = points @ direction
+    return float(along.max() - along.min())
+
+
+def test_a_plane_of_points_opens_face_on() -> None:
+    """pcl_colored_cloud.pcd (points with normals on a tilted plane) is seen face-on: the
+    points spread along the look direction less than 2 % of their spread across it (it
+    opened edge-on, from the front preset of its VIEWPOINT); the sensor's up stays up."""
+    look, up, points = opening_view(CORPUS / "pcd" / "pcl_colored_cloud.pcd")
+    across = min(spread(points, up), spread(points, np.cross(look, up)))
+    assert spread(points, look) < 0.02 * across
+    assert up @ np.array([0.0, -1.0, 0.0]) > 0.3  # PCL's camera frame: y down
+
+
+def test_a_y_up_e57_bunny_opens_upright_not_from_the_top() -> None:
+    """libe57_bunnyInt32.e57 (no pose: the file does not say which way is up) opens along
+    its thinnest axis with y up on screen (z up showed it from the top)."""
+    look, up, points = opening_view(CORPUS / "e57" / "libe57_bunnyInt32.e57")
+    assert up @ np.array([0.0, 1.0, 0.0]) > 0.8
+    assert spread(points, look) < min(spread(points, up), spread(points, np.cross(look, up)))
+
+
+def test_an_e57_pose_says_which_way_is_up() -> None:
+    """pye57_translationWithoutRotation.e57 has a pose (identity rotation): z is up."""
+    ps = read_points(CORPUS / "e57" / "pye57_translationWithoutRotation.e57")
+    assert ps.report.view is not None and ps.report.view.up == (0.0, 0.0, 1.0)
+
+
+@needs_data
+def test_lidar_opens_from_above_with_north_up() -> None:
+    """autzen_trim.las: looking down its thinnest axis (z, from the file), y (north) up."""
+    look, up, _ = opening_view(DATA / "autzen_trim.las")
+    assert look[2] < -0.99 and up[1] > 0.99
+
+
+@needs_data
+def test_a_ply_scan_opens_along_its_thinnest_axis_y_up() -> None:
+    """bunny.ply: seen along its thinnest axis, from in front (+z), y up on screen."""
+    look, up, points = opening_view(DATA / "bunny.ply")
+    assert up[1] > 0.8 and look[2] < -0.8
+    assert spread(points, look) < min(spread(points, up), spread(points, np.cross(look, up)))
+
+
+@needs_data
+def test_a_pcd_scan_keeps_the_sensor_up() -> None:
+    """milk.pcd (VIEWPOINT identity: y down) opens with -y up, seen from the sensor's side."""
+    look, up, _ = opening_view(DATA / "milk.pcd")
+    assert up[1] < -0.8 and look[2] > 0.5
+
+
+@pytest.mark.parametrize("name", ["ply/pcl_cube.ply", "gltf/trimesh_cube.glb"])
+def test_a_cube_has_no_thinnest_axis_and_opens_iso(name) -> None:
+    """A cube spreads alike along every axis: it opens with the iso preset (seen along an
+    arbitrary axis it was a square)."""
+    ps = read_points(CORPUS / name)
+    assert frame_for(CORPUS / name, ps.report, ps.points).start == "iso"

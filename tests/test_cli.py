@@ -34,7 +34,7 @@ def run(capsys, *argv) -> tuple[int, str, str]:
 def test_info_text_milk(capsys):
     code, out, err = run(capsys, "info", DATA / "milk.pcd")
     assert code == 0 and err == ""  # no progress bar when stderr is not a terminal
-    assert "13,704 of 13,704 read" in out and "betti" in out and "tetrahedra" in out
+    assert "13,704 of 13,704 points read" in out and "betti" in out and "tetrahedra" in out
 
 
 @needs_data

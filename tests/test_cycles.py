@@ -16,6 +16,7 @@ from core.topology.opening import (
     opening_alpha_of,
     reaching_alpha,
     triangle_forest,
+    widest_opening,
 )
 
 
@@ -72,8 +73,9 @@ def test_opening_from_the_triangle_forest_is_the_sorted_edges_one(ac) -> None:
     index, n = ac.index, len(ac.points)
     edge_first = lowest_enter_cofaces(index.face_ids(2), index.intervals(2)[:, 0],
                                len(index.simplices(1)))
-    want = min(opening_alpha(n, index.simplices(1), edge_first), float(index.spectrum()[-1]))
-    assert opening_alpha_of(index, n) == want
+    want = min(opening_alpha(n, index.simplices(1), edge_first),
+               widest_opening(index, ac.points), float(index.spectrum()[-1]))
+    assert opening_alpha_of(index, ac.points) == want
     a, b, weights = triangle_forest(index, n)
     assert len(a) == n - 1  # one piece (hidden points are not in ac.points)
     assert np.all(np.diff(weights) >= 0)

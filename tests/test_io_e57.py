@@ -65,7 +65,7 @@ def test_every_scan_with_its_pose(two_scans):
         [e[1] for e in expected]), rtol=1e-6)
     np.testing.assert_array_equal(ps.attributes["colors"], np.vstack([e[2] for e in expected]))
     assert "E57: 2 scan(s), poses applied" in ps.report.notes
-    assert "E57: 16 points flagged invalid were dropped" in ps.report.notes
+    assert ps.report.count_line() == "48 of 64 records read (16 are flagged invalid)"
 
 
 @pytest.mark.parametrize("index", [0, 1])
@@ -132,7 +132,10 @@ def test_spherical_scan_with_pose_and_invalid_ranges(tmp_path):
                              r * np.sin(el)])
     ps = read_points(tmp_path / "s.e57")
     np.testing.assert_allclose(ps.points, (local @ _rotation(q).T + t)[state == 0], atol=1e-9)
-    assert ps.report.n_read == n - 2
+    # every record counts as read; those left out are named with their reason
+    assert ps.report.n_read == n and ps.report.n_points == n - 2
+    assert ps.report.count_line() == "28 of 30 records read (2 have no range (direction only))"
+    assert "points      28 of 30 records read (2 have no range" in "\n".join(ps.report.lines())
 
 
 def test_not_an_e57_file(tmp_path):
@@ -150,6 +153,8 @@ def test_cli_scan_option(two_scans, tmp_path, monkeypatch, capsys):
     path, scans = two_scans
     assert main(["info", str(path), "--scan", "1", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)["load"]
-    assert report["n_read"] == len(_expected(scans[1])[0])
+    assert report["n_points"] == len(_expected(scans[1])[0])
+    assert report["n_read"] == len(scans[1][0])  # the records, invalid ones too
+    assert report["skipped"] == [{"count": 6, "reason": "are flagged invalid"}]
     assert main(["info", str(path), "--scan", "x"]) == 2
     assert "expected a whole number from 0" in capsys.readouterr().err

@@ -31,12 +31,13 @@ def test_scale_bar_takes_a_round_length(target, length) -> None:
 
 
 def test_legend_gives_one_line_per_colour() -> None:
-    """3D draws dangling edges and lone points in the surface's colour: one legend line says
-    so; 2D's parts have colours of their own and keep their lines; painted layers (no
-    swatch) stay apart while colouring by a value."""
+    """Surface, singular edges and singular points have colours of their own, in 3D as in
+    2D, and a line each; painted layers (no swatch) stay apart while colouring by a value;
+    counts, where given, follow each title."""
     blue = CLASS_COLOURS["regular"]
-    assert legend_entries(default_styles(3)) == [
-        ("Surface + singular edges + singular points", blue)]
+    lines_3d = legend_entries(default_styles(3))
+    assert [label for label, _ in lines_3d] == ["Surface", "Singular edges", "Singular points"]
+    assert len({swatch for _, swatch in lines_3d}) == 3 and lines_3d[0][1] == blue
     lines_2d = legend_entries(default_styles(2))
     assert [label for label, _ in lines_2d] == [
         "Boundary (regular)", "Interior cells", "Singular edges", "Singular points"]
@@ -44,7 +45,10 @@ def test_legend_gives_one_line_per_colour() -> None:
     painted = legend_entries(default_styles(3), "intensity",
                              frozenset({"surface", "singular_edges"}))
     assert painted == [("Coloured by intensity", None), ("Surface", None),
-                       ("Singular edges", None), ("Singular points", blue)]
+                       ("Singular edges", None), ("Singular points", lines_3d[2][1])]
+    counted = legend_entries(default_styles(3), counts={"surface": 1200, "singular_points": 3})
+    assert [label for label, _ in counted] == ["Surface: 1,200 triangles", "Singular edges",
+                                               "Singular points: 3"]
 
 
 def test_labels_read_as_people_write_them() -> None:

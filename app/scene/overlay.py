@@ -23,6 +23,8 @@ from app.palette import BACKGROUND, LAYER_TITLES, TEXT, LayerStyle
 BAR_SHARE = 1 / 6  # the scale bar's target width, as a share of the view's
 MARGIN = 12  # pixels from the view's edges
 FONT_SIZE = 14
+COUNT_ROOM = 4  # characters the legend keeps free for counts that grow with alpha
+COUNT_WORDS = {"surface": " triangles", "interior": " cells"}  # what a count counts
 
 
 def round_length(target: float) -> float:
@@ -40,15 +42,20 @@ def length_label(length: float, unit: str | None) -> str:
 
 
 def legend_entries(styles: dict[str, LayerStyle], colour_by: str | None = None,
-                   mapped: frozenset[str] = frozenset()) -> list[tuple[str, str | None]]:
+                   mapped: frozenset[str] = frozenset(), counts: dict[str, int] | None = None
+                   ) -> list[tuple[str, str | None]]:
     """(label, swatch colour or None) per legend line: the visible layers in class colours, or
-    while colouring by `colour_by` a first line saying so and no swatch on the `mapped` layers."""
+    while colouring by `colour_by` a first line saying so and no swatch on the `mapped` layers;
+    a layer in `counts` says how many of its cells are drawn ('Singular points: 35')."""
+    counts = counts or {}
     entries: list[tuple[str, str | None]] = [(f"Coloured by {colour_by}", None)] \
         if colour_by else []
     for name, style in styles.items():
         if style.visible:
             swatch = None if colour_by and name in mapped else style.colour
-            entries.append((LAYER_TITLES.get(name, name), swatch))
+            title = LAYER_TITLES.get(name, name)
+            count = f": {counts[name]:,}{COUNT_WORDS.get(name, '')}" if name in counts else ""
+            entries.append((title + count, swatch))
     return merge_same_swatch(entries)
 
 
@@ -101,6 +108,7 @@ class Overlay:
         self.styles: dict[str, LayerStyle] = {}
         self.colour_by: str | None = None
         self.mapped: frozenset[str] = frozenset()
+        self.counts: dict[str, int] = {}  # drawn cells per layer, shown in the legend
         plotter.renderer.AddObserver("StartEvent", lambda *_: self.update_scale_bar())
 
     @staticmethod
@@ -143,10 +151,24 @@ class Overlay:
         self.colour_by, self.mapped = title, frozenset(mapped)
         self._update_legend()
 
+    def set_counts(self, counts: dict[str, int]) -> None:
+        """The drawn cells per layer at this alpha (on every step: the legend's lines are
+        rewritten in place, the actor rebuilt only when its rows change)."""
+        self.counts = dict(counts)
+        self._update_legend()
+
     def _update_legend(self) -> None:
-        """Rebuild the legend actor when its lines change (not on every alpha step)."""
-        entries = legend_entries(self.styles, self.colour_by, self.mapped)
+        """Rebuild the legend actor when its rows change (not on every alpha step: a new
+        count only rewrites a row's text)."""
+        entries = legend_entries(self.styles, self.colour_by, self.mapped, self.counts)
         if entries == self.entries and (self.legend is not None) == bool(entries):
+            return
+        same_rows = [c for _, c in entries] == [c for _, c in self.entries]
+        if same_rows and self.legend is not None and entries:
+            for row, ((text, _), (old, _)) in enumerate(zip(entries, self.entries, strict=True)):
+                if text != old:
+                    self.legend.SetEntryString(row, text)
+            self.entries = entries
             return
         self.entries = entries
         if self.legend is not None:
@@ -165,7 +187,7 @@ class Overlay:
     def _legend_width(self, entries: list[tuple[str, str | None]]) -> float:
         """Share of the picture's width for the legend: wide enough that a long merged line
         keeps a readable font (VTK scales the text to fit the box)."""
-        longest = max(len(text) for text, _ in entries)
+        longest = max(len(text) for text, _ in entries) + COUNT_ROOM
         return min(0.6, max(0.3 if self.colour_by else 0.22, 0.015 * longest))
 
     def set_visible(self, visible: bool) -> None:

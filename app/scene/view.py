@@ -143,13 +143,17 @@ class Scene:
         """Show an AlphaShape: swap the connectivity of visible layers, mark hidden ones dirty."""
         self.shape = shape
         self.overlay.set_alpha(shape.alpha)
+        counts = {}
         for name, layer in self.layers.items():
             if name in STATIC_LAYERS:
                 continue
             if self.styles[name].visible:
-                layer.set_cells(shape_cells(shape, name))
+                cells = shape_cells(shape, name)
+                layer.set_cells(cells)
+                counts[name] = len(cells)
             else:
                 layer.dirty = True
+        self.overlay.set_counts(counts)
 
     def set_cells(self, name: str, cells: np.ndarray) -> None:
         """Swap one static layer's cells (the cavities at a new alpha), if it exists."""

@@ -20,7 +20,7 @@ from core.export.complex_vtu import write_vtu
 from core.export.geographic import write_prj
 from core.export.metadata import shape_metadata, sidecar_text
 from core.export.polygons import POLYGON_WRITERS, geographic_metadata
-from core.export.surface import SURFACE_WRITERS, manifold_meta, surface_arrays
+from core.export.surface import SURFACE_WRITERS, manifold_meta, split_listing, surface_arrays
 from core.export.table import TABLE_WRITERS
 from core.export.targets import refuse_source
 from core.geometry.georef import Georef
@@ -62,6 +62,8 @@ class ExportReport:
     sidecar: str | None = None
     metadata: dict = field(default_factory=dict)
     crs_file: str | None = None
+    split_file: str | None = None  # the points a manifold split wrote twice or more (CSV)
+    split_points: int = 0
 
     def line(self) -> str:
         """One-line summary for the CLI and the status bar (units for geographic input)."""
@@ -84,6 +86,10 @@ class ExportReport:
             parts.append(f"; longitude/latitude, CRS in {self.crs_file}")
         if self.manifold:
             parts.append(f"; {self.manifold}")
+        if self.split_file:
+            parts.append(f"; the {self.split_points:,} split points are listed in "
+                         f"{self.split_file} (a tool that merges duplicate vertices, as a "
+                         "slicer reading STL does, joins them again)")
         return "".join(parts)
 
 
@@ -125,14 +131,18 @@ def _reported(path: Path) -> Iterator[None]:
         raise FileFormatError(f"{path}: cannot write ({problem})") from exc
 
 
-def _write_surface(tmp: Path, ext: str, ac, shape, manifold: bool, meta: dict) -> dict:
-    """Write a triangle surface; returns the report fields."""
+def _write_surface(tmp: Path, ext: str, ac, shape, manifold: bool, meta: dict
+                   ) -> tuple[dict, str | None]:
+    """Write a triangle surface; returns the report fields and the CSV listing of the points
+    a manifold split wrote more than once (None: none)."""
     vertices, faces, split = surface_arrays(ac, shape, manifold=manifold)
     meta.update(manifold_meta(split))
     SURFACE_WRITERS[ext](tmp, vertices, faces, meta)
-    return {"n_vertices": len(vertices), "n_faces": len(faces),
-            "closed": is_closed(faces) if ac.dim == 3 else None,
-            "manifold": None if split is None else split.line()}
+    listing = split_listing(ac, split)
+    return ({"n_vertices": len(vertices), "n_faces": len(faces),
+             "closed": is_closed(faces) if ac.dim == 3 else None,
+             "manifold": None if split is None else split.line(),
+             "split_points": 0 if split is None else len(split.split_points)}, listing)
 
 
 def _step(progress: Progress | None, fraction: float, stage: str) -> None:
@@ -157,13 +167,16 @@ def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: b
     and CSV back in WGS 84 longitude/latitude (WKT and CSV with a PATH.prj naming the CRS)
     and adds the projection and the ellipsoidal area and perimeter to the metadata.
     `point_data` ((m,) arrays aligned with ac.points, e.g. a molecule's `atom_area`) goes
-    into formats that hold per-point values: .vtu.
+    into formats that hold per-point values: .vtu. Points a manifold split wrote more than
+    once are listed in PATH.split-points.csv (x, y, z, copies), so that the user knows what a
+    merge of duplicate vertices undoes.
     """
     path = Path(path)
     ext = _extension(path, SHAPE_FORMATS)
     refuse_source(path, source)
     if sidecar:
         refuse_source(f"{path}.json", source)
+    refuse_source(split_path(path), source)
     if georef is not None and ext in (".wkt", ".csv"):
         refuse_source(path.with_suffix(".prj"), source)
     if ac.dim == 3 and ext in POLYGON_WRITERS:
@@ -175,6 +188,7 @@ def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: b
     if georef is not None:
         meta.update(geographic_metadata(ac, shape, georef))
     fields: dict = {}
+    listing = None
     with _reported(path), atomic_path(path) as tmp:
         _step(progress, 0.2, f"writing {ext.lstrip('.').upper()}")
         if ext in POLYGON_WRITERS:
@@ -182,8 +196,12 @@ def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: b
         elif ext == ".vtu":
             write_vtu(tmp, ac, shape, meta, point_data)
         else:
-            fields = _write_surface(tmp, ext, ac, shape, manifold, meta)
+            fields, listing = _write_surface(tmp, ext, ac, shape, manifold, meta)
         _step(progress, 0.95, "replacing the file")
+    if listing is not None:
+        with _reported(split_path(path)):
+            atomic_write_text(split_path(path), listing)
+        fields["split_file"] = str(split_path(path))
     if georef is not None and ext in (".wkt", ".csv"):
         with _reported(path.with_suffix(".prj")):
             fields["crs_file"] = str(write_prj(path))
@@ -194,6 +212,11 @@ def write_shape(ac, alpha: float | None, path: str | os.PathLike, *, manifold: b
             atomic_write_text(side, sidecar_text(meta))
     return ExportReport(path=str(path), format=ext.lstrip(".").upper(), alpha=float(shape.alpha),
                         measure=float(shape.measure), sidecar=side, metadata=meta, **fields)
+
+
+def split_path(path: Path) -> Path:
+    """Where the points a manifold split wrote more than once are listed: PATH.split-points.csv."""
+    return Path(f"{path}.split-points.csv")
 
 
 def write_table(ac, path: str | os.PathLike, *, progress: Progress | None = None,

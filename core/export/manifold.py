@@ -11,7 +11,7 @@ pairings of its outgoing and incoming faces are tried one by one.
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -32,6 +32,12 @@ class ManifoldReport:
     nonmanifold_vertices: int
     vertices_added: int
     unresolved_edges: int = 0
+    #: (p,) int64 rows of ac.points written more than once (the pinch points split apart:
+    #: a tool that merges duplicate vertices joins them again), and (p,) int64 copies of each
+    split_points: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64),
+                                     compare=False, repr=False)
+    split_copies: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64),
+                                     compare=False, repr=False)
 
     def line(self) -> str:
         """One-line summary for the CLI and the app."""
@@ -154,10 +160,11 @@ def split_nonmanifold(ac, shape) -> tuple[np.ndarray, np.ndarray, ManifoldReport
     copies, first = np.unique(label, return_index=True)
     vertex_ids = corner_vertex[first]
     per_vertex = np.bincount(vertex_ids, minlength=len(ac.points))
+    split = np.flatnonzero(per_vertex > 1)
     report = ManifoldReport(int(np.count_nonzero(np.bincount(edge) > 2)),
                             int(np.count_nonzero(per_vertex > 1)),
                             int(len(copies) - np.count_nonzero(per_vertex)),
-                            len(np.unique(edge[bad])))
+                            len(np.unique(edge[bad])), split, per_vertex[split])
     return vertex_ids, np.searchsorted(copies, new_faces), report
 
 

@@ -116,4 +116,17 @@ def manifold_meta(report: ManifoldReport | None) -> dict:
     """Metadata entries describing a manifold split (empty when none was asked)."""
     if report is None:
         return {}
-    return {"manifold_split": json.loads(json.dumps(dataclasses.asdict(report)))}
+    counts = {f.name: getattr(report, f.name) for f in dataclasses.fields(report)
+              if f.name not in ("split_points", "split_copies")}  # the points: split_listing
+    return {"manifold_split": json.loads(json.dumps(counts))}
+
+
+def split_listing(ac, report: ManifoldReport | None) -> str | None:
+    """CSV text 'x,y,z,copies' of the points a manifold split wrote more than once, in the
+    coordinates written (None when there are none)."""
+    if report is None or len(report.split_points) == 0:
+        return None
+    xyz = _ambient3(ac, ac.points[report.split_points])
+    rows = (f"{x!r},{y!r},{z!r},{c}" for (x, y, z), c in
+            zip(xyz.tolist(), report.split_copies.tolist(), strict=True))
+    return "x,y,z,copies\n" + "\n".join(rows) + "\n"

@@ -1,7 +1,9 @@
 """VTK XML writers (VTU and VTP), zlib-compressed base64, with cell data and field data.
 
 meshio writes no VTP and drops field data from VTU, so this small writer covers both; the
-files are read back by VTK itself (pyvista) and by meshio in the tests.
+files are read back by VTK itself (pyvista) and by meshio in the tests. meshio cannot read
+VTK's String arrays, so a VTU's text field data is written as UInt8 arrays of its UTF-8 bytes
+(`text_of` reads one back); a VTP, which meshio does not read, keeps String arrays.
 """
 
 from __future__ import annotations
@@ -48,18 +50,29 @@ def string_array(name: str, text: str) -> str:
             f'format="binary">{_encode(raw)}</DataArray>')
 
 
-def field_data(meta: dict) -> str:
-    """<FieldData>: numbers (and lists of numbers) as Float64, everything else as String."""
+def bytes_array(name: str, text: str) -> str:
+    """Text as a UInt8 <DataArray> of its UTF-8 bytes (a type every VTK reader knows)."""
+    return data_array(name, np.frombuffer(text.encode("utf-8"), dtype=np.uint8))
+
+
+def text_of(values: np.ndarray) -> str:
+    """The text a bytes_array holds, from the (n,) uint8 array a reader returns."""
+    return np.asarray(values, dtype=np.uint8).tobytes().decode("utf-8")
+
+
+def field_data(meta: dict, text=string_array) -> str:
+    """<FieldData>: numbers (and lists of numbers) as Float64, everything else as `text`
+    makes it (String arrays; bytes_array for readers without strings)."""
     parts = []
     for key, value in meta.items():
         if isinstance(value, bool) or value is None:
-            parts.append(string_array(key, str(value)))
+            parts.append(text(key, str(value)))
         elif isinstance(value, (int, float)):
             parts.append(data_array(key, np.array([value], dtype=np.float64)))
         elif isinstance(value, (list, tuple)) and all(isinstance(v, (int, float)) for v in value):
             parts.append(data_array(key, np.asarray(value, dtype=np.float64)))
         else:
-            parts.append(string_array(key, str(value)))
+            parts.append(text(key, str(value)))
     return f"<FieldData>{''.join(parts)}</FieldData>"
 
 
@@ -68,11 +81,11 @@ def _cell_data(cell_data: dict[str, np.ndarray]) -> str:
     return "<CellData>" + "".join(data_array(k, v) for k, v in cell_data.items()) + "</CellData>"
 
 
-def _document(kind: str, body: str, meta: dict) -> bytes:
-    """Wrap a dataset body into a VTKFile element."""
+def _document(kind: str, body: str, meta: dict, text=string_array) -> bytes:
+    """Wrap a dataset body into a VTKFile element (text field data made by `text`)."""
     return (f'<?xml version="1.0"?>\n<VTKFile type="{kind}" version="1.0" '
             f'byte_order="LittleEndian" header_type="UInt64" '
-            f'compressor="vtkZLibDataCompressor">\n<{kind}>{field_data(meta)}\n'
+            f'compressor="vtkZLibDataCompressor">\n<{kind}>{field_data(meta, text)}\n'
             f"{body}\n</{kind}>\n</VTKFile>\n").encode()
 
 
@@ -93,7 +106,7 @@ def vtu_bytes(points: np.ndarray, blocks: list[np.ndarray], cell_data: dict, met
     body = (f'<Piece NumberOfPoints="{len(points)}" NumberOfCells="{len(sizes)}">'
             f"{_points(points)}<Cells>{cells}</Cells>{_cell_data(cell_data)}"
             f"{_point_data(point_data or {})}</Piece>")
-    return _document("UnstructuredGrid", body, meta)
+    return _document("UnstructuredGrid", body, meta, text=bytes_array)  # meshio reads it too
 
 
 def _point_data(point_data: dict[str, np.ndarray]) -> str:

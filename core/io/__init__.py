@@ -24,9 +24,10 @@ from core.io.pcd import read_pcd
 from core.io.ply import read_ply
 from core.io.precheck import precheck
 from core.io.problems import plain_line, unreadable
-from core.io.report import LoadReport, PointSet, finish
+from core.io.report import LoadReport, PointSet, Skipped, finish
 from core.io.subsample import SUBSAMPLE_METHODS
 from core.io.text import read_text, read_text_columns
+from core.io.view_hint import Z_UP_HINT, ViewHint
 from core.io.weighting import choose_weights
 
 __all__ = ["READ_FORMATS", "SUBSAMPLE_METHODS", "LoadReport", "PointSet", "read_points"]
@@ -120,9 +121,15 @@ def read_points(
                                   f"got shape {points.shape}")
         attrs, source = choose_weights(attrs, path, weights=weights, radius=radius,
                                        radius_add=radius_add)
+        skipped = tuple(n for n in notes if isinstance(n, Skipped))
+        view = next((n for n in notes if isinstance(n, ViewHint)), None)
+        if view is None and georef is not None:  # projected from longitude/latitude
+            view = ViewHint(up=Z_UP_HINT, front=None, source="geographic: z up")
+        notes = tuple(n for n in notes if isinstance(n, str))
         ps = finish(path, _format_name(ext), points, attrs, subsample=subsample,
                     method=subsample_method, seed=seed, georef=georef,
-                    notes=tuple(notes) + _warning_notes(caught), weights_from=source)
+                    notes=notes + _warning_notes(caught), weights_from=source,
+                    skipped=skipped, view=view)
     if len(ps.points) == 0:
         raise FileFormatError(f"{path}: no finite points ({ps.report.n_read:,} rows read)")
     return ps

@@ -12,7 +12,9 @@ import numpy as np
 
 from core.errors import FileFormatError
 from core.io.problems import unreadable
+from core.io.report import Skipped
 from core.io.sizes import check_memory
+from core.io.view_hint import pose_hint
 
 CARTESIAN = ("cartesianX", "cartesianY", "cartesianZ")
 SPHERICAL = ("sphericalRange", "sphericalAzimuth", "sphericalElevation")
@@ -54,6 +56,9 @@ def spherical_to_cartesian(rae: np.ndarray) -> np.ndarray:
 
 
 FLAG_FIELDS = ("cartesianInvalidState", "sphericalInvalidState")  # 0 valid, 1-2 invalid
+#: Why a record with an invalid state is left out (ASTM E2807: 1 = only the direction is
+#: meaningful, 2 = nothing is).
+INVALID_REASONS = {1: "have no range (direction only)", 2: "are flagged invalid"}
 
 
 def _read_fields(e57, header, names: list[str], path: Path) -> dict[str, np.ndarray]:
@@ -98,8 +103,9 @@ def _colours(header, raw: dict) -> np.ndarray:
     return np.column_stack(out).astype(np.uint8)
 
 
-def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray], int]:
-    """(valid points with the scan's pose applied, attributes, invalid count) of one scan."""
+def _scan(e57, index: int, path: Path) -> tuple:
+    """(valid points with the scan's pose applied, attributes, (3,) int64 records in each
+    invalid state 0..2 (0: none left out), the pose's ViewHint or None) of one scan."""
     header = e57.get_header(index)
     fields = set(header.point_fields)
     system = CARTESIAN if fields.issuperset(CARTESIAN) else SPHERICAL
@@ -112,7 +118,9 @@ def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray
     local = np.column_stack([raw[f] for f in system])
     if system == SPHERICAL:
         local = spherical_to_cartesian(local)
-    valid = raw[state] == 0 if state in raw else np.ones(len(local), dtype=bool)
+    flags = raw[state] if state in raw else np.zeros(len(local), dtype=np.int8)
+    valid = flags == 0
+    invalid = np.bincount(np.clip(flags[~valid], 1, 2), minlength=3)
     points = local @ header.rotation_matrix.T + header.translation if header.has_pose() else local
     if system == CARTESIAN:
         check_bounds(header, local[valid], points[valid], index, path)
@@ -121,7 +129,8 @@ def _scan(e57, index: int, path: Path) -> tuple[np.ndarray, dict[str, np.ndarray
         attrs["intensity"] = raw["intensity"]
     if fields.issuperset(COLOURS):
         attrs["colors"] = _colours(header, raw)
-    return points[valid], {k: v[valid] for k, v in attrs.items()}, int((~valid).sum())
+    hint = pose_hint(header.rotation_matrix) if header.has_pose() else None
+    return points[valid], {k: v[valid] for k, v in attrs.items()}, invalid, hint
 
 
 def declared_bounds(header) -> np.ndarray | None:
@@ -196,6 +205,7 @@ def read_e57(path: Path, columns=None, *, scan: int | None = None) -> tuple:
     label = f"scan {scan} of {count}" if scan is not None else f"{count} scan(s), poses applied"
     notes = [f"E57: {label}"]
     invalid = sum(p[2] for p in parts)
-    if invalid:
-        notes.append(f"E57: {invalid:,} points flagged invalid were dropped")
-    return points, attrs, tuple(notes)
+    skipped = [Skipped(int(invalid[state]), reason) for state, reason in INVALID_REASONS.items()
+               if invalid[state]]
+    hints = [p[3] for p in parts if p[3] is not None][:1]  # the first scan with a pose
+    return points, attrs, (*notes, *skipped, *hints)

@@ -10,6 +10,7 @@ import numpy as np
 from core.errors import FileFormatError
 from core.io.las_checks import MAX_LAZ_RATIO, check_las_file
 from core.io.problems import unreadable
+from core.io.view_hint import Z_UP_HINT, ViewHint
 
 BOUNDS_RTOL = 0.01  # points beyond the header's box by this fraction of its size are reported
 
@@ -64,7 +65,8 @@ def read_las(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
         attrs["colors"] = colors
     version = f"LAS {las.header.version}, point format {las.header.point_format.id}"
     points = points.astype(np.float64)
-    notes = (version, *outside_bounds(points, las.header), *crs_mismatch(points, las.header))
+    notes = (version, *outside_bounds(points, las.header), *crs_mismatch(points, las.header),
+             ViewHint(up=Z_UP_HINT, front=None, source="LiDAR (LAS/LAZ): z up"))
     return points, attrs, notes
 
 

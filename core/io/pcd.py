@@ -11,6 +11,7 @@ import numpy as np
 from core.errors import FileFormatError
 from core.io.pcd_checks import check_pcd_header
 from core.io.problems import unreadable
+from core.io.view_hint import sensor_hint
 
 NORMAL_FIELDS = ("normal_x", "normal_y", "normal_z")
 
@@ -75,4 +76,5 @@ def read_pcd(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
     if len(points) != declared:
         raise FileFormatError(f"{path}: truncated PCD (header declares {declared:,} points, "
                               f"{len(points):,} read)")
-    return points, attrs, (f"PCD {cloud.metadata.data.value}",)
+    hint = sensor_hint(fields.get("VIEWPOINT"))
+    return points, attrs, (f"PCD {cloud.metadata.data.value}", *([hint] if hint else []))

@@ -14,10 +14,23 @@ from core.build.points import clearly_spread, first_too_large, flatness, too_lar
 from core.errors import FileFormatError
 from core.geometry.georef import Georef
 from core.io.subsample import first_unique, subsample_indices
+from core.io.view_hint import ViewHint
 from core.parallel import both
 from core.tolerances import FLAT_RTOL
 
 SPACING_SAMPLE = 100_000  # query points used to estimate the median nearest-neighbour distance
+
+
+@dataclass(frozen=True)
+class Skipped:
+    """Records a reader left out, with the reason in words ('have no range (direction
+    only)'): they count in the records read, beside non-finite and duplicate points."""
+
+    count: int
+    reason: str
+
+    def __str__(self) -> str:
+        return f"{self.count:,} {self.reason}"
 
 
 @dataclass(frozen=True)
@@ -40,6 +53,10 @@ class LoadReport:
     notes: tuple[str, ...] = ()
     georef: Georef | None = None
     weights_from: str | None = None  # where the weights (squared radii) came from; None: none
+    #: records the reader left out before these counts (in n_read too), with their reasons
+    skipped: tuple[Skipped, ...] = ()
+    #: which way is up (and forward) where the file says it (core.io.view_hint), else None
+    view: ViewHint | None = None
 
     def to_dict(self) -> dict:
         """Plain JSON-ready dict (lists instead of tuples)."""
@@ -48,15 +65,28 @@ class LoadReport:
         out["attributes"] = list(self.attributes)
         out["notes"] = list(self.notes)
         out["georef"] = None if self.georef is None else self.georef.to_dict()
+        out["skipped"] = [{"count": k.count, "reason": k.reason} for k in self.skipped]
         return out
+
+    def count_line(self) -> str:
+        """'977 of 978 points read (1 non-finite dropped)' or '180 of 360 records read (180
+        have no range (direction only))': the points kept, the records read, and why the others
+        were dropped (the window and `alphascoop info` both say this)."""
+        kind = "records" if self.skipped else "points"
+        reasons = [str(k) for k in self.skipped]
+        if self.n_nonfinite:
+            reasons.append(f"{self.n_nonfinite:,} non-finite dropped")
+        if self.n_duplicates:
+            reasons.append(f"{self.n_duplicates:,} duplicates merged")
+        return (f"{self.n_points:,} of {self.n_read:,} {kind} read"
+                + (f" ({'; '.join(reasons)})" if reasons else ""))
 
     def lines(self) -> list[str]:
         """Short human-readable summary, one fact per line."""
         lo, hi = self.bbox
         out = [
             f"file        {self.path} ({self.format})",
-            f"points      {self.n_points:,} of {self.n_read:,} read"
-            f" ({self.n_nonfinite:,} non-finite dropped, {self.n_duplicates:,} duplicates merged)",
+            f"points      {self.count_line()}",
             f"dimension   {self.dim}D{' (planar)' if self.planar and self.dim == 3 else ''}",
             f"bbox        [{', '.join(f'{v:.6g}' for v in lo)}] - "
             f"[{', '.join(f'{v:.6g}' for v in hi)}]",
@@ -150,10 +180,13 @@ def finish(
     notes: tuple[str, ...] = (),
     georef: Georef | None = None,
     weights_from: str | None = None,
+    skipped: tuple[Skipped, ...] = (),
+    view: ViewHint | None = None,
 ) -> PointSet:
-    """Drop non-finite rows, merge duplicates, subsample, and measure: the common reader tail."""
+    """Drop non-finite rows, merge duplicates, subsample, and measure: the common reader tail
+    (`skipped`: records the reader left out, counted in the records read)."""
     points = np.asarray(points, dtype=np.float64)
-    n_read = len(points)
+    n_read = len(points) + sum(k.count for k in skipped)
     if points.ndim == 2 and points.shape[1] in (2, 3):
         extreme = first_too_large(points)
         if extreme is not None:
@@ -180,7 +213,7 @@ def finish(
         format=fmt,
         n_read=n_read,
         n_points=len(points),
-        n_nonfinite=int(n_read - finite.sum()),
+        n_nonfinite=int(len(finite) - finite.sum()),
         n_duplicates=n_dup,
         dim=points.shape[1],
         planar=planar,
@@ -192,6 +225,8 @@ def finish(
         notes=notes,
         georef=georef,
         weights_from=weights_from,
+        skipped=tuple(skipped),
+        view=view,
     )
     return PointSet(
         points=contiguous_readonly(points),

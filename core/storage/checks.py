@@ -189,9 +189,9 @@ def check_signature_arrays(check: Checker, a: dict, dim: int) -> np.ndarray:
     for name in ("sig_measure", "sig_boundary"):
         values = check.array(a[name], name, np.float64, (s,))
         check.that(bool(np.all(np.isfinite(values) & (values >= 0))), f"{name} not finite")
-    if "sig_opening" in a:
-        opening = check.array(a["sig_opening"], "sig_opening", np.float64, ())
-        check.that(bool(np.isfinite(opening)), "sig_opening not finite")
+    if "sig_opening_pieces" in a:
+        opening = check.array(a["sig_opening_pieces"], "sig_opening_pieces", np.float64, ())
+        check.that(bool(np.isfinite(opening)), "sig_opening_pieces not finite")
     return alphas
 
 

@@ -14,8 +14,10 @@ Weighted tables (tables without it are classic, so older files load unchanged) a
 
 Optional, written once computed, so re-opening skips the topology pass: `sig_alphas` (s,)
 float64 (the spectrum), `sig_betti` (s, dim) int32, `sig_solid` (s,) int32, `sig_measure`,
-`sig_boundary` (s,) float64, `sig_opening` () float64 (the opening alpha; recomputed when
-absent); `topo_vertex_forest`, `topo_dual_forest` (float64),
+`sig_boundary` (s,) float64, `sig_opening_pieces` () float64 (the opening alpha,
+core.topology.opening; recomputed when absent, as in files that hold only `sig_opening`, the
+older one-piece rule);
+`topo_vertex_forest`, `topo_dual_forest` (float64),
 `topo_dual_edges` (fd, 2) int64, `topo_solid_forest` (float64).
 
 Optional, how the table was built (core/pipeline.py BuildInfo; absent = defaults, so older
@@ -65,6 +67,7 @@ from core.topology.signatures import Signatures, level_columns
 
 FORMAT, VERSION = "alphascoop-table", 2
 VERSIONS = ("1", "2")  # what `load` reads: version 1 has no checksums
+OPENING_KEY = "sig_opening_pieces"  # the opening alpha (core.opening) saved with the signatures
 
 
 class Saveable(Protocol):
@@ -148,7 +151,7 @@ def derived_arrays(ac: Saveable) -> dict[str, np.ndarray]:
     sig, topo = ac.signatures(), ac.topology()
     return {"sig_alphas": sig.alphas, "sig_betti": sig.betti, "sig_solid": sig.solid_components,
             "sig_measure": sig.measure, "sig_boundary": sig.boundary_measure,
-            "sig_opening": np.array(sig.opening_alpha),
+            OPENING_KEY: np.array(sig.opening_alpha),
             "topo_vertex_forest": topo.vertex_forest, "topo_dual_forest": topo.dual_forest,
             "topo_dual_edges": topo.dual_edges, "topo_solid_forest": topo.solid_forest}
 
@@ -164,12 +167,12 @@ def read_derived(ac: Saveable, a: dict[str, np.ndarray], check: Checker
     merged = {**a, **table}  # the table's own arrays win over any of the same name in `a`
     try:
         check_signature_arrays(check, merged, ac.dim)
-        return _derived(ac.index, len(ac.points), merged, check)
+        return _derived(ac.index, ac.points, merged, check)
     except KeyError as exc:
         raise check.error(f"missing {exc}") from None
 
 
-def _derived(index: TableIndex, n_points: int, a: dict[str, np.ndarray], check: Checker
+def _derived(index: TableIndex, points: np.ndarray, a: dict[str, np.ndarray], check: Checker
              ) -> tuple[Topology, Signatures]:
     """Saved topology and signatures, once they proved consistent with the table."""
     dim = index.dim
@@ -182,8 +185,8 @@ def _derived(index: TableIndex, n_points: int, a: dict[str, np.ndarray], check: 
                         dual_edges=readonly(a["topo_dual_edges"]),
                         solid_forest=readonly(a["topo_solid_forest"]))
     check_signatures(check, a, topology, np.cumsum(a["cell_measure"]))
-    opening = (float(a["sig_opening"]) if "sig_opening" in a
-               else opening_alpha_of(index, n_points))
+    opening = (float(a[OPENING_KEY]) if OPENING_KEY in a
+               else opening_alpha_of(index, points))
     signatures = Signatures(dim=dim, alphas=readonly(index.spectrum()),
                             betti=readonly(a["sig_betti"]),
                             solid_components=readonly(a["sig_solid"]),
@@ -281,7 +284,7 @@ def load(path: str | os.PathLike, *, verify: bool = True,
                        and spectrum.dtype == np.float64 and len(spectrum) > 0
                        and float(spectrum[-1]) == index.last_value(), "handed spectrum")
             index = TableIndex(table, "weights" in a, spectrum)
-        topology, signatures = (_derived(index, len(a["points"]), a, check) if saved
+        topology, signatures = (_derived(index, a["points"], a, check) if saved
                                 else (None, None))
         mode, build_info = _mode(a, path), _build_info(a, path)
         if verify:  # last: the checks above name what is wrong more precisely

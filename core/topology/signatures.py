@@ -32,7 +32,7 @@ class Signatures:
     solid_components: np.ndarray  # (s,) int32
     measure: np.ndarray  # (s,) float64
     boundary_measure: np.ndarray  # (s,) float64
-    # smallest alpha whose triangles join nearly all points (core.topology.opening)
+    # where triangles put nearly all points in pieces (core.topology.opening)
     opening_alpha: float
     #: per k: the table's own (enter, regular, interior) (n_k,) columns (index.level(k): no
     #: stacked copy of the table)
@@ -88,7 +88,7 @@ def compute_signatures(index: TableIndex, points: np.ndarray, topology: Topology
         solid_components=readonly(solids),
         measure=readonly(measure[cells_in]),
         boundary_measure=readonly(boundary[cells_in]),
-        opening_alpha=opening_alpha_of(index, len(points)),
+        opening_alpha=opening_alpha_of(index, points),
         intervals=level_columns(index),
     )
 
