@@ -1,0 +1,160 @@
+"""One tile: the alpha complex of its core points and margin, classified at alpha, and the
+simplices the tile owns (their lowest global vertex id lies in its core), in global ids.
+
+The project's own build (AlphaComplex.from_points: exact predicates, the interval table)
+decides everything; this module only maps local vertices to global ids and keeps what the
+tile owns. Why the kept simplices are the global ones: core.tiled.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from core.complex import AlphaComplex
+from core.errors import InputError
+from core.tiled.degenerate import line_tile
+
+#: Global vertex id of a local point no input row maps to (hidden weighted points).
+NO_ID = np.iinfo(np.int64).max
+
+
+@dataclass(frozen=True)
+class TileResult:
+    """What a tile owns at alpha, in global vertex ids (input rows; a merged duplicate is
+    its first row). Per dimension k: `simplices[k]` (n_k, k+1) int64 rows ascending,
+    `classes[k]` (n_k,) int8 (1 singular, 2 regular, 3 interior) and `intervals[k]`
+    (n_k, 3) float64 enter/regular/interior (values above alpha are NaN: a tile cannot
+    know them). `regular` (r, dim) int64 REGULAR facets oriented away from their cell;
+    `vertex_ids` (v,) / `vertex_coords` (v, ambient) every vertex the kept simplices use;
+    `measure` volume (3D) or area (2D) of the kept cells, `boundary` area (3D) or length
+    (2D) of the kept REGULAR facets; `points` and `hidden` count the core's input rows."""
+
+    simplices: tuple[np.ndarray, ...]
+    classes: tuple[np.ndarray, ...]
+    intervals: tuple[np.ndarray, ...]
+    regular: np.ndarray
+    vertex_ids: np.ndarray
+    vertex_coords: np.ndarray
+    measure: float
+    boundary: float
+    points: int
+    hidden: int
+
+    def to_arrays(self) -> dict[str, np.ndarray]:
+        """The result as named arrays (np.savez; read back by from_arrays)."""
+        out = {"regular": self.regular, "vertex_ids": self.vertex_ids,
+               "vertex_coords": self.vertex_coords,
+               "numbers": np.array([self.measure, self.boundary, self.points, self.hidden],
+                                   dtype=np.float64)}
+        for k, (s, c, iv) in enumerate(zip(self.simplices, self.classes, self.intervals,
+                                           strict=True)):
+            out[f"simplices{k}"], out[f"classes{k}"], out[f"intervals{k}"] = s, c, iv
+        return out
+
+    @classmethod
+    def from_arrays(cls, arrays) -> TileResult:
+        """A result from `to_arrays`'s names (an np.load of the saved file)."""
+        dim = arrays["regular"].shape[1]
+        numbers = arrays["numbers"]
+        return cls(tuple(arrays[f"simplices{k}"] for k in range(dim + 1)),
+                   tuple(arrays[f"classes{k}"] for k in range(dim + 1)),
+                   tuple(arrays[f"intervals{k}"] for k in range(dim + 1)),
+                   arrays["regular"], arrays["vertex_ids"], arrays["vertex_coords"],
+                   float(numbers[0]), float(numbers[1]), int(numbers[2]), int(numbers[3]))
+
+
+def global_ids(input_index: np.ndarray, rows: np.ndarray, m: int) -> np.ndarray:
+    """(m,) int64 smallest input row of each of the m local points (NO_ID: none)."""
+    ids = np.full(m, NO_ID, dtype=np.int64)
+    seen = input_index >= 0
+    np.minimum.at(ids, input_index[seen], rows[seen])
+    return ids
+
+
+def compute_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray,
+                 weights: np.ndarray | None, at: dict, dim: int) -> TileResult:
+    """The owned part of the shape at `at` ({"alpha": R} or {"alpha2": A2}) of one tile:
+    input `rows` (n,) int64, `coords` (n, dim) float64, `in_core` (n,) bool, `weights` (n,)
+    or None; `dim` the whole set's dimension (a tile may be flatter: core.tiled)."""
+    try:
+        ac = AlphaComplex.from_points(coords, weights=weights)
+    except InputError:
+        if weights is not None and np.any(weights != 0):
+            raise
+        return line_tile(rows, coords, in_core, at, dim)
+    ids = global_ids(np.asarray(ac.input_index), rows, len(ac.points))
+    core_point = np.zeros(len(ac.points), dtype=bool)
+    index = np.asarray(ac.input_index)
+    core_point[index[in_core & (index >= 0)]] = True
+    shape = ac.shape(**at)
+    simplices, classes, intervals, measure = [], [], [], 0.0
+    for k in range(dim + 1):
+        s, c, iv, keep = _owned_level(ac, ids, core_point, at, shape.alpha, k, dim)
+        simplices.append(s)
+        classes.append(c)
+        intervals.append(iv)
+        if k == dim == ac.dim and len(keep):
+            measure = float(np.sum(np.asarray(ac.cell_measures())[keep]))
+    regular = np.empty((0, dim), dtype=np.int64)
+    if ac.dim == dim:
+        local = np.asarray(shape.regular_facets, dtype=np.int64)
+        regular = ids[local[_owner_in_core(ids, local, core_point)]]
+    used = np.unique(np.concatenate([s.ravel() for s in simplices]))
+    coords_of = _coordinates(ac, ids, used)
+    hidden = int(np.count_nonzero(in_core & (index < 0)))
+    return TileResult(tuple(simplices), tuple(classes), tuple(intervals), regular, used,
+                      coords_of, measure, facet_measure(coords_of, used, regular),
+                      int(np.count_nonzero(in_core)), hidden)
+
+
+def _owner_in_core(ids: np.ndarray, local: np.ndarray, core_point: np.ndarray) -> np.ndarray:
+    """(s,) bool: the local simplices (s, k+1) whose lowest global vertex id is a core
+    point of this tile (the owner rule: each simplex is kept by exactly one tile)."""
+    if len(local) == 0:
+        return np.zeros(0, dtype=bool)
+    lowest = np.argmin(ids[local], axis=1)
+    return core_point[local[np.arange(len(local)), lowest]]
+
+
+def _owned_level(ac, ids, core_point, at: dict, alpha: float, k: int, dim: int):
+    """(simplices, classes, intervals, kept local rows) of the owned k-simplices in the
+    complex at `at` (`alpha`: its table value); a flat tile's classes as in `dim`."""
+    if k > ac.dim:
+        return (np.empty((0, k + 1), np.int64), np.empty(0, np.int8),
+                np.empty((0, 3)), np.empty(0, np.int64))
+    cls = np.asarray(ac.classify(k=k, **at))
+    members = np.flatnonzero(cls > 0)
+    local = np.asarray(ac.simplices(k))[members].astype(np.int64)
+    keep = _owner_in_core(ids, local, core_point)
+    rows = members[keep]
+    out = np.sort(ids[local[keep]], axis=1)
+    iv = np.array(ac.intervals(k)[rows], dtype=np.float64)
+    iv[iv > alpha] = np.nan
+    c = cls[rows]
+    if ac.dim < dim:  # a flat tile in 3D: nothing is interior, faces of members regular
+        c = np.where(k < ac.dim, np.minimum(c, 2), 1).astype(np.int8)
+        iv[:, 2] = np.nan
+        if k == ac.dim:
+            iv[:, 1] = np.nan
+    return out, c, iv, rows
+
+
+def _coordinates(ac, ids: np.ndarray, used: np.ndarray) -> np.ndarray:
+    """(v, ambient) coordinates of the global vertex ids `used` (each is a local point)."""
+    order = np.argsort(ids)
+    local = order[np.searchsorted(ids, used, sorter=order)]
+    return np.asarray(ac.to_ambient(np.asarray(ac.points)[local]), dtype=np.float64)
+
+
+def facet_measure(coords: np.ndarray, ids: np.ndarray, facets: np.ndarray) -> float:
+    """Total length (2D edges) or area (3D triangles) of `facets` (f, dim) global ids whose
+    coordinates are `coords` rows of the sorted `ids`."""
+    if len(facets) == 0:
+        return 0.0
+    p = coords[np.searchsorted(ids, facets)]
+    if facets.shape[1] == 2:
+        return float(np.sum(np.linalg.norm(p[:, 1] - p[:, 0], axis=1)))
+    cross = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    return float(0.5 * np.sum(np.linalg.norm(cross, axis=1)))
