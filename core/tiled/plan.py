@@ -130,8 +130,9 @@ def plan_tiles(lo: np.ndarray, hi: np.ndarray, counts: np.ndarray, margin: float
     from `lo` (`histogram`, HISTOGRAM_BINS); its bin width is max(hi - lo) / HISTOGRAM_BINS."""
     dim = len(lo)
     width = _bin_width(lo, hi)
-    core_limit = tile_points or np.iinfo(np.int64).max
-    all_limit = (budget_bytes // BYTES_PER_POINT[dim]) if budget_bytes else core_limit
+    unlimited = np.iinfo(np.int64).max
+    core_limit = tile_points or unlimited
+    all_limit = (budget_bytes // BYTES_PER_POINT[dim]) if budget_bytes else unlimited
     grow = math.ceil(margin / width)
     chosen = None
     for block in range(max(counts.shape), 0, -1):
