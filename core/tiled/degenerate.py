@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.points import merge_duplicates
+from core.build.points import merge_duplicates
 
 
 def _radius(at: dict) -> float:

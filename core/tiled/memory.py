@@ -8,13 +8,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.alpha import table_value
-from core.points import Frame, as_points, check_spread, merge_duplicates
+from core.build.points import Frame, as_points, check_spread, merge_duplicates
+from core.build.weights import as_weights
+from core.query.alpha import table_value
 from core.tiled.merge import TiledShape, merge_tiles
 from core.tiled.partition import tile_groups
 from core.tiled.plan import TilePlan, histogram, histogram_shape, margin_for, plan_tiles
 from core.tiled.tile import compute_tile
-from core.weights import as_weights
 
 
 @dataclass(frozen=True)

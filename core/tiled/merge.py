@@ -11,7 +11,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from core.arrays import readonly
-from core.points import Frame
+from core.build.points import Frame
 from core.tiled.tile import TileResult
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from core.atomic import atomic_path
+from core.storage.atomic import atomic_path
 from core.tiled.plan import TilePlan
 
 #: Columns of a part file: input row, 1.0 if in the tile's core, coordinates, [weight].

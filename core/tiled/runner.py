@@ -20,9 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-from core.atomic import atomic_path
 from core.errors import AlphaScoopError
 from core.progress import Progress
+from core.storage.atomic import atomic_path
 from core.tiled.memory import Query
 from core.tiled.merge import TiledShape, merge_tiles
 from core.tiled.partition import read_tile, tile_folder, write_parts

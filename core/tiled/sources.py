@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from core.build.points import Frame
 from core.errors import InputError
-from core.points import Frame
 from core.tiled.memory import prepared
 
 #: Points per chunk of a streamed source.
