@@ -210,6 +210,8 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         clock = time.perf_counter()
         _step(options, 0.3, "starting the workers")
         client = client_for(options, workers, memory)
+        report.seconds["start"] = time.perf_counter() - clock
+        clock = time.perf_counter()
         paths = run_tiles(client, tiles, plan, scratch, source.dim,
                           source.weights is not None, q, options, report)
         report.seconds["tiles"] = time.perf_counter() - clock
