@@ -431,7 +431,7 @@ def _tiled(args):
         raise UsageError("--tiled does not apply to molecule files")
     update, close = _progress()
     try:
-        return tiled_cli.run(args, update)
+        return tiled_cli.run_tiled(args, update)
     finally:
         close()
 
@@ -440,8 +440,8 @@ def _tiled_info(args) -> int:
     """`info --tiled`: the tiled shape's summary."""
     from app import tiled_cli
 
-    info = tiled_cli.summary(*_tiled(args))
-    print(json.dumps(info, indent=2) if args.json else tiled_cli.text(info))
+    info = tiled_cli.tiled_summary(*_tiled(args))
+    print(json.dumps(info, indent=2) if args.json else tiled_cli.tiled_text(info))
     return 0
 
 
@@ -450,7 +450,7 @@ def _tiled_export(args) -> int:
     from app import tiled_cli
 
     merged, _, georef, _ = _tiled(args)
-    print(tiled_cli.export(args, merged, georef))
+    print(tiled_cli.write_tiled(args, merged, georef))
     return 0
 
 

@@ -86,7 +86,7 @@ def _source(args):
     return ArraySource.from_points(ps.points, ps.weights), ps.report.georef, ps.report
 
 
-def run(args, progress=None):
+def run_tiled(args, progress=None):
     """(merged shape, run report, georef, load report) of the tiled run the options ask."""
     from core.tiled.memory import query
     from core.tiled.runner import RunOptions, RunReport, tiled_run
@@ -100,7 +100,7 @@ def run(args, progress=None):
     return merged, report, georef, load_report
 
 
-def summary(merged, report, georef, load_report) -> dict:
+def tiled_summary(merged, report, georef, load_report) -> dict:
     """What `info --tiled` reports, JSON-ready."""
     from core.tiled.view import MergedComplex
 
@@ -137,8 +137,8 @@ def summary(merged, report, georef, load_report) -> dict:
     return out
 
 
-def text(info: dict) -> str:
-    """The human-readable form of `summary`."""
+def tiled_text(info: dict) -> str:
+    """The human-readable form of `tiled_summary`."""
     names = [k for k in ("volume", "area", "perimeter") if k in info]
     lines = [f"points      {info['points']:,} ({info['dim']}D, {info['tiles']:,} tiles of side "
              f"{info['tile_side']:.6g}, margin {info['margin']:.6g})",
@@ -154,7 +154,7 @@ def text(info: dict) -> str:
     return "\n".join(lines)
 
 
-def export(args, merged, georef) -> str:
+def write_tiled(args, merged, georef) -> str:
     """Write the merged shape with core.export (atomic); its one-line report."""
     from core.export import write_shape
     from core.tiled.view import MergedComplex

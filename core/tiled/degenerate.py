@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from core.build.points import merge_duplicates
+from core.tiled.result import TileResult, global_ids
 
 
 def _radius(at: dict) -> float:
@@ -25,8 +26,6 @@ def _radius(at: dict) -> float:
 
 def line_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray, at: dict, dim: int):
     """core.tiled.tile.TileResult of a tile of classic points on one line (or one point)."""
-    from core.tiled.tile import TileResult, global_ids
-
     unique, index = merge_duplicates(np.asarray(coords, dtype=np.float64))
     ids = global_ids(index, rows, len(unique))
     core_point = np.zeros(len(unique), dtype=bool)

@@ -12,7 +12,7 @@ from scipy.sparse.csgraph import connected_components
 
 from core.arrays import readonly
 from core.build.points import Frame
-from core.tiled.tile import TileResult
+from core.tiled.result import TileResult
 
 
 @dataclass(frozen=True, eq=False)

@@ -33,8 +33,9 @@ from core.tiled.plan import (
     margin_for,
     plan_tiles,
 )
+from core.tiled.result import TileResult
 from core.tiled.sources import Survey, survey
-from core.tiled.tile import TileResult, compute_tile
+from core.tiled.tile import compute_tile
 
 #: A worker's share of the machine's memory when no budget is given, and its cap.
 MEMORY_SHARE, MEMORY_CAP = 0.6, 4 << 30
