@@ -103,3 +103,27 @@ def test_tiled_needs_an_alpha(capsys):
     assert "--tiled needs --alpha" in capsys.readouterr().err
     assert main(["info", str(SHARED / "bunny.ply"), "--tile-points", "5"]) == 2
     assert "--tile-points needs --tiled" in capsys.readouterr().err
+
+
+def test_weighted_file_with_alpha2(tmp_path, capsys):
+    rng = np.random.default_rng(4)
+    table = np.column_stack([rng.random((3000, 3)), rng.random(3000) * 1e-3])
+    src = tmp_path / "balls.csv"
+    np.savetxt(src, table, delimiter=",", header="x,y,z,weight", comments="")
+    argv = ["info", str(src), "--alpha2", "0.001", "--json"]
+    tiled = json.loads(run(capsys, *argv, "--tiled", "--tile-points", "500"))
+    memory = json.loads(run(capsys, *argv))
+    assert tiled["weighted"] and tiled["tiles"] >= 4
+    for name, counts in memory["classes"].items():
+        assert tiled["classes"][name] == {**counts, "exterior": None}
+    assert tiled["hidden_points"] == memory["hidden_points"]
+
+
+def test_memory_sizes():
+    from app.tiled_cli import memory_size
+
+    assert memory_size("2GiB") == 2 << 30
+    assert memory_size("1500MB") == 1_500_000_000
+    assert memory_size("4096") == 4096
+    with pytest.raises(Exception, match="memory size"):
+        memory_size("lots")

@@ -53,9 +53,10 @@ def line_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray, at: dic
         classes.append(np.empty(0, dtype=np.int8))
         intervals.append(np.empty((0, 3)))
     used = np.unique(np.concatenate([s.ravel() for s in simplices]))
-    local = np.argsort(ids)[np.searchsorted(ids, used, sorter=np.argsort(ids))]
+    order = np.argsort(rows)
+    coords_of = np.asarray(coords)[order[np.searchsorted(rows, used, sorter=order)]]
     return TileResult(tuple(simplices), tuple(classes), tuple(intervals),
-                      np.empty((0, dim), dtype=np.int64), used, unique[local], 0.0, 0.0,
+                      np.empty((0, dim), dtype=np.int64), used, coords_of, 0.0, 0.0,
                       int(np.count_nonzero(in_core)), 0)
 
 

@@ -88,9 +88,11 @@ def histogram(points: np.ndarray, lo: np.ndarray, width: float, bins: tuple[int,
     return np.bincount(flat, minlength=math.prod(bins)).reshape(bins)
 
 
-def _block_max(counts: np.ndarray, block: int, grow: int) -> tuple[int, int, int]:
+def _block_max(counts: np.ndarray, total: np.ndarray, block: int, grow: int
+               ) -> tuple[int, int, int]:
     """(largest core count, largest core+margin count, nonempty tiles) over tiles of
-    `block` bins per axis, the margin counted as `grow` whole bins on each side."""
+    `block` bins per axis, the margin counted as `grow` whole bins on each side (`total`:
+    the counts' summed-area table)."""
     padded = np.pad(counts, [(0, (-s) % block) for s in counts.shape])
     shape = tuple(s // block for s in padded.shape)
     cores = padded.reshape([x for s in shape for x in (s, block)]).sum(
@@ -98,7 +100,7 @@ def _block_max(counts: np.ndarray, block: int, grow: int) -> tuple[int, int, int
     index = np.argwhere(cores > 0)
     lo = np.maximum(index * block - grow, 0)
     hi = np.minimum((index + 1) * block + grow, counts.shape)
-    grown = _box_sums(_summed_area(counts), lo, hi)
+    grown = _box_sums(total, lo, hi)
     return int(cores.max()), int(grown.max(initial=0)), len(index)
 
 
@@ -135,8 +137,9 @@ def plan_tiles(lo: np.ndarray, hi: np.ndarray, counts: np.ndarray, margin: float
     all_limit = (budget_bytes // BYTES_PER_POINT[dim]) if budget_bytes else unlimited
     grow = math.ceil(margin / width)
     chosen = None
+    total = _summed_area(counts)
     for block in range(max(counts.shape), 0, -1):
-        core, widest, filled = _block_max(counts, block, grow)
+        core, widest, filled = _block_max(counts, total, block, grow)
         if core <= core_limit and widest <= all_limit:
             chosen = chosen or block
             if filled >= workers:

@@ -18,7 +18,7 @@ class TileResult:
     `classes[k]` (n_k,) int8 (1 singular, 2 regular, 3 interior) and `intervals[k]`
     (n_k, 3) float64 enter/regular/interior (values above alpha are NaN: a tile cannot
     know them). `regular` (r, dim) int64 REGULAR facets oriented away from their cell;
-    `vertex_ids` (v,) / `vertex_coords` (v, ambient) every vertex the kept simplices use;
+    `vertex_ids` (v,) / `vertex_coords` (v, dim) every vertex the kept simplices use;
     `measure` volume (3D) or area (2D) of the kept cells, `boundary` area (3D) or length
     (2D) of the kept REGULAR facets; `points` and `hidden` count the core's input rows."""
 

@@ -45,7 +45,7 @@ def compute_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray,
         local = np.asarray(shape.regular_facets, dtype=np.int64)
         regular = ids[local[_owner_in_core(ids, local, core_point)]]
     used = np.unique(np.concatenate([s.ravel() for s in simplices]))
-    coords_of = _coordinates(ac, ids, used)
+    coords_of = input_coordinates(rows, coords, used)
     hidden = int(np.count_nonzero(in_core & (index < 0)))
     return TileResult(tuple(simplices), tuple(classes), tuple(intervals), regular, used,
                       coords_of, measure, facet_measure(coords_of, used, regular),
@@ -84,11 +84,11 @@ def _owned_level(ac, ids, core_point, at: dict, alpha: float, k: int, dim: int):
     return out, c, iv, rows
 
 
-def _coordinates(ac, ids: np.ndarray, used: np.ndarray) -> np.ndarray:
-    """(v, ambient) coordinates of the global vertex ids `used` (each is a local point)."""
-    order = np.argsort(ids)
-    local = order[np.searchsorted(ids, used, sorter=order)]
-    return np.asarray(ac.to_ambient(np.asarray(ac.points)[local]), dtype=np.float64)
+def input_coordinates(rows: np.ndarray, coords: np.ndarray, used: np.ndarray) -> np.ndarray:
+    """(v, dim) the tile's own input coordinates of the global ids `used` (input rows of
+    the tile), exactly as given (never rebuilt from a flat tile's plane)."""
+    order = np.argsort(rows)
+    return np.ascontiguousarray(coords[order[np.searchsorted(rows, used, sorter=order)]])
 
 
 def facet_measure(coords: np.ndarray, ids: np.ndarray, facets: np.ndarray) -> float:
