@@ -38,12 +38,14 @@ def differences(ac: AlphaComplex, tiled, at: dict) -> list[str]:
         return [f"dimension {tiled.dim} != {ac.dim}"]
     for k, (rows, cls) in enumerate(members(ac, at)):
         mine = tiled.ids[tiled.simplices[k]]
+        order = np.lexsort(mine.T[::-1])
+        mine, classes = mine[order], tiled.classes[k][order]
         if mine.shape != rows.shape or not np.array_equal(mine, rows):
             a = {tuple(r) for r in rows.tolist()}
             b = {tuple(r) for r in mine.tolist()}
             problems.append(f"k={k}: {len(a - b)} only in memory, {len(b - a)} only tiled")
-        elif not np.array_equal(tiled.classes[k], cls):
-            problems.append(f"k={k}: {int(np.sum(tiled.classes[k] != cls))} classes differ")
+        elif not np.array_equal(classes, cls):
+            problems.append(f"k={k}: {int(np.sum(classes != cls))} classes differ")
     return problems
 
 

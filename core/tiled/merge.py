@@ -22,7 +22,7 @@ class TiledShape:
     `points` (u, dim) float64 the vertices of the complex (complex coordinates; `frame`
     maps planar 3D input back), `ids` (u,) int64 their global ids (input rows, ascending).
     Per dimension k: `simplices[k]` (n_k, k+1) int64 rows of `points`, ascending within a
-    row and lexicographically sorted; `classes[k]` (n_k,) int8 (1 singular, 2 regular,
+    row, tile after tile; `classes[k]` (n_k,) int8 (1 singular, 2 regular,
     3 interior); `intervals[k]` (n_k, 3) enter/regular/interior (NaN above alpha).
     `regular` (r, dim) int64 REGULAR facets oriented away from their cell. `alpha` is the
     table value (signed radius), `alpha2` its signed square.
@@ -107,15 +107,14 @@ def merge_tiles(results: Iterable[TileResult], *, dim: int, ambient_dim: int,
 
 
 def _level(parts: list[tuple], k: int, ids: np.ndarray):
-    """The k-simplices of all tiles as rows of `ids`, lexicographically sorted, with their
-    classes and intervals."""
+    """The k-simplices of all tiles as rows of `ids` (tile after tile: no sort, the merge
+    costs about its copies), with their classes and intervals."""
     if not parts:
         return np.empty((0, k + 1), np.int64), np.empty(0, np.int8), np.empty((0, 3))
     s = np.searchsorted(ids, np.concatenate([p[0] for p in parts]).reshape(-1, k + 1))
     c = np.concatenate([p[1] for p in parts])
     iv = np.concatenate([p[2] for p in parts]).reshape(-1, 3)
-    order = np.lexsort(s.T[::-1])
-    return s[order], c[order], iv[order]
+    return s, c, iv
 
 
 def components(n: int, edges: np.ndarray | None) -> int:
