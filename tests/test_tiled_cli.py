@@ -90,7 +90,7 @@ def test_streamed_las_and_vtu(tmp_path, capsys):
     tiled, memory = tmp_path / "tiled.vtu", tmp_path / "memory.vtu"
     line = run(capsys, "export", str(src), "-o", str(tiled), "--alpha", "40", "--tiled",
                "--sidecar", "--tile-points", "200")
-    assert int(line.split("[tiled: ")[1].split()[0].replace(",", "")) >= 4
+    assert int(line.split("[tiled: ")[1].split()[0].replace(",", "")) >= 2
     run(capsys, "export", str(src), "-o", str(memory), "--alpha", "40", "--sidecar")
     a, b = (json.loads(Path(f"{p}.json").read_text()) for p in (tiled, memory))
     for key in ("n_cells", "n_regular_facets", "n_singular", "dim"):
