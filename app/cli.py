@@ -28,6 +28,7 @@ from app.args import (
     radius,
     squared_radius,
 )
+from app.tiled_cli import add_tiled_options, check_tiled
 from core.errors import AlphaScoopError, InputError
 from core.query.classes import CLASSES
 
@@ -77,6 +78,7 @@ def _common(sub: argparse.ArgumentParser) -> None:
                      "(default 1.4; 0 = van der Waals surface)")
     sub.add_argument("--keep-water", action="store_true", help="molecules: keep water atoms")
     add_mode_options(sub)
+    add_tiled_options(sub, count)
 
 
 def build_parser() -> Parser:
@@ -403,6 +405,9 @@ def _text(info: dict, lines: list[str]) -> str:
 
 def cmd_info(args) -> int:
     """Print the load report and the shape summary (and a molecule's measures)."""
+    check_tiled(args, UsageError)
+    if args.tiled:
+        return _tiled_info(args)
     ps, obtained, seconds = load(args)
     ac = obtained.complex
     info = summary(ps, obtained, seconds, chosen_alpha(args), molecule=is_molecule(args))
@@ -438,6 +443,9 @@ def cmd_export(args) -> int:
             refuse_source(f"{args.output}.json", args.file)
     except InputError as exc:
         raise UsageError(str(exc)) from None
+    check_tiled(args, UsageError)
+    if args.tiled:
+        return _tiled_export(args)
     ps, obtained, _ = load(args)
     ac = obtained.complex
     if args.table:
@@ -478,6 +486,37 @@ def _export_pockets(args) -> int:
         labels = atom_labels(read_molecule(args.file, keep_water=args.keep_water), ac.points)
         count = write_pockets_csv(args.output, pockets, labels)
         print(f"{args.output}: {len(pockets)} pockets, {count:,} lining residues")
+    return 0
+
+
+def _tiled(args):
+    """The tiled run of the options (app.tiled_cli), with a progress bar on a terminal."""
+    from app import tiled_cli
+
+    if is_molecule(args):
+        raise UsageError("--tiled does not apply to molecule files")
+    update, close = _progress()
+    try:
+        return tiled_cli.run_tiled(args, update)
+    finally:
+        close()
+
+
+def _tiled_info(args) -> int:
+    """`info --tiled`: the tiled shape's summary."""
+    from app import tiled_cli
+
+    info = tiled_cli.tiled_summary(*_tiled(args))
+    print(json.dumps(info, indent=2) if args.json else tiled_cli.tiled_text(info))
+    return 0
+
+
+def _tiled_export(args) -> int:
+    """`export --tiled`: the tiled shape written by the exporters."""
+    from app import tiled_cli
+
+    merged, _, georef, _ = _tiled(args)
+    print(tiled_cli.write_tiled(args, merged, georef))
     return 0
 
 

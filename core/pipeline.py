@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from core.backends import BACKENDS, Choice, check_backend, delaunay, regular
-from core.build.certify import Certified, certified_triangulation
+from core.build.certify import Certified, certified_triangulation, point_ties
 from core.build.delaunay import Triangulation
 from core.build.levels import Table
 from core.build.points import (
@@ -224,7 +224,9 @@ def _certified(prep: _Prepared, tri: Triangulation) -> Certified:
     """Stage 3b: the backend's Delaunay cells certified with exact predicates on the points
     themselves (scaled by a power of two, exactly), repaired by flips (core/build/certify.py)."""
     scale = power_of_two_scale(prep.coords)
-    return dataclasses.replace(certified_triangulation(prep.coords / scale, tri), scale=scale)
+    ties = point_ties(prep.coords)  # of the points themselves: any subset breaks ties alike
+    return dataclasses.replace(certified_triangulation(prep.coords / scale, tri, ties),
+                               scale=scale)
 
 
 def _compacted(prep: _Prepared, tri: Triangulation) -> _Prepared:

@@ -414,6 +414,22 @@ def tie_weights(m: int) -> np.ndarray:
     return np.random.default_rng(14).random(m)
 
 
+def point_ties(points: np.ndarray) -> np.ndarray:
+    """(m,) weights in [0, 1) (multiples of 2**-53) of the symbolic perturbation, each a hash
+    of its point's coordinates alone: any subset of the points (a tile with its margin,
+    core.tiled) resolves cospherical ties as the whole set does."""
+    bits = np.ascontiguousarray(points, dtype=np.float64) + 0.0  # -0.0 folded into 0.0
+    words = bits.view(np.uint64).reshape(len(points), -1)
+    h = np.full(len(points), 0x9E3779B97F4A7C15, dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        for column in words.T:  # splitmix64 rounds over the coordinates' bits
+            h = (h ^ column) * np.uint64(0xBF58476D1CE4E5B9)
+            h ^= h >> np.uint64(31)
+            h *= np.uint64(0x94D049BB133111EB)
+            h ^= h >> np.uint64(29)
+    return (h >> np.uint64(11)).astype(np.float64) * 2.0**-53
+
+
 def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = None,
             *, repair: bool = True) -> Certified:
     """Check every interior facet of `tri` (cells of the (m, d) `points`) for the local
@@ -497,48 +513,53 @@ def _rewrapped(points: np.ndarray, ties: np.ndarray, before: Certified,
 JITTER_RTOL = 1e-9
 
 
-def _certified_cells(points: np.ndarray, tri: Triangulation, repair: bool = False
-                     ) -> Certified:
-    """`certify` on the points that are vertices; points the triangulator merged into a
-    neighbour count as uncertified (an exact triangulation keeps every distinct point)."""
-    out = certify(points[tri.kept], tri, tie_weights(len(points))[tri.kept], repair=repair)
+def _certified_cells(points: np.ndarray, tri: Triangulation, ties: np.ndarray,
+                     repair: bool = False) -> Certified:
+    """`certify` on the points that are vertices, with the points' (m,) perturbation
+    weights `ties`; points the triangulator merged into a neighbour count as uncertified
+    (an exact triangulation keeps every distinct point)."""
+    out = certify(points[tri.kept], tri, ties[tri.kept], repair=repair)
     return replace(out, uncertified=out.uncertified + len(points) - len(tri.kept))
 
 
-def certified_triangulation(points: np.ndarray, tri: Triangulation) -> Certified:
+def certified_triangulation(points: np.ndarray, tri: Triangulation,
+                            ties: np.ndarray | None = None) -> Certified:
     """Certify the backend's triangulation `tri` of the (m, d) distinct `points` (the exact
-    coordinates, scaled by a power of two at most; signs are decided on these).
+    coordinates, scaled by a power of two at most; signs are decided on these). `ties`:
+    the points' (m,) perturbation weights (default tie_weights(m); core.pipeline passes
+    point_ties of the unscaled points, so that ties do not depend on the points' order).
 
     Where the backend merged near-cospherical groups into flat or folded cells (which no flip
     repairs), Qhull runs once more on the points lifted with tiny weights, the same that
     break exact ties in the symbolic perturbation (so it resolves them the same way), and the
     certified result with fewer uncertified facets is kept (the first on a tie). What is
     still uncertified then is re-triangulated locally and exactly (core.build.rewrap)."""
-    first = _certified_cells(points, tri)
+    ties = tie_weights(len(points)) if ties is None else ties
+    first = _certified_cells(points, tri, ties)
     if not first.uncertified:
         return first
-    best = _retried(points, first)
+    best = _retried(points, ties, first)
     if not best.uncertified:
         return best
-    again = _certified_cells(points, best.triangulation, repair=True)
+    again = _certified_cells(points, best.triangulation, ties, repair=True)
     kept = again if again.uncertified < best.uncertified else best
     return replace(kept, exact_predicates=best.exact_predicates + again.exact_predicates,
                    flips=best.flips + again.flips)
 
 
-def _retried(points: np.ndarray, first: Certified) -> Certified:
+def _retried(points: np.ndarray, ties: np.ndarray, first: Certified) -> Certified:
     """Qhull once more on the points lifted by tiny weights (certified_triangulation), the
     result with fewer uncertified facets kept."""
     centred = points - 0.5 * (points.min(axis=0) + points.max(axis=0))
     centred /= float(np.abs(centred).max())
-    weights = JITTER_RTOL * tie_weights(len(points))
+    weights = JITTER_RTOL * ties
     try:
         retry = regular_triangulate(centred, weights)
     except InputError:
         return first
     if (retry.vertex_of_point < 0).any():  # a point hidden by the weights: not Delaunay
         return first
-    second = _certified_cells(points, retry)
+    second = _certified_cells(points, retry, ties)
     best = second if second.uncertified < first.uncertified else first
     return replace(best, exact_predicates=first.exact_predicates + second.exact_predicates,
                    flips=first.flips + second.flips)

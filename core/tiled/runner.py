@@ -1,0 +1,237 @@
+"""Tiled shapes out of core: points streamed into per-tile files, tiles run as Dask tasks (a
+local cluster sized to the machine, or an existing one), results merged.
+
+Every file goes under one scratch folder (workers of an existing cluster must share it),
+removed at the end whatever happens: Ctrl-C (KeyboardInterrupt) or core.errors.Cancelled
+from `progress` cancels the tasks first. A tile that fails is retried once; failing again,
+it is named in a TileError. Results are written atomically, so nothing half-written is read.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import shutil
+import tempfile
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from core.errors import AlphaScoopError
+from core.progress import Progress
+from core.storage.atomic import atomic_path
+from core.tiled.memory import Query
+from core.tiled.merge import TiledShape, merge_tiles
+from core.tiled.partition import read_tile, tile_folder, write_parts
+from core.tiled.plan import (
+    TilePlan,
+    histogram,
+    histogram_shape,
+    margin_for,
+    plan_tiles,
+)
+from core.tiled.result import TileResult
+from core.tiled.sources import Survey, survey
+from core.tiled.tile import compute_tile
+
+#: A worker's share of the machine's memory when no budget is given, and its cap.
+MEMORY_SHARE, MEMORY_CAP = 0.6, 4 << 30
+#: Part of a worker's memory a tile's build may plan for (the rest: Dask, the result).
+BUILD_SHARE = 0.7
+
+
+class TileError(AlphaScoopError):
+    """A tile failed twice (its number, box and the reason are in the message)."""
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How to run: `workers` of a local cluster (default: the machine's cores),
+    `memory_per_worker` bytes (default: a share of the machine's memory), `scheduler`
+    address of an existing cluster, `scratch` folder (shared by its workers),
+    `tile_points` per tile core, `progress(fraction, stage)`, `retries` per tile."""
+
+    workers: int | None = None
+    memory_per_worker: int | None = None
+    scheduler: str | None = None
+    scratch: str | os.PathLike | None = None
+    tile_points: int | None = None
+    progress: Progress | None = None
+    retries: int = 1
+
+
+@dataclass
+class RunReport:
+    """What a run did: tiles, the plan, seconds per stage, each tile's points, seconds and
+    its worker's peak memory (bytes)."""
+
+    plan: TilePlan | None = None
+    seconds: dict[str, float] = field(default_factory=dict)
+    tiles: list[dict] = field(default_factory=list)
+
+    @property
+    def peak_worker_bytes(self) -> int:
+        """Largest peak resident memory any worker reported."""
+        return max((t["peak_bytes"] for t in self.tiles), default=0)
+
+
+def default_workers() -> int:
+    """One worker per core."""
+    return max(1, os.cpu_count() or 1)
+
+
+def default_memory(workers: int) -> int:
+    """A worker's memory when none is given: MEMORY_SHARE of the machine over the workers,
+    at most MEMORY_CAP."""
+    import psutil
+
+    return int(min(MEMORY_CAP, MEMORY_SHARE * psutil.virtual_memory().total / workers))
+
+
+def tile_task(folder: str, out: str, dim: int, weighted: bool, at: dict) -> dict:
+    """One tile on a worker: read its parts, compute its owned shape, save it atomically to
+    `out` (.npz); what it cost."""
+    start = time.perf_counter()
+    rows, coords, in_core, weights = read_tile(Path(folder), dim, weighted)
+    result = compute_tile(rows, coords, in_core, weights, at, dim)
+    with atomic_path(out) as tmp, open(tmp, "wb") as fh:
+        np.savez(fh, **result.to_arrays())
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    return {"points": len(rows), "core": int(in_core.sum()),
+            "seconds": time.perf_counter() - start, "peak_bytes": int(peak)}
+
+
+def _step(options: RunOptions, fraction: float, stage: str) -> None:
+    if options.progress is not None:
+        options.progress(fraction, stage)
+
+
+def plan_source(source, seen: Survey, q: Query, options: RunOptions, workers: int,
+                memory: int) -> TilePlan:
+    """The second pass: the density histogram, then the tile plan."""
+    width, bins = histogram_shape(seen.lo, seen.hi)
+    counts = np.zeros(bins, dtype=np.int64)
+    for coords, _ in source.chunks():
+        counts += histogram(coords, seen.lo, width, bins)
+    margin = margin_for(q.alpha2, seen.max_weight,
+                        float(max(np.abs(seen.lo).max(), np.abs(seen.hi).max())))
+    return plan_tiles(seen.lo, seen.hi, counts, margin, tile_points=options.tile_points,
+                      budget_bytes=int(BUILD_SHARE * memory), workers=workers)
+
+
+def partition_source(source, plan: TilePlan, scratch: Path, options: RunOptions,
+                     count: int) -> list[int]:
+    """The third pass: every chunk into the part files of its tiles; the tiles that have
+    core points, ascending."""
+    tiles: set[int] = set()
+    first = 0
+    for chunk, (coords, weights) in enumerate(source.chunks()):
+        tiles |= write_parts(plan, scratch, chunk, first, coords, weights)
+        first += len(coords)
+        _step(options, 0.05 + 0.25 * first / count, "splitting the points into tiles")
+    return sorted(tiles)
+
+
+def client_for(options: RunOptions, workers: int, memory: int):
+    """A distributed Client: of the cluster at `options.scheduler`, or of a new local
+    cluster of `workers` single-threaded processes with `memory` bytes each (on
+    127.0.0.1, no dashboard)."""
+    from distributed import Client, LocalCluster
+
+    if options.scheduler:
+        return Client(options.scheduler, timeout="30s")
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           memory_limit=memory, host="127.0.0.1", dashboard_address=None)
+    return Client(cluster)
+
+
+def run_tiles(client, tiles: list[int], plan: TilePlan, scratch: Path, dim: int,
+              weighted: bool, q: Query, options: RunOptions, report: RunReport
+              ) -> list[Path]:
+    """Submit one task per tile, wait for all with progress; the result files in tile
+    order. A tile failing after its retries raises TileError naming it; an interrupt
+    cancels every task before it propagates."""
+    from distributed import as_completed
+
+    (scratch / "results").mkdir(exist_ok=True)
+    outs = {t: scratch / "results" / f"t{t:07d}.npz" for t in tiles}
+    futures = {client.submit(tile_task, str(tile_folder(scratch, t)), str(outs[t]), dim,
+                             weighted, q.at, key=f"alphascoop-tile-{t}-{scratch.name}",
+                             retries=options.retries, pure=False): t for t in tiles}
+    try:
+        for done, future in enumerate(as_completed(futures), 1):
+            tile = futures[future]
+            if future.status != "finished":
+                raise _tile_error(plan, tile, future)
+            report.tiles.append({"tile": tile, **future.result()})
+            _step(options, 0.3 + 0.6 * done / len(tiles), f"tiles {done:,} of {len(tiles):,}")
+    except BaseException:
+        client.cancel(list(futures), force=True)
+        raise
+    return [outs[t] for t in tiles]
+
+
+def _tile_error(plan: TilePlan, tile: int, future) -> TileError:
+    """The error naming a failed tile, its core box and why it failed."""
+    lo, hi = plan.box(tile)
+    exc = future.exception()
+    box = ", ".join(f"{a:.6g}..{b:.6g}" for a, b in zip(lo, hi, strict=True))
+    return TileError(f"tile {tile} (core {box}) failed after retrying: "
+                     f"{type(exc).__name__}: {exc}")
+
+
+def _results(paths: list[Path]) -> Iterator[TileResult]:
+    """The tiles' results, read one at a time."""
+    for path in paths:
+        with np.load(path, allow_pickle=False) as arrays:
+            yield TileResult.from_arrays({k: arrays[k] for k in arrays.files})
+
+
+def tiled_run(source, q: Query, options: RunOptions | None = None,
+              report: RunReport | None = None) -> TiledShape:
+    """The shape at `q` of a chunked `source` (core.tiled.sources), tile by tile on Dask."""
+    options = options or RunOptions()
+    report = report if report is not None else RunReport()
+    workers = options.workers or default_workers()
+    memory = options.memory_per_worker or default_memory(workers)
+    if options.scratch is not None:
+        os.makedirs(options.scratch, exist_ok=True)
+    scratch = Path(tempfile.mkdtemp(prefix="alphascoop-tiles-", dir=options.scratch))
+    client = None
+    try:
+        clock = time.perf_counter()
+        _step(options, 0.0, "reading the points")
+        seen = survey(source)
+        plan = report.plan = plan_source(source, seen, q, options, workers, memory)
+        tiles = partition_source(source, plan, scratch, options, seen.count)
+        report.seconds["partition"] = time.perf_counter() - clock
+        clock = time.perf_counter()
+        _step(options, 0.3, "starting the workers")
+        client = client_for(options, workers, memory)
+        report.seconds["start"] = time.perf_counter() - clock
+        clock = time.perf_counter()
+        paths = run_tiles(client, tiles, plan, scratch, source.dim,
+                          source.weights is not None, q, options, report)
+        report.seconds["tiles"] = time.perf_counter() - clock
+        clock = time.perf_counter()
+        _step(options, 0.9, "merging the tiles")
+        merged = merge_tiles(_results(paths), dim=source.dim, ambient_dim=source.ambient_dim,
+                             frame=source.frame, alpha=q.alpha, alpha2=q.alpha2,
+                             weighted=source.weights is not None)
+        report.seconds["merge"] = time.perf_counter() - clock
+        return merged
+    finally:
+        if client is not None:
+            _close(client, options)
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
+def _close(client, options: RunOptions) -> None:
+    """Close the client (and the local cluster this run started)."""
+    cluster = None if options.scheduler else client.cluster
+    client.close()
+    if cluster is not None:
+        cluster.close()

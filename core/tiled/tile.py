@@ -1,0 +1,103 @@
+"""One tile: the alpha complex of its core points and margin, classified at alpha, and the
+simplices the tile owns (their lowest global vertex id lies in its core), in global ids.
+
+The project's own build (AlphaComplex.from_points: exact predicates, the interval table)
+decides everything; this module only maps local vertices to global ids and keeps what the
+tile owns. Why the kept simplices are the global ones: core.tiled.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from core.complex import AlphaComplex
+from core.errors import InputError
+from core.tiled.degenerate import line_tile
+from core.tiled.result import TileResult, global_ids
+
+
+def compute_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray,
+                 weights: np.ndarray | None, at: dict, dim: int) -> TileResult:
+    """The owned part of the shape at `at` ({"alpha": R} or {"alpha2": A2}) of one tile:
+    input `rows` (n,) int64, `coords` (n, dim) float64, `in_core` (n,) bool, `weights` (n,)
+    or None; `dim` the whole set's dimension (a tile may be flatter: core.tiled)."""
+    try:
+        ac = AlphaComplex.from_points(coords, weights=weights)
+    except InputError:
+        if weights is not None and np.any(weights != 0):
+            raise
+        return line_tile(rows, coords, in_core, at, dim)
+    ids = global_ids(np.asarray(ac.input_index), rows, len(ac.points))
+    core_point = np.zeros(len(ac.points), dtype=bool)
+    index = np.asarray(ac.input_index)
+    core_point[index[in_core & (index >= 0)]] = True
+    shape = ac.shape(**at)
+    simplices, classes, intervals, measure = [], [], [], 0.0
+    for k in range(dim + 1):
+        s, c, iv, keep = _owned_level(ac, ids, core_point, at, shape.alpha, k, dim)
+        simplices.append(s)
+        classes.append(c)
+        intervals.append(iv)
+        if k == dim == ac.dim and len(keep):
+            measure = float(np.sum(np.asarray(ac.cell_measures())[keep]))
+    regular = np.empty((0, dim), dtype=np.int64)
+    if ac.dim == dim:
+        local = np.asarray(shape.regular_facets, dtype=np.int64)
+        regular = ids[local[_owner_in_core(ids, local, core_point)]]
+    used = np.unique(np.concatenate([s.ravel() for s in simplices]))
+    coords_of = input_coordinates(rows, coords, used)
+    hidden = int(np.count_nonzero(in_core & (index < 0)))
+    return TileResult(tuple(simplices), tuple(classes), tuple(intervals), regular, used,
+                      coords_of, measure, facet_measure(coords_of, used, regular),
+                      int(np.count_nonzero(in_core)), hidden)
+
+
+def _owner_in_core(ids: np.ndarray, local: np.ndarray, core_point: np.ndarray) -> np.ndarray:
+    """(s,) bool: the local simplices (s, k+1) whose lowest global vertex id is a core
+    point of this tile (the owner rule: each simplex is kept by exactly one tile)."""
+    if len(local) == 0:
+        return np.zeros(0, dtype=bool)
+    lowest = np.argmin(ids[local], axis=1)
+    return core_point[local[np.arange(len(local)), lowest]]
+
+
+def _owned_level(ac, ids, core_point, at: dict, alpha: float, k: int, dim: int):
+    """(simplices, classes, intervals, kept local rows) of the owned k-simplices in the
+    complex at `at` (`alpha`: its table value); a flat tile's classes as in `dim`."""
+    if k > ac.dim:
+        return (np.empty((0, k + 1), np.int64), np.empty(0, np.int8),
+                np.empty((0, 3)), np.empty(0, np.int64))
+    cls = np.asarray(ac.classify(k=k, **at))
+    members = np.flatnonzero(cls > 0)
+    local = np.asarray(ac.simplices(k))[members].astype(np.int64)
+    keep = _owner_in_core(ids, local, core_point)
+    rows = members[keep]
+    out = np.sort(ids[local[keep]], axis=1)
+    iv = np.array(ac.intervals(k)[rows], dtype=np.float64)
+    iv[iv > alpha] = np.nan
+    c = cls[rows]
+    if ac.dim < dim:  # a flat tile in 3D: nothing is interior, faces of members regular
+        c = np.where(k < ac.dim, np.minimum(c, 2), 1).astype(np.int8)
+        iv[:, 2] = np.nan
+        if k == ac.dim:
+            iv[:, 1] = np.nan
+    return out, c, iv, rows
+
+
+def input_coordinates(rows: np.ndarray, coords: np.ndarray, used: np.ndarray) -> np.ndarray:
+    """(v, dim) the tile's own input coordinates of the global ids `used` (input rows of
+    the tile), exactly as given (never rebuilt from a flat tile's plane)."""
+    order = np.argsort(rows)
+    return np.ascontiguousarray(coords[order[np.searchsorted(rows, used, sorter=order)]])
+
+
+def facet_measure(coords: np.ndarray, ids: np.ndarray, facets: np.ndarray) -> float:
+    """Total length (2D edges) or area (3D triangles) of `facets` (f, dim) global ids whose
+    coordinates are `coords` rows of the sorted `ids`."""
+    if len(facets) == 0:
+        return 0.0
+    p = coords[np.searchsorted(ids, facets)]
+    if facets.shape[1] == 2:
+        return float(np.sum(np.linalg.norm(p[:, 1] - p[:, 0], axis=1)))
+    cross = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    return float(0.5 * np.sum(np.linalg.norm(cross, axis=1)))
