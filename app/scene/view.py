@@ -26,6 +26,7 @@ from app.scene.layers import (
     SHRINK_FACTOR,
     STATIC_LAYERS,
     Layer,
+    ball_actor,
     ball_mesh,
     coloured_cells,
     new_mesh,
@@ -111,6 +112,11 @@ class Scene:
     def _add_actor(self, name: str, style: LayerStyle) -> pv.Actor:
         """Add the layer's one actor."""
         layer = self.layers[name]
+        if layer.kind == "balls":  # sphere impostors: a mapper pyvista's add_mesh cannot make
+            actor = ball_actor(layer.mesh, style.colour, style.opacity)
+            self.plotter.add_actor(actor, name=name, reset_camera=False, render=False)
+            actor.SetVisibility(style.visible)
+            return actor
         source = layer.mesh
         if layer.kind == "tets":
             source = vtkShrinkFilter()
@@ -121,8 +127,7 @@ class Scene:
             source, color=None if coloured else style.colour, opacity=style.opacity,
             scalars="rgb" if coloured else None, rgb=coloured, name=name, reset_camera=False,
             render=False,  # one render once the dataset is set up, not one per layer
-            lighting=layer.kind in ("tris", "tets", "balls") and (self.dim == 3
-                                                                   or layer.kind == "balls"),
+            lighting=layer.kind in ("tris", "tets") and self.dim == 3,
             **DRAW_OPTIONS.get(name, {}),
         )
         if name == "singular_highlight":  # drawn over the surface's own triangles
