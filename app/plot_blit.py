@@ -4,7 +4,7 @@ A full matplotlib draw lays out and renders every tick, label, legend and curve 
 signatures figure (0.5-1 s a step on this machine class, benchmarks/bench_plot_cursor.py); the
 cursors alone cost about a millisecond. The moving artists are `animated` (a full draw leaves
 them out), the figure's pixels are copied after each full draw, and a move restores that copy,
-draws the moving artists over it and blits the result to the screen.
+draws the moving artists over it and asks Qt to paint the canvas from that buffer.
 """
 
 from __future__ import annotations
@@ -55,12 +55,15 @@ class Blitter:
         self.canvas.draw_idle()
 
     def move(self) -> bool:
-        """Show the artists' new data: True when blitted over the cached background, False
+        """Show the artists' new data: True when drawn over the cached background, False
         when a full draw was asked for instead (no background of the canvas's size yet)."""
         if self.background is None or self.bounds != tuple(self.canvas.figure.bbox.bounds):
             self.redraw()
             return False
         self.canvas.restore_region(self.background)
         self._draw_artists()
-        self.canvas.blit(self.canvas.figure.bbox)
+        # not canvas.blit: its synchronous repaint composes the whole window on its own (the
+        # window holds an OpenGL widget: ~60 ms in software GL); update() joins the paint of
+        # the step's other widgets and 3D view in one composition
+        self.canvas.update()
         return True
