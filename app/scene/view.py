@@ -37,6 +37,15 @@ from app.scene.painting import Painter
 from app.scene.picking import ViewPicker
 from core.storage.atomic import atomic_path
 
+LOD_CELLS = 30_000  # cells a layer draws at most while the slider is dragged
+
+
+def thinned(cells: np.ndarray, limit: int | None) -> np.ndarray:
+    """At most `limit` of the (k, s) cells, evenly picked (all of them when limit is None)."""
+    if limit is None or len(cells) <= limit:
+        return cells
+    return np.ascontiguousarray(cells[:: -(-len(cells) // limit)])
+
 
 class Scene:
     """Layers of one dataset drawn into a pyvista plotter (QtInteractor or off-screen), with
@@ -50,6 +59,9 @@ class Scene:
         self.plotter.set_background(BACKGROUND)
         self.plotter.renderer.SetTwoSidedLighting(True)  # singular triangles face either way
         self._render = render or plotter.render
+        self.lod_limit = LOD_CELLS  # cells a layer draws while the slider is dragged
+        self.lod_cells: int | None = None  # the limit in force (None: the full frame)
+        self._samples = self.plotter.render_window.GetMultiSamples()
         self.layers: dict[str, Layer] = {}  # one dict for the scene's life (helpers share it)
         self.styles: dict[str, LayerStyle] = {}
         self.shape = None
@@ -152,9 +164,23 @@ class Scene:
             if name in STATIC_LAYERS:
                 continue
             if self.styles[name].visible:
-                layer.set_cells(shape_cells(shape, name))
+                layer.set_cells(thinned(shape_cells(shape, name), self.lod_cells))
             else:
                 layer.dirty = True
+
+    def set_level_of_detail(self, dragging: bool) -> None:
+        """While the slider is dragged: no multisampling and at most LOD_CELLS cells a layer
+        (evenly picked), so frames keep up; after it, the full frame (one render)."""
+        if dragging == (self.lod_cells is not None):
+            return
+        window = self.plotter.render_window
+        if dragging:
+            self._samples = window.GetMultiSamples()
+        window.SetMultiSamples(0 if dragging else self._samples)
+        self.lod_cells = self.lod_limit if dragging else None
+        if self.shape is not None:
+            self.set_shape(self.shape)
+        self.render()
 
     def set_cells(self, name: str, cells: np.ndarray) -> None:
         """Swap one static layer's cells (the cavities at a new alpha), if it exists."""
@@ -168,7 +194,7 @@ class Scene:
         layer = self.layers[name]
         self.styles[name] = style
         if style.visible and layer.dirty and self.shape is not None:
-            layer.set_cells(shape_cells(self.shape, name))
+            layer.set_cells(thinned(shape_cells(self.shape, name), self.lod_cells))
         prop = layer.actor.prop
         prop.color = style.colour
         prop.opacity = style.opacity
