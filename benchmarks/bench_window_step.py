@@ -39,6 +39,7 @@ sys.path.insert(0, str(ROOT))
 FILES = ("scan40k", "scan200k", "scan1m", "protein")
 WINDOW = (1280, 800)
 TOPOLOGY_TIMEOUT_S = 3600
+SHOT_DRAG_S = 1.5  # a drag only for the --shots picture
 
 
 def data_dir() -> Path:
@@ -96,12 +97,14 @@ def measure_file(path: Path, steps: int, drag_seconds: float, shots: Path | None
                   "view": list(win.scene.plotter.render_window.GetSize()), "kinds": {}}
         for kind in KINDS:
             result["kinds"][kind] = summary(timed_steps(win, timer, kind, steps))
-        if drag_seconds > 0:
+        if drag_seconds > 0 or shots is not None:
             win.model.set_index(win.model.default_index())
             drain()
-            result["drag"] = drag(win, timer, drag_seconds)
-        if shots is not None:
-            save_shot(win, shots / f"{path.stem}.png")
+            shot = None if shots is None else (
+                lambda: save_shot(win, shots / f"{path.stem}_mid_drag.png"))
+            moved = drag(win, timer, drag_seconds or SHOT_DRAG_S, shot=shot)
+            if drag_seconds > 0:
+                result["drag"] = moved
         win.close()
     return result
 
@@ -179,7 +182,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--drag", type=float, default=4.0, help="seconds of drag at 200k")
     parser.add_argument("--cache", help="table cache folder kept between runs")
     parser.add_argument("--data", default=None, help="where scan samples are written")
-    parser.add_argument("--shots", help="save a picture of each window here")
+    parser.add_argument("--shots", help="save a picture of each window mid-drag here")
     parser.add_argument("--no-save", action="store_true")
     parser.add_argument("--one", help=argparse.SUPPRESS)
     parser.add_argument("--out", help=argparse.SUPPRESS)

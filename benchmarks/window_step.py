@@ -203,10 +203,12 @@ def timed_steps(win, timer: PartTimer, kind: str, count: int) -> list[dict]:
     return rows
 
 
-def drag(win, timer: PartTimer, seconds: float, span: int = 2000) -> dict:
+def drag(win, timer: PartTimer, seconds: float, span: int = 2000,
+         shot: Callable[[], None] | None = None) -> dict:
     """Drag the slider's handle back and forth for `seconds` (each move handled and painted
     before the next, as fast as the window goes): frames per second, then the release and
-    the time until the frame after it is painted."""
+    the time until the frame after it is painted. `shot()` runs once halfway (a picture of
+    the window mid-drag; its time is left out of the frames per second)."""
     slider = win.alpha_panel.slider
     slider.setSliderDown(True)
     drain()
@@ -216,6 +218,11 @@ def drag(win, timer: PartTimer, seconds: float, span: int = 2000) -> dict:
     start = time.perf_counter()
     step = max(span // 40, 1)
     while time.perf_counter() - start < seconds:
+        if shot is not None and time.perf_counter() - start > seconds / 2:
+            paused = time.perf_counter()
+            shot()
+            shot = None
+            start += time.perf_counter() - paused
         positions += 1
         offset = (positions * step) % (2 * span)
         slider.setSliderPosition(start_position - min(offset, 2 * span - offset))
