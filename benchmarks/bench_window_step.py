@@ -183,6 +183,9 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--cache", help="table cache folder kept between runs")
     parser.add_argument("--data", default=None, help="where scan samples are written")
     parser.add_argument("--shots", help="save a picture of each window mid-drag here")
+    parser.add_argument("--raw", help="keep each file's result here as NAME.json; the saved "
+                        "figures then cover every file found there (runs of one file at a "
+                        "time add up)")
     parser.add_argument("--no-save", action="store_true")
     parser.add_argument("--one", help=argparse.SUPPRESS)
     parser.add_argument("--out", help=argparse.SUPPRESS)
@@ -200,6 +203,13 @@ def main(argv: list[str] | None = None) -> None:
     for name in args.files.split(","):
         results[name] = run_child(name, file_of(name, folder), args)
         print(json.dumps({name: results[name]}, indent=1), flush=True)
+        if args.raw:
+            Path(args.raw).mkdir(parents=True, exist_ok=True)
+            (Path(args.raw) / f"{name}.json").write_text(json.dumps(results[name]))
+    if args.raw:  # every file measured so far, in the benchmark's order
+        kept = {name: json.loads((Path(args.raw) / f"{name}.json").read_text())
+                for name in FILES if (Path(args.raw) / f"{name}.json").is_file()}
+        results = {**kept, **results}
     figures = goal_figures(results)
     for figure in figures:
         print(f"{figure.name}: {figure.value:.3f} {figure.unit} vs {figure.anchor_value} "
