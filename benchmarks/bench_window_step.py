@@ -132,22 +132,24 @@ def run_child(name: str, path: Path, args: argparse.Namespace) -> dict:
 
 
 def goal_figures(results: dict[str, dict]) -> list:
-    """Per file: the median and 95th percentile step of all kinds against 2 x / 3 x the bare
-    render plus 30 / 50 ms; the protein against the 40k scan; frames per second of a drag."""
+    """Per file: the median and 95th percentile step of each kind against 2 x / 3 x its bare
+    render plus 30 / 50 ms (the worst kind is the figure); the protein against the 40k scan;
+    frames per second of a drag."""
     from results import Figure
 
     figures = []
     for name, result in results.items():
-        kinds = result["kinds"].values()
-        median = max(k["median"] for k in kinds)
-        p95 = max(k["p95"] for k in kinds)
-        bare = min(k["bare"] for k in kinds)
-        figures.append(Figure(f"window_step.{name}.median", f"{result['file']}: worst median "
-                              "step over the kinds", median, "s",
-                              "2 x bare render + 30 ms", 2 * bare + 0.030, "<= 1"))
-        figures.append(Figure(f"window_step.{name}.p95", f"{result['file']}: worst 95th "
-                              "percentile step over the kinds", p95, "s",
-                              "3 x bare render + 50 ms", 3 * bare + 0.050, "<= 1"))
+        kinds = result["kinds"]
+        # each kind against its own frame's bare render; the worst kind is the figure
+        median = max(kinds, key=lambda k: kinds[k]["median"] / (2 * kinds[k]["bare"] + 0.030))
+        p95 = max(kinds, key=lambda k: kinds[k]["p95"] / (3 * kinds[k]["bare"] + 0.050))
+        figures.append(Figure(f"window_step.{name}.median", f"{result['file']}: median step, "
+                              f"worst kind ({median})", kinds[median]["median"], "s",
+                              "2 x bare render + 30 ms", 2 * kinds[median]["bare"] + 0.030,
+                              "<= 1"))
+        figures.append(Figure(f"window_step.{name}.p95", f"{result['file']}: 95th percentile "
+                              f"step, worst kind ({p95})", kinds[p95]["p95"], "s",
+                              "3 x bare render + 50 ms", 3 * kinds[p95]["bare"] + 0.050, "<= 1"))
     if "protein" in results and "scan40k" in results:
         figures.append(Figure(
             "window_step.protein_vs_scan40k", "protein: median arrow step",
