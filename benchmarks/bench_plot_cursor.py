@@ -73,10 +73,10 @@ def matplotlib_moves(panel, alphas: np.ndarray, full: bool) -> list[float]:
     model = panel.model
 
     def move(alpha: float) -> None:
-        model.set_alpha(alpha)  # the panel's move_cursor blits
+        model.set_alpha(alpha)  # the panel's move_cursor draws the cursors over its cache
         if full:
             panel.canvas.draw()
-            panel.canvas.repaint()
+        panel.canvas.repaint()  # the paint itself, synchronously, as the other ways
 
     return timed_moves(move, alphas)
 
