@@ -179,7 +179,8 @@ def table(results: dict[str, dict]) -> dict:
 def main(argv: list[str] | None = None) -> None:
     """Run the chosen files (each in its own process), print and save the result."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--files", default=",".join(FILES))
+    parser.add_argument("--files", default=",".join(FILES),
+                        help="comma-separated names; empty with --raw: save the kept results")
     parser.add_argument("--steps", type=int, default=12)
     parser.add_argument("--drag", type=float, default=4.0, help="seconds of drag at 200k")
     parser.add_argument("--cache", help="table cache folder kept between runs")
@@ -202,7 +203,7 @@ def main(argv: list[str] | None = None) -> None:
     folder = Path(args.data or tempfile.mkdtemp(prefix="alphascoop-scans-"))
     folder.mkdir(parents=True, exist_ok=True)
     results = {}
-    for name in args.files.split(","):
+    for name in [name for name in args.files.split(",") if name]:  # "": only --raw's files
         results[name] = run_child(name, file_of(name, folder), args)
         print(json.dumps({name: results[name]}, indent=1), flush=True)
         if args.raw:
