@@ -37,6 +37,12 @@ def format_alpha(value: float) -> str:
     return f"{value:.6g}"
 
 
+def set_text(widget: QLabel | QLineEdit | QPushButton, text: str) -> None:
+    """Set widget's text only when it differs: an unchanged row is not laid out again."""
+    if widget.text() != text:
+        widget.setText(text)
+
+
 def radius_validator() -> QDoubleValidator:
     """Accepts radii >= 0 typed with '.' whatever the system locale, in plain or e-notation."""
     validator = QDoubleValidator(0.0, 1e300, 12)
@@ -185,17 +191,21 @@ class AlphaPanel(QWidget):
         self.forward.setEnabled(self.model.history.can_forward())
         ready = count > 0 and self.model.dataset.has_topology
         self.optimal.setEnabled(ready)
-        self.optimal.setText(OPTIMAL_TEXT if ready or count == 0 else OPTIMAL_WAIT_TEXT)
+        set_text(self.optimal, OPTIMAL_TEXT if ready or count == 0 else OPTIMAL_WAIT_TEXT)
         if count == 0:
             self.radius.clear()
             self.squared.clear()
             self.step.clear()
             return
         alpha = self.model.alpha
-        self.radius.setText(format_alpha(alpha) if alpha >= 0 else "")
-        self.radius.setPlaceholderText("below zero radius: see r²" if alpha < 0 else "")
-        self.squared.setText(f"{self.model.alpha2:.6g}")
-        self.squared.setToolTip("alpha squared: the value CGAL and gudhi use"
-                                + ("; weighted points enter at minus their squared radius"
-                                   if self.model.weighted else ""))
-        self.step.setText(f"critical value {self.model.index + 1:,} of {count:,}")
+        set_text(self.radius, format_alpha(alpha) if alpha >= 0 else "")
+        placeholder = "below zero radius: see r²" if alpha < 0 else ""
+        if self.radius.placeholderText() != placeholder:
+            self.radius.setPlaceholderText(placeholder)
+        set_text(self.squared, f"{self.model.alpha2:.6g}")
+        tip = ("alpha squared: the value CGAL and gudhi use"
+               + ("; weighted points enter at minus their squared radius"
+                  if self.model.weighted else ""))
+        if self.squared.toolTip() != tip:
+            self.squared.setToolTip(tip)
+        set_text(self.step, f"critical value {self.model.index + 1:,} of {count:,}")

@@ -15,6 +15,7 @@ from PySide6.QtWidgets import QFrame, QLabel, QScrollArea, QSizePolicy, QVBoxLay
 
 from app.model import ExplorerModel
 from app.numbers import coordinate, plural, quantity, with_unit
+from app.row_labels import RowLabels
 from core.query.classes import INTERIOR, REGULAR, SINGULAR
 
 BETTI_NAMES = {2: ("component", "hole"), 3: ("component", "tunnel", "void")}
@@ -174,7 +175,7 @@ class InfoPanel(QWidget):
         super().__init__(parent)
         self.model = model
         self.data = QLabel("No data yet: File → Open, or drop a file on the window.")
-        self.shape = QLabel()
+        self.shape = RowLabels()  # a slider step sets the text of the rows that changed only
         # the text scrolls when the dock is short, so wrapped lines are never drawn over
         scroll = QScrollArea(self)
         scroll.setWidgetResizable(True)
@@ -183,14 +184,14 @@ class InfoPanel(QWidget):
         inner = QWidget()
         column = QVBoxLayout(inner)
         column.setContentsMargins(0, 0, 0, 0)
-        for label in (self.data, self.shape):
-            label.setTextFormat(Qt.TextFormat.RichText)
-            label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-            label.setWordWrap(True)
-            # the text never asks for width: the dock keeps its own (sizeHint below); its
-            # wrapped lines keep their height
-            label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Minimum)
-            column.addWidget(label)
+        self.data.setTextFormat(Qt.TextFormat.RichText)
+        self.data.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.data.setWordWrap(True)
+        # the text never asks for width: the dock keeps its own (sizeHint below); its wrapped
+        # lines keep their height
+        self.data.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Minimum)
+        column.addWidget(self.data)
+        column.addWidget(self.shape)
         column.addStretch(1)
         scroll.setWidget(inner)
         outer = QVBoxLayout(self)
@@ -217,5 +218,5 @@ class InfoPanel(QWidget):
         self.data.setText("<br>".join(data_lines(self.model)))
 
     def show_shape(self) -> None:
-        """Refresh the shape-at-alpha block."""
-        self.shape.setText("<br>".join(shape_lines(self.model)))
+        """Refresh the shape-at-alpha block (only its rows whose text changed)."""
+        self.shape.set_lines(shape_lines(self.model))

@@ -129,6 +129,9 @@ class MainWindow(QMainWindow):
         self.job_progress.cancelRequested.connect(self.jobs.cancel)
         self.model.datasetChanged.connect(self._show_dataset)
         self.model.alphaChanged.connect(self._show_shape)
+        slider = self.alpha_panel.slider  # a drag draws a lighter frame; its release the full
+        slider.sliderMoved.connect(lambda _position: self.scene.set_level_of_detail(True))
+        slider.sliderReleased.connect(lambda: self.scene.set_level_of_detail(False))
         self.model.datasetReleased.connect(self._show_released)
         self.layers_panel.styleChanged.connect(self._set_style)
         self.mode_panel.modeChosen.connect(self.set_mode)

@@ -19,6 +19,7 @@ from app.dataset import Dataset, suggestions_of
 from app.model import ExplorerModel
 from app.palette import CLASS_COLOURS
 from app.persistence_plot import DrawnPairs, PersistenceArtists, infinity_level, nearest_pair
+from app.plot_blit import Blitter
 from app.signature_figure import (
     CURSOR_COLOUR,
     TITLE_STYLE,
@@ -113,6 +114,8 @@ class SignaturesPanel(QWidget):
         self.cursors = [ax.axvline(1.0, color=CURSOR_COLOUR, linewidth=1) for ax in axes]
         self.death_cursor = axes[3].axhline(1.0, color=CURSOR_COLOUR, linewidth=1)
         self.marker_lines = [pair for ax in axes[:3] for pair in self._make_markers(ax)]
+        # a step moves these over the figure's cached pixels: no full draw (app.plot_blit)
+        self.blitter = Blitter(self.canvas, [*self.cursors, self.death_cursor])
         self.drawn_pairs: list[DrawnPairs] = []
         self._lay_out()
         model.datasetChanged.connect(self.plot)
@@ -167,8 +170,8 @@ class SignaturesPanel(QWidget):
             self._show_markers(dataset)
             self.drawn_pairs = self.persistence.update(persistence_of(dataset),
                                                        np.asarray(sig.alphas))
-            self.move_cursor()
-        self.canvas.draw_idle()
+            self._place_cursors()
+        self.blitter.redraw()
 
     def _show_signatures(self, sig) -> None:
         """Betti numbers, measure and boundary measure against log alpha (sampled)."""
@@ -218,17 +221,22 @@ class SignaturesPanel(QWidget):
         return best
 
     def move_cursor(self) -> None:
-        """Put the cursors at the current alpha (redraw is coalesced by matplotlib)."""
+        """Put the cursors at the current alpha and blit them over the figure's cached
+        pixels: a slider step redraws no axis, tick, legend or text."""
+        if self._place_cursors():
+            self.blitter.move()
+
+    def _place_cursors(self) -> bool:
+        """Set the cursors' data to the current alpha; False when there is nothing to show."""
         alpha = self.model.alpha
         if not self.drawn_pairs or not (alpha > 0 or self.model.weighted):
-            return
+            return False
         x = float(self.plot_x(np.array([alpha]))[0])
         for cursor in self.cursors[:-1]:
             cursor.set_xdata([x, x])
         self.cursors[-1].set_xdata([alpha, alpha])  # the persistence plot is in radii
-        if self.death_cursor is not None:
-            self.death_cursor.set_ydata([alpha, alpha])
-        self.canvas.draw_idle()
+        self.death_cursor.set_ydata([alpha, alpha])
+        return True
 
     def _clicked(self, event) -> None:
         """A click on a marker goes to its alpha; elsewhere in a signature plot to the value

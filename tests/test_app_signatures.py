@@ -229,3 +229,50 @@ def test_margins_are_fixed_in_points_whatever_the_size(panels) -> None:
         left = panel.figure.axes[0].get_position()
         assert left.x0 * box.width == pytest.approx(LEFT_PT * dpi / 72, rel=1e-6)
         assert (1 - left.y1) * box.height == pytest.approx(TOP_PT * dpi / 72, rel=1e-6)
+
+
+def flush_events(qtbot) -> None:
+    """Let every queued event run (the slider's coalescing timer, a pending draw, paints)."""
+    for _ in range(3):
+        qtbot.wait(5)
+
+
+def cursor_pixel_gap(panel, x_data: float) -> float:
+    """How far (0..255) the canvas's pixels near the cursor line at x_data, halfway up the
+    Betti plot, are from the cursor colour: about 0 where the line is drawn."""
+    from matplotlib.colors import to_rgb
+
+    from app.signature_figure import CURSOR_COLOUR
+
+    ax = panel.figure.axes[0]
+    x, y = ax.transAxes.transform((0.0, 0.5))
+    x = ax.transData.transform((x_data, 1.0))[0]
+    image = np.asarray(panel.canvas.buffer_rgba())[:, :, :3].astype(float)
+    row, column = int(image.shape[0] - y), round(float(x))
+    near = image[row, column - 1: column + 2]
+    return float(np.abs(near - 255 * np.array(to_rgb(CURSOR_COLOUR))).max(axis=1).min())
+
+
+def test_slider_steps_move_the_cursors_without_a_full_redraw(panels, qtbot) -> None:
+    """Arrow-key steps move the cursors over the figure's cached pixels: no full draw of the
+    figure (axes, ticks, legends, text), and the picture shows the cursor at the new alpha,
+    none at the old one."""
+    panel, alpha_panel = panels
+    model = panel.model
+    model.set_index(3 * len(model.spectrum) // 4)
+    flush_events(qtbot)
+    old = float(panel.plot_x(np.array([model.alpha]))[0])
+    draws = []
+    panel.canvas.mpl_connect("draw_event", draws.append)
+    start = model.index
+    for key in (Qt.Key.Key_Left, Qt.Key.Key_Left, Qt.Key.Key_PageDown, Qt.Key.Key_PageDown):
+        qtbot.keyClick(alpha_panel.slider, key)
+        flush_events(qtbot)
+    assert model.index < start - 2
+    assert draws == []
+    new = float(panel.plot_x(np.array([model.alpha]))[0])
+    assert panel.cursors[0].get_xdata()[0] == new
+    new_x, old_x = (panel.figure.axes[0].transData.transform((v, 1.0))[0] for v in (new, old))
+    assert abs(new_x - old_x) > 3  # far enough apart to tell the two places apart
+    assert cursor_pixel_gap(panel, new) < 40
+    assert cursor_pixel_gap(panel, old) > 40

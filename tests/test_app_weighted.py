@@ -44,14 +44,17 @@ def test_balls_layer_draws_each_point_with_its_radius(window, qtbot, balls_csv) 
     open_and_wait(qtbot, window, balls_csv[0])
     assert "balls" in window.scene.layers and "balls" in window.layers_panel.rows
     assert "20,000" in window.layers_panel.rows["balls"].visible.text()
-    mesh = window.scene.layers["balls"].mesh
+    layer = window.scene.layers["balls"]
     ac = window.model.dataset.ac
-    bounds = np.array(mesh.bounds).reshape(3, 2)
+    bounds = np.array(layer.actor.GetBounds()).reshape(3, 2)  # where the view puts them
     lo = (ac.points - np.sqrt(ac.weights)[:, None]).min(axis=0)
     hi = (ac.points + np.sqrt(ac.weights)[:, None]).max(axis=0)
-    facets = 0.1 * np.sqrt(ac.weights.max())  # a tessellated sphere falls short of its radius
-    np.testing.assert_allclose(bounds[:, 0], lo, atol=facets)
-    np.testing.assert_allclose(bounds[:, 1], hi, atol=facets)
+    np.testing.assert_allclose(bounds[:, 0], lo, atol=1e-6)  # float32 offsets from an origin
+    np.testing.assert_allclose(bounds[:, 1], hi, atol=1e-6)
+    drawn = layer.mesh["radius"] > 0  # one sphere impostor per ball, at its own radius
+    origin = layer.mesh.field_data["origin"]
+    np.testing.assert_allclose(layer.mesh.points[drawn] + origin, ac.points, atol=1e-6)
+    np.testing.assert_allclose(layer.mesh["radius"][drawn], np.sqrt(ac.weights), rtol=1e-6)
     assert (bounds[:, 0] < ac.points.min(axis=0) - 0.01).all()  # the balls, not the points
     actors = set(window.scene.plotter.renderer.actors)
     window.model.set_index(window.model.index + 1)  # a static layer: no new actor
@@ -61,8 +64,7 @@ def test_balls_layer_draws_each_point_with_its_radius(window, qtbot, balls_csv) 
 def test_ball_count_is_capped() -> None:
     xyz = np.random.default_rng(1).random((MAX_BALLS + 500, 3))
     mesh = ball_mesh(xyz, np.full(len(xyz), 0.01), limit=50)
-    single = ball_mesh(xyz[:1], np.full(1, 0.01))
-    assert mesh.n_points == 50 * single.n_points
+    assert int((mesh["radius"] > 0).sum()) == 50
 
 
 def test_signature_axes_are_symlog_and_the_cursor_reaches_negatives(window, qtbot,

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pyvista as pv
+from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLSphereMapper
 
 from app.palette import MAX_BALLS
 
@@ -22,7 +23,7 @@ KINDS_2D = {
     "singular_edges": "lines", "singular_points": "verts",
 }
 STATIC_LAYERS = ("points", "delaunay", "balls", "cavities", "pockets", "mouths")
-BALL_RESOLUTION = 10  # sphere glyph: 10 x 10 facets, about 160 triangles per ball
+BALL_ORIGIN = "origin"  # field data of a ball mesh: where its float32 centres are measured from
 DRAW_OPTIONS = {
     "points": {"point_size": 3.0},
     "singular_points": {"point_size": 5.0, "render_points_as_spheres": True},
@@ -82,17 +83,57 @@ class Layer:
 
 def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS,
               rgb: np.ndarray | None = None) -> pv.PolyData:
-    """Spheres of the given (m,) radii around at most `limit` of the (m, 3) points (evenly
-    picked, so a big set still shows its spread); `rgb` (m, 3) uint8 colours them (point
-    data "rgb" of the glyphs)."""
+    """The centres of balls of the given (m,) radii around at most `limit` of the (m, 3)
+    points (evenly picked, so a big set still shows its spread), one vertex each, with a
+    float32 "radius" array; `rgb` (m, 3) uint8 colours them (point data "rgb").
+
+    The balls are drawn as sphere impostors (ball_mapper): one point each, not a mesh. The
+    centres are float32 (what the impostor mapper reads) measured from the field data's
+    "origin" (the actor's position), so far-off coordinates keep their precision; two more
+    points of radius 0 mark the corners of the balls' box (the view's bounds)."""
     pick = np.unique(np.linspace(0, len(xyz) - 1, min(limit, len(xyz))).round().astype(np.int64))
-    centres = pv.PolyData(np.ascontiguousarray(xyz[pick]))
-    centres["radius"] = np.asarray(radii, dtype=np.float64)[pick]
+    centres = np.asarray(xyz, dtype=np.float64).reshape(-1, 3)[pick]
+    radius = np.asarray(radii, dtype=np.float64)[pick]
+    origin = centres.mean(axis=0) if len(centres) else np.zeros(3)
+    # two balls of radius 0 (drawn as nothing) at the corners of the balls' box: the mapper's
+    # bounds are its points', and the camera's clipping range must hold the whole balls
+    corners = (np.array([(centres - radius[:, None]).min(axis=0),
+                         (centres + radius[:, None]).max(axis=0)]) if len(centres)
+               else np.zeros((0, 3)))
+    mesh = pv.PolyData((np.concatenate([centres, corners]) - origin).astype(np.float32))
+    mesh["radius"] = np.concatenate([radius, np.zeros(len(corners))]).astype(np.float32)
     if rgb is not None:
-        centres["rgb"] = np.ascontiguousarray(rgb[pick], dtype=np.uint8)
-    sphere = pv.Sphere(radius=1.0, theta_resolution=BALL_RESOLUTION,
-                       phi_resolution=BALL_RESOLUTION)
-    return centres.glyph(scale="radius", geom=sphere, orient=False)
+        colours = np.asarray(rgb, dtype=np.uint8)[pick]
+        mesh["rgb"] = np.concatenate([colours, np.zeros((len(corners), 3), np.uint8)])
+    mesh.field_data[BALL_ORIGIN] = origin
+    return mesh
+
+
+def ball_mapper(mesh: pv.PolyData) -> vtkOpenGLSphereMapper:
+    """A mapper drawing each point of a ball_mesh as a lit sphere of its "radius" (data
+    units): a screen-aligned impostor per ball, depth-correct where balls intersect, at the
+    cost of a few points instead of ~160 triangles a ball."""
+    mapper = vtkOpenGLSphereMapper()
+    mapper.SetInputData(mesh)
+    mapper.SetScaleArray("radius")
+    mapper.SetScalarVisibility(False)
+    return mapper
+
+
+def ball_actor(mesh: pv.PolyData, colour: str, opacity: float) -> pv.Actor:
+    """The balls' actor: ball_mapper at the mesh's origin, in its own "rgb" colours when it
+    has them (atoms by element), else in colour."""
+    mapper = ball_mapper(mesh)
+    if "rgb" in mesh.point_data:
+        mapper.SetScalarModeToUsePointFieldData()
+        mapper.SelectColorArray("rgb")
+        mapper.SetColorModeToDirectScalars()
+        mapper.SetScalarVisibility(True)
+    actor = pv.Actor(mapper=mapper)
+    actor.SetPosition(*np.asarray(mesh.field_data[BALL_ORIGIN], dtype=np.float64))
+    actor.prop.color = colour
+    actor.prop.opacity = opacity
+    return actor
 
 
 def coloured_cells(kind: str, xyz: np.ndarray, cells: np.ndarray, rgb: np.ndarray) -> Layer:

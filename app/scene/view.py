@@ -26,6 +26,7 @@ from app.scene.layers import (
     SHRINK_FACTOR,
     STATIC_LAYERS,
     Layer,
+    ball_actor,
     ball_mesh,
     coloured_cells,
     new_mesh,
@@ -35,6 +36,15 @@ from app.scene.overlay import Overlay
 from app.scene.painting import Painter
 from app.scene.picking import ViewPicker
 from core.storage.atomic import atomic_path
+
+LOD_CELLS = 30_000  # cells a layer draws at most while the slider is dragged
+
+
+def thinned(cells: np.ndarray, limit: int | None) -> np.ndarray:
+    """At most `limit` of the (k, s) cells, evenly picked (all of them when limit is None)."""
+    if limit is None or len(cells) <= limit:
+        return cells
+    return np.ascontiguousarray(cells[:: -(-len(cells) // limit)])
 
 
 class Scene:
@@ -49,6 +59,9 @@ class Scene:
         self.plotter.set_background(BACKGROUND)
         self.plotter.renderer.SetTwoSidedLighting(True)  # singular triangles face either way
         self._render = render or plotter.render
+        self.lod_limit = LOD_CELLS  # cells a layer draws while the slider is dragged
+        self.lod_cells: int | None = None  # the limit in force (None: the full frame)
+        self._samples = self.plotter.render_window.GetMultiSamples()
         self.layers: dict[str, Layer] = {}  # one dict for the scene's life (helpers share it)
         self.styles: dict[str, LayerStyle] = {}
         self.shape = None
@@ -111,6 +124,11 @@ class Scene:
     def _add_actor(self, name: str, style: LayerStyle) -> pv.Actor:
         """Add the layer's one actor."""
         layer = self.layers[name]
+        if layer.kind == "balls":  # sphere impostors: a mapper pyvista's add_mesh cannot make
+            actor = ball_actor(layer.mesh, style.colour, style.opacity)
+            self.plotter.add_actor(actor, name=name, reset_camera=False, render=False)
+            actor.SetVisibility(style.visible)
+            return actor
         source = layer.mesh
         if layer.kind == "tets":
             source = vtkShrinkFilter()
@@ -121,8 +139,7 @@ class Scene:
             source, color=None if coloured else style.colour, opacity=style.opacity,
             scalars="rgb" if coloured else None, rgb=coloured, name=name, reset_camera=False,
             render=False,  # one render once the dataset is set up, not one per layer
-            lighting=layer.kind in ("tris", "tets", "balls") and (self.dim == 3
-                                                                   or layer.kind == "balls"),
+            lighting=layer.kind in ("tris", "tets") and self.dim == 3,
             **DRAW_OPTIONS.get(name, {}),
         )
         if name == "singular_highlight":  # drawn over the surface's own triangles
@@ -149,11 +166,25 @@ class Scene:
                 continue
             if self.styles[name].visible:
                 cells = shape_cells(shape, name)
-                layer.set_cells(cells)
+                layer.set_cells(thinned(cells, self.lod_cells))
                 counts[name] = len(cells)
             else:
                 layer.dirty = True
         self.overlay.set_counts(counts)
+
+    def set_level_of_detail(self, dragging: bool) -> None:
+        """While the slider is dragged: no multisampling and at most LOD_CELLS cells a layer
+        (evenly picked), so frames keep up; after it, the full frame (one render)."""
+        if dragging == (self.lod_cells is not None):
+            return
+        window = self.plotter.render_window
+        if dragging:
+            self._samples = window.GetMultiSamples()
+        window.SetMultiSamples(0 if dragging else self._samples)
+        self.lod_cells = self.lod_limit if dragging else None
+        if self.shape is not None:
+            self.set_shape(self.shape)
+        self.render()
 
     def set_cells(self, name: str, cells: np.ndarray) -> None:
         """Swap one static layer's cells (the cavities at a new alpha), if it exists."""
@@ -167,7 +198,7 @@ class Scene:
         layer = self.layers[name]
         self.styles[name] = style
         if style.visible and layer.dirty and self.shape is not None:
-            layer.set_cells(shape_cells(self.shape, name))
+            layer.set_cells(thinned(shape_cells(self.shape, name), self.lod_cells))
         prop = layer.actor.prop
         prop.color = style.colour
         prop.opacity = style.opacity
