@@ -48,6 +48,13 @@ class SkipGuard:
         self.data_present = data_present
         self.enforce = enforce
         self.refused: list[str] = []  # "nodeid: reason" of each skip not accepted
+        self.strict: set[str] = set()  # strict xfails: a known wrong answer, asserted still wrong
+
+    def pytest_itemcollected(self, item: pytest.Item) -> None:
+        """Remember strict xfails: they fail the run the day they pass, so they hide nothing."""
+        marker = item.get_closest_marker("xfail")
+        if marker is not None and marker.kwargs.get("strict"):
+            self.strict.add(item.nodeid)
 
     def _note(self, report: pytest.CollectReport | pytest.TestReport) -> None:
         """Keep report's skip when it is not accepted."""
@@ -61,9 +68,10 @@ class SkipGuard:
         self._note(report)
 
     def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
-        """A test skipped in setup (skipif) or in its body (pytest.skip). An xfail in CI
-        hides a failure as well as a skip does: it is refused too."""
-        if hasattr(report, "wasxfail") and report.when == "call":
+        """A test skipped in setup (skipif) or in its body (pytest.skip). A non-strict xfail
+        in CI hides a failure as well as a skip does: it is refused too."""
+        if hasattr(report, "wasxfail") and report.when == "call" \
+                and report.nodeid not in self.strict:
             self.refused.append(f"{report.nodeid}: xfail ({report.wasxfail})")
         self._note(report)
 
