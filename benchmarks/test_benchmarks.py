@@ -10,6 +10,7 @@ from bench_core import main
 from core_report import figures, format_tables, ratios
 from datasets import TORUS_R, TORUS_TUBE, noisy_torus
 from isolate import Probe, run_isolated
+from isolated_results import results_elsewhere  # noqa: F401 (autouse fixture)
 
 from tests.reference import DATA_ABSENT
 

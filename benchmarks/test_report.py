@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 import report
+from isolated_results import results_elsewhere  # noqa: F401 (autouse fixture)
 from results import RESULTS, Figure, save
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 from bench_window_step import goal_figures, table
+from isolated_results import results_elsewhere  # noqa: F401 (autouse fixture)
 from window_step import PartTimer, percentile, summary
 
 
