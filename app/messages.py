@@ -125,11 +125,11 @@ def from_plain(plain: Plain) -> object:
     names = None if kind is None else {field.name for field in fields(kind)}
     if kind is None or set(plain) - {"kind"} != names:
         raise ValueError(f"not a message of the window's processes: {sorted(plain)}")
-    return kind(**{name: _mode(plain[name]) if kind is BuildJob and name == "mode"
+    return kind(**{name: _mode_of_dict(plain[name]) if kind is BuildJob and name == "mode"
                    else from_plain(plain[name]) for name in names})
 
 
-def _mode(saved: dict) -> Mode:
+def _mode_of_dict(saved: dict) -> Mode:
     """The Mode of Mode.to_dict()."""
     return make_mode(saved["density"], saved["combine"], saved["anisotropy"],
                      saved["normals"] == "given")

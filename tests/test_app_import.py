@@ -134,6 +134,7 @@ def test_files_without_choices_open_without_the_dialog(window, qtbot, tmp_path, 
 
 
 def test_window_command_line_reads_with_columns_and_subsample(qtbot, table_csv, monkeypatch):
+    import shiboken6
     from PySide6.QtWidgets import QApplication
 
     import app.launch as launch
@@ -147,9 +148,10 @@ def test_window_command_line_reads_with_columns_and_subsample(qtbot, table_csv, 
                                       "--subsample", "90"])
     try:
         assert launch.run_window(args) == 0
-    finally:
+    finally:  # run_window closes and deletes its window itself when it returns
         for window, *_ in opened:
-            window.close()
+            if shiboken6.isValid(window):
+                window.close()
     assert opened[0][1:] == (table_csv, ImportOptions(columns="alt,lon", subsample=90))
 
 
