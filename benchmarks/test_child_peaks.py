@@ -89,7 +89,6 @@ def test_a_running_childs_cpu_seconds_are_read_from_proc():
 
 HALF_PARENT = """
 import subprocess, sys
-from isolated_results import results_elsewhere  # noqa: F401 (autouse fixture)
 open("/proc/self/comm", "w").write("alphascoop-build"[:15])
 half = subprocess.Popen([sys.executable, "-c", {child!r}], stdin=subprocess.PIPE,
                         stdout=subprocess.PIPE, text=True)

@@ -51,7 +51,7 @@ def test_alpha2_queries_agree_with_the_squared_table(weighted, value: float) -> 
         assert np.array_equal(ac.contains(pts, r), ac.contains(pts, alpha2=value))
 
 
-def test_ambiguous_or_negative_alpha_is_refused(weighted) -> None:
+def test_ambiguous_or_malformed_alpha_is_refused(weighted) -> None:
     ac, pts, _ = weighted
     calls = [lambda **kw: ac.shape(**kw), lambda **kw: ac.betti(**kw),
              lambda **kw: ac.classify(k=1, **kw), lambda **kw: ac.cursor().move(**kw),
@@ -61,10 +61,16 @@ def test_ambiguous_or_negative_alpha_is_refused(weighted) -> None:
             call(alpha=0.1, alpha2=0.01)
         with pytest.raises(InputError, match="exactly one"):
             call()
-        with pytest.raises(InputError, match="alpha2"):
-            call(alpha=-0.1)
         with pytest.raises(InputError, match="alpha2 must be a number"):
             call(alpha2="x")
+
+
+def test_a_negative_alpha_is_the_signed_radius_of_a_negative_alpha2(weighted) -> None:
+    """A weighted table takes the signed radius optimal_alpha() may return: alpha -0.1 is
+    alpha2 -0.01."""
+    ac, _, _ = weighted
+    for k in range(ac.dim + 1):
+        np.testing.assert_array_equal(ac.classify(k=k, alpha=-0.1), ac.classify(k=k, alpha2=-0.01))
 
 
 def test_optimal_suggestions_and_persistence_on_a_weighted_table(weighted) -> None:
