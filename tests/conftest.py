@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from hypothesis import settings
 from reference import data_dir
-from skip_guard import SkipGuard, in_ci
+from skip_guard import SkipGuard, in_ci, xdist_role
 
 # Property tests draw the same examples on every run (the CI must not depend on luck);
 # HYPOTHESIS_PROFILE=explore draws new ones, to look for failures on purpose.
@@ -57,8 +57,16 @@ def start_xvfb(xvfb: str) -> subprocess.Popen:
 def pytest_configure(config: pytest.Config) -> None:
     """The skip guard watches every test of the run (benchmarks/ too); it fails a CI run
     that skipped a test for any reason but the shared data's absence."""
-    config.pluginmanager.register(SkipGuard(data_dir() is not None, in_ci()),
+    config.pluginmanager.register(SkipGuard(data_dir() is not None, in_ci(), xdist_role(config)),
                                   "alphascoop-skip-guard")
+
+
+MAX_WORKERS = 4  # real-scan tests hold 2-3 GB each; more workers add memory, not speed
+
+
+def pytest_xdist_auto_num_workers(config: pytest.Config) -> int:
+    """`-n auto` (the default, pyproject addopts): one worker per core, at most MAX_WORKERS."""
+    return max(1, min(MAX_WORKERS, os.cpu_count() or 1))
 
 
 def pytest_sessionstart(session: pytest.Session) -> None:

@@ -9,6 +9,9 @@ accept. Accepted: a reason starting with DATA_ABSENT, only while that folder rea
 absent; and COMPARE_EXTRA, a comparison with a library CI does not install (pyKVFinder, whose
 matplotlib pin conflicts with the window's). A CI machine with ../shared/data runs every
 other test.
+
+Under pytest-xdist each worker runs its own guard over the tests it ran and hands its
+refusals to the controller (`workeroutput`), whose guard judges the whole run.
 """
 
 from __future__ import annotations
@@ -19,6 +22,17 @@ import pytest
 from reference import COMPARE_EXTRA, DATA_ABSENT
 
 TRUE = ("1", "true", "yes", "on")
+WORKER_KEY = "skip_guard_refused"
+
+
+def xdist_role(config: pytest.Config) -> str:
+    """"worker" in an xdist worker, "controller" in a run that hands tests to workers,
+    else "alone"."""
+    if hasattr(config, "workerinput"):
+        return "worker"
+    dist = getattr(config.option, "dist", "no")
+    workers = getattr(config.option, "numprocesses", None)
+    return "controller" if dist != "no" and workers else "alone"
 
 
 def in_ci(environ: dict[str, str] | None = None) -> bool:
@@ -42,11 +56,14 @@ def accepted(reason: str, data_present: bool) -> bool:
 class SkipGuard:
     """Collects the skips of a run; in CI, fails the run on those it does not accept."""
 
-    def __init__(self, data_present: bool, enforce: bool) -> None:
+    def __init__(self, data_present: bool, enforce: bool, role: str = "alone") -> None:
         """data_present: the shared data folder is there (then no skip is accepted);
-        enforce: fail the session on unaccepted skips (in CI), else only collect them."""
+        enforce: fail the session on unaccepted skips (in CI), else only collect them;
+        role: "alone" (no xdist), "worker" (reports to its controller) or "controller"
+        (judges what its workers report, and only that: it sees no item of its own)."""
         self.data_present = data_present
         self.enforce = enforce
+        self.role = role
         self.refused: list[str] = []  # "nodeid: reason" of each skip not accepted
         self.strict: set[str] = set()  # strict xfails: a known wrong answer, asserted still wrong
 
@@ -58,6 +75,8 @@ class SkipGuard:
 
     def _note(self, report: pytest.CollectReport | pytest.TestReport) -> None:
         """Keep report's skip when it is not accepted."""
+        if self.role == "controller":
+            return
         if report.skipped and not hasattr(report, "wasxfail"):
             reason = skip_reason(report)
             if not accepted(reason, self.data_present):
@@ -70,14 +89,23 @@ class SkipGuard:
     def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
         """A test skipped in setup (skipif) or in its body (pytest.skip). A non-strict xfail
         in CI hides a failure as well as a skip does: it is refused too."""
-        if hasattr(report, "wasxfail") and report.when == "call" \
-                and report.nodeid not in self.strict:
+        if self.role != "controller" and hasattr(report, "wasxfail") \
+                and report.when == "call" and report.nodeid not in self.strict:
             self.refused.append(f"{report.nodeid}: xfail ({report.wasxfail})")
         self._note(report)
 
+    @pytest.hookimpl(optionalhook=True)
+    def pytest_testnodedown(self, node, error) -> None:
+        """xdist controller: take in what a finished worker refused."""
+        self.refused.extend(getattr(node, "workeroutput", {}).get(WORKER_KEY, []))
+
     @pytest.hookimpl(trylast=True)
     def pytest_sessionfinish(self, session: pytest.Session) -> None:
-        """In CI, a run that refused a skip fails (exit status 1) even if every test passed."""
+        """In CI, a run that refused a skip fails (exit status 1) even if every test passed;
+        an xdist worker hands its refusals to the controller instead."""
+        if self.role == "worker":
+            session.config.workeroutput[WORKER_KEY] = list(self.refused)
+            return
         if self.enforce and self.refused and session.exitstatus == pytest.ExitCode.OK:
             session.exitstatus = pytest.ExitCode.TESTS_FAILED
 

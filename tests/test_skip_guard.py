@@ -40,23 +40,38 @@ def test_never_collected():
 '''
 
 
-def run(folder: Path, files: dict[str, str], *, data_present: bool, ci: str | None
-        ) -> subprocess.CompletedProcess:
-    """pytest on `files` in folder, with the guard told whether the shared data is there."""
+XFAILS = '''
+import pytest
+
+@pytest.mark.xfail(strict=True, reason="a known gap, asserted still there")
+def test_known_gap():
+    assert False
+
+@pytest.mark.xfail(reason="hides whatever happens")
+def test_hidden():
+    assert False
+'''
+
+
+def run(folder: Path, files: dict[str, str], *, data_present: bool, ci: str | None,
+        workers: int = 0) -> subprocess.CompletedProcess:
+    """pytest on `files` in folder, with the guard told whether the shared data is there;
+    workers > 0 runs them on that many pytest-xdist workers."""
     folder.mkdir()
     (folder / "conftest.py").write_text(
         f"import sys\nsys.path.insert(0, {str(TESTS)!r})\n"
-        "from skip_guard import SkipGuard, in_ci\n\n"
+        "from skip_guard import SkipGuard, in_ci, xdist_role\n\n"
         "def pytest_configure(config):\n"
-        f"    config.pluginmanager.register(SkipGuard({data_present}, in_ci()), 'guard')\n")
+        f"    config.pluginmanager.register(SkipGuard({data_present}, in_ci(), "
+        "xdist_role(config)), 'guard')\n")
     for name, text in files.items():
         (folder / name).write_text(text)
     env = {key: value for key, value in os.environ.items() if key != "CI"}
     if ci is not None:
         env["CI"] = ci
     return subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
-                           str(folder)], cwd=folder, env=env, capture_output=True,
-                          text=True, timeout=120)
+                           "-n", str(workers), str(folder)], cwd=folder, env=env,
+                          capture_output=True, text=True, timeout=120)
 
 
 def test_in_ci_only_the_absent_data_skips(tmp_path):
@@ -79,6 +94,24 @@ def test_in_ci_with_the_data_there_no_skip_passes(tmp_path):
     done = run(tmp_path / "c", {"test_a.py": SKIPS}, data_present=True, ci="true")
     assert done.returncode == 1, done.stdout
     assert "test_a.py::test_needs_the_shared_data: shared real-scan" in done.stdout
+
+
+def test_on_xdist_workers_the_controller_fails_the_run_for_their_skips(tmp_path):
+    done = run(tmp_path / "x", {"test_a.py": SKIPS, "test_b.py": OTHER_SKIP,
+                                "test_c.py": MODULE_SKIP, "test_d.py": XFAILS},
+               data_present=False, ci="true", workers=2)
+    assert done.returncode == 1, done.stdout
+    refused = done.stdout.split("skips refused in CI")[1]
+    assert "test_b.py::test_needs_a_library: could not import" in refused
+    assert "test_c.py: could not import" in refused
+    assert "test_d.py::test_hidden: xfail" in refused
+    assert "test_known_gap" not in refused and "test_needs_the_shared_data" not in refused
+
+
+def test_on_xdist_workers_accepted_skips_pass(tmp_path):
+    done = run(tmp_path / "y", {"test_a.py": SKIPS}, data_present=False, ci="true", workers=2)
+    assert done.returncode == 0, done.stdout
+    assert "refused" not in done.stdout
 
 
 def test_outside_ci_skips_are_reported_not_failed(tmp_path):
