@@ -15,9 +15,10 @@ import sys
 import threading
 import traceback
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
-from PySide6.QtCore import QObject, QThreadPool, Signal
+from PySide6.QtCore import QObject, Signal
 
 from core.errors import AlphaScoopError, Cancelled
 from core.progress import Progress
@@ -75,11 +76,15 @@ class Runner(QObject):
     _report = Signal(int, str, object)  # worker thread -> _deliver (queued)
 
     def __init__(self, parent: QObject | None = None, *, exclusive: bool = False) -> None:
-        """A one-thread pool: a new job waits for the previous one to stop."""
+        """A one-thread pool: a new job waits for the previous one to stop. Its thread is a
+        Python thread for the runner's life, not a Qt pool thread whose Python state is made
+        and dropped around each job: pyproj 3.7 keeps a PROJ context per thread through that
+        state and crashed on a second job's CRS."""
         super().__init__(parent)
         self.exclusive = exclusive
-        self._pool = QThreadPool(self)
-        self._pool.setMaxThreadCount(1)
+        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="alphascoop-job")
+        self._active = 0  # jobs submitted and not yet returned
+        self._idle = threading.Condition()
         self._current = 0
         self._title = ""  # the newest request's job title; the job itself is not kept
         self._cancel = threading.Event()
@@ -99,7 +104,7 @@ class Runner(QObject):
 
     def is_busy(self) -> bool:
         """True from start() until every started job's outcome has reached the GUI thread."""
-        return bool(self._unfinished) or self._pool.activeThreadCount() > 0
+        return bool(self._unfinished) or self._active > 0
 
     def start(self, job: Job) -> int | None:
         """Run job in the background; returns its request id, or None when the runner is
@@ -111,7 +116,9 @@ class Runner(QObject):
         request, cancel = self._current, threading.Event()
         self._title, self._cancel = job.title, cancel
         self._unfinished.add(request)
-        self._pool.start(lambda: self._run(request, job, cancel))
+        with self._idle:
+            self._active += 1
+        self._pool.submit(self._run, request, job, cancel)
         return request
 
     def cancel(self) -> None:
@@ -120,7 +127,9 @@ class Runner(QObject):
 
     def wait(self, msecs: int = -1) -> bool:
         """Block until the worker thread is idle; False on timeout."""
-        return self._pool.waitForDone(msecs)
+        with self._idle:
+            return self._idle.wait_for(lambda: self._active == 0,
+                                       None if msecs < 0 else msecs / 1000)
 
     def shut_down(self, msecs: int) -> bool:
         """Cancel, wait up to msecs, then drop whatever the job still reports (its result can
@@ -132,6 +141,15 @@ class Runner(QObject):
 
     def _run(self, request: int, job: Job, cancel: threading.Event) -> None:
         """Worker-thread body: report exactly one outcome of request."""
+        try:
+            self._outcome(request, job, cancel)
+        finally:
+            with self._idle:
+                self._active -= 1
+                self._idle.notify_all()
+
+    def _outcome(self, request: int, job: Job, cancel: threading.Event) -> None:
+        """Run job and report its one outcome."""
         progress = cancellable(cancel, lambda fraction, stage: self._report.emit(
             request, PROGRESS, (fraction, stage)), f"{job.title} cancelled")
         try:
