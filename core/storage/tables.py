@@ -59,14 +59,16 @@ from core.storage.checks import (
 )
 from core.storage.checksums import problem as checksum_problem
 from core.storage.checksums import write_npz
+from core.storage.compact import pack, unpack
 from core.storage.mapped import map_arrays, write_arrays
 from core.storage.npz import read_npz
 from core.topology.betti import Topology, ascending
 from core.topology.opening import opening_alpha_of
 from core.topology.signatures import Signatures, level_columns
 
-FORMAT, VERSION = "alphascoop-table", 2
-VERSIONS = ("1", "2")  # what `load` reads: version 1 has no checksums
+FORMAT, VERSION = "alphascoop-table", 3
+VERSIONS = ("1", "2", "3")  # what `load` reads: version 1 has no checksums, 3 is compact
+COMPACT = "3"  # the version whose files hold core.storage.compact's members
 OPENING_KEY = "sig_opening_pieces"  # the opening alpha (core.opening) saved with the signatures
 
 
@@ -217,8 +219,9 @@ def _build_info(a: dict[str, np.ndarray], path: Path) -> BuildInfo:
 
 
 def save(ac: Saveable, path: str | os.PathLike) -> None:
-    """Write `ac` to `path` (.npz) atomically."""
-    atomic_write(path, lambda handle: write_npz(handle, _arrays(ac)))
+    """Write `ac` to `path` (.npz) atomically, in the compact layout (core.storage.compact)."""
+    members = pack(_arrays(ac))
+    atomic_write(path, lambda handle: write_npz(handle, members))
 
 
 def save_mapped(ac: Saveable, folder: str | os.PathLike) -> bool:
@@ -229,15 +232,27 @@ def save_mapped(ac: Saveable, folder: str | os.PathLike) -> bool:
 
 
 def _read(path: Path, trusted: bool = False) -> dict[str, np.ndarray]:
-    """The archive's arrays (declared sizes checked first), or the folder's mapped arrays
-    (save_mapped), if it is one of our tables (`trusted`: core.storage.npz.read_npz's, for a file
-    this program has just written)."""
+    """The table's full arrays from the archive (declared sizes checked first; a compact one's
+    checksums checked, then unpacked: core.storage.compact), or the folder's mapped arrays
+    (save_mapped), if it is one of our tables (`trusted`: core.storage.npz.read_npz's, for a
+    file this program has just written)."""
     arrays = map_arrays(path) if path.is_dir() else read_npz(path, trusted=trusted)
     check = Checker(path)
     check.that(str(arrays.get("format", "")) == FORMAT, "missing format tag")
     check.that(arrays.get("version", np.array(-1)).shape == ()
                and str(arrays.get("version")) in VERSIONS, "unknown version")
-    return arrays
+    if str(arrays["version"]) != COMPACT or path.is_dir():
+        return arrays
+    if not trusted:  # first: unpacking a damaged member would name the wrong array
+        _check_sums(check, arrays)
+    check.that("dim" in arrays and arrays["dim"].shape == ()
+               and arrays["dim"].dtype.kind in "iu" and int(arrays["dim"]) in (2, 3), "dimension")
+    try:
+        return unpack(arrays)
+    except KeyError as exc:
+        raise check.error(f"missing {exc}") from None
+    except (IndexError, ValueError, TypeError) as exc:
+        raise check.error(f"its arrays do not fit together: {exc}") from None
 
 
 def _check_sums(check: Checker, arrays: dict[str, np.ndarray]) -> None:
@@ -287,7 +302,7 @@ def load(path: str | os.PathLike, *, verify: bool = True,
         topology, signatures = (_derived(index, a["points"], a, check) if saved
                                 else (None, None))
         mode, build_info = _mode(a, path), _build_info(a, path)
-        if verify:  # last: the checks above name what is wrong more precisely
+        if verify and str(a["version"]) != COMPACT:  # last: the checks above name the array
             _check_sums(check, a)
         return Saved(a["points"], a["input_index"], index, frame, int(a["ambient_dim"]),
                      mode, a.get("weights"), build_info, topology, signatures)
