@@ -25,7 +25,6 @@ from collections.abc import Callable, Mapping
 
 import numpy as np
 
-from core.arrays import first_cofaces
 from core.parallel import searchsorted_ascending
 from core.storage import steps
 
@@ -49,10 +48,10 @@ def _same(a: np.ndarray, b: np.ndarray) -> bool:
 # --- derived arrays: name -> (needs, derive(a) -> array) --------------------------------------
 def _regular(k: int) -> Callable[[Mapping], np.ndarray]:
     def derive(a: Mapping) -> np.ndarray:
-        if k == _dim(a):
+        dim = _dim(a)
+        if k == dim:
             return a[f"enter_{k}"]
-        first = first_cofaces(a[f"face_ids_{k + 1}"], len(a[f"simplices_{k}"]))
-        return a[f"enter_{k + 1}"][first]  # IndexError for a face in no coface
+        return a[f"enter_{dim}"][a["facet_cells"][:, 0]]  # cell 0: the lower-numbered one
     return derive
 
 
@@ -61,16 +60,9 @@ def _interior(k: int) -> Callable[[Mapping], np.ndarray]:
         dim = _dim(a)
         if k == dim:
             return a[f"enter_{k}"]
-        if k == dim - 1:
-            cells = a["facet_cells"]
-            sides = a[f"enter_{dim}"][np.maximum(cells, 0)]
-            out = np.maximum(sides[:, 0], sides[:, 1])
-            out[(cells < 0).any(axis=1)] = np.inf
-            return out
-        out = np.full(len(a[f"simplices_{k}"]), -np.inf)
-        faces, upper = a[f"face_ids_{k + 1}"], a[f"interior_{k + 1}"]
-        for column in range(faces.shape[1]):
-            np.maximum.at(out, faces[:, column], upper)
+        second = a["facet_cells"][:, 1]  # the later of a facet's cells (-1: on the hull)
+        out = a[f"enter_{dim}"][second]
+        out[second < 0] = np.inf
         return out
     return derive
 
@@ -89,10 +81,13 @@ def _face_ids_top(a: Mapping) -> np.ndarray:
     cells, slots = a["facet_cells"], a["facet_slots"]
     out = np.full((len(a[f"simplices_{dim}"]), dim + 1), -1, dtype=np.int32)
     flat = out.reshape(-1)
-    for side in (0, 1):
-        rows = np.flatnonzero(cells[:, side] >= 0).astype(np.int32)
-        at = cells[rows, side].astype(np.int64) * (dim + 1) + ((slots[rows] >> 2 * side) & 3)
-        flat[at] = rows
+    for lo in range(0, len(cells), steps.CHUNK):
+        part, slot = cells[lo:lo + steps.CHUNK], slots[lo:lo + steps.CHUNK]
+        rows = np.arange(lo, lo + len(part), dtype=np.int32)
+        for side in (0, 1):
+            has = part[:, side] >= 0
+            at = part[has, side].astype(np.int64) * (dim + 1) + ((slot[has] >> 2 * side) & 3)
+            flat[at] = rows[has]
     return out
 
 
@@ -129,7 +124,10 @@ def _sig_measure(a: Mapping) -> np.ndarray:
     cells_in = _cells_in(a)
     if isinstance(a, dict):
         a[CELLS_IN] = cells_in
-    return np.concatenate([[0.0], np.cumsum(measure)])[cells_in]
+    cumulative = np.empty(len(measure) + 1)
+    cumulative[0] = 0.0
+    np.cumsum(measure, out=cumulative[1:])
+    return np.take(cumulative, cells_in)
 
 
 Derivation = tuple[tuple[str, ...], Callable[[Mapping], np.ndarray]]
@@ -141,7 +139,7 @@ def _derived(dim: int) -> dict[str, Derivation]:
     it was saved, how)."""
     out: dict[str, Derivation] = {"face_ids_1": (("simplices_1",), _face_ids_1),
                                   f"face_ids_{dim}": (("facet_slots",), _face_ids_top)}
-    for k in range(dim, -1, -1):
+    for k in (dim, dim - 1):  # the lower faces' are ranks (_pack_ranks)
         out[f"regular_{k}"] = ((f"enter_{k}",), _regular(k))
         out[f"interior_{k}"] = ((f"enter_{k}",), _interior(k))
     out["sig_alphas"] = (SIGNATURES, _sig_alphas)
@@ -169,11 +167,35 @@ def _ascending(values: np.ndarray) -> bool:
         len(values) < 2 or bool(np.all(values[1:] >= values[:-1])))
 
 
+def _pack_ranks(a: Mapping, out: Arrays) -> None:
+    """regular_k and interior_k below the facets as int32 ranks among the enter values
+    (their values are enter values of cofaces, interior inf on the hull: rank len(values))."""
+    if "enter_values" not in out:
+        return
+    values = np.append(out["enter_values"], np.inf)
+    for k in range(_dim(a) - 1):
+        for name in (f"regular_{k}", f"interior_{k}"):
+            rank = np.searchsorted(values, a[name])
+            if len(rank) and int(rank.max()) < len(values) and _same(values[rank], a[name]):
+                out[f"{name}_ranks"] = rank.astype(np.int32)
+                del out[name]
+
+
+def _unpack_ranks(a: Arrays) -> None:
+    if "enter_values" not in a:
+        return
+    values = np.append(a["enter_values"], np.inf)
+    for k in range(_dim(a) - 1):
+        for name in (f"regular_{k}", f"interior_{k}"):
+            if f"{name}_ranks" in a:
+                a[name] = values[a.pop(f"{name}_ranks")]
+
+
 def _unpack_enter(a: Arrays) -> None:
     for k in range(_dim(a) + 1):
         if f"enter_steps_{k}" in a:
-            rank = steps.decode_sorted(a[f"enter_steps_{k}"], a.pop(f"enter_far_{k}"))
-            a[f"enter_{k}"] = a["enter_values"][rank]
+            a[f"enter_{k}"] = steps.take_sorted(a[f"enter_steps_{k}"], a.pop(f"enter_far_{k}"),
+                                                a["enter_values"])
 
 
 def _pack_simplices(a: Mapping, out: Arrays) -> None:
@@ -191,14 +213,9 @@ def _pack_simplices(a: Mapping, out: Arrays) -> None:
 def _unpack_simplices(a: Arrays) -> None:
     for k in range(1, _dim(a) + 1):
         if f"simplices_first_{k}" in a:
-            first = a.pop(f"simplices_first_{k}")
-            across = steps.decode(a.pop(f"simplices_steps_{k}"), a.pop(f"simplices_far_{k}"),
-                                  np.int32)
-            rows = np.empty((len(first), k + 1), dtype=np.int32)
-            rows[:, 0] = first
-            for column in range(1, k + 1):  # column by column: rows are only k + 1 long
-                np.add(rows[:, column - 1], across[:, column - 1], out=rows[:, column])
-            a[f"simplices_{k}"] = rows
+            a[f"simplices_{k}"] = steps.cumulative_rows(
+                a.pop(f"simplices_first_{k}"), a.pop(f"simplices_steps_{k}"),
+                a.pop(f"simplices_far_{k}"))
 
 
 def _pack_forests(a: Mapping, out: Arrays) -> None:
@@ -221,19 +238,20 @@ def _unpack_forests(a: Arrays) -> None:
     dim = _dim(a)
     for name, level in FORESTS:
         if f"{name}_steps" in a:
-            rows = steps.decode_sorted(a.pop(f"{name}_steps"), a.pop(f"{name}_far"))
-            a[name] = a[f"enter_{level(dim)}"][rows]
+            a[name] = steps.take_sorted(a.pop(f"{name}_steps"), a.pop(f"{name}_far"),
+                                        a[f"enter_{level(dim)}"])
 
 
 def _pack_signatures(a: Mapping, out: Arrays) -> None:
-    """sig_betti and sig_solid as int8 steps along the spectrum; sig_boundary once per run of
-    equal cell counts (it is a function of the cells in)."""
+    """sig_betti and sig_solid as int8 steps along the spectrum (one row per curve, so that
+    each sums up contiguously); sig_boundary once per run of equal cell counts (it is a
+    function of the cells in)."""
     if "sig_betti" not in a:
         return
     for name in ("sig_betti", "sig_solid"):
+        curves = np.asarray(a[name]).reshape(len(a[name]), -1).T
         out[f"{name}_steps"], out[f"{name}_far"] = steps.encode(
-            np.diff(a[name], axis=0, prepend=np.zeros((1, *a[name].shape[1:]), a[name].dtype)),
-            np.int8)
+            np.diff(curves, axis=1, prepend=np.zeros((len(curves), 1), curves.dtype)), np.int8)
         del out[name]
     starts = _run_starts(_cells_in(a))
     out["sig_boundary_runs"] = a["sig_boundary"][starts]
@@ -249,12 +267,25 @@ def _run_starts(cells_in: np.ndarray) -> np.ndarray:
 def _unpack_signatures(a: Arrays) -> None:
     for name in ("sig_betti", "sig_solid"):
         if f"{name}_steps" in a:
-            wide = steps.decode(a.pop(f"{name}_steps"), a.pop(f"{name}_far"))
-            a[name] = np.cumsum(wide, axis=0).astype(np.int32)
+            curves = steps.cumulative_curves(a.pop(f"{name}_steps"), a.pop(f"{name}_far"))
+            a[name] = curves if name == "sig_betti" else curves.reshape(-1)
     if "sig_boundary_runs" in a:
-        cells_in = a[CELLS_IN] = _cells_in(a)
-        run = np.cumsum(np.diff(cells_in, prepend=cells_in[:1] - 1) != 0) - 1
-        a["sig_boundary"] = a.pop("sig_boundary_runs")[run]
+        a["sig_boundary"] = _by_run(_cells_in(a), a.pop("sig_boundary_runs"))
+
+
+def _by_run(cells_in: np.ndarray, runs: np.ndarray) -> np.ndarray:
+    """runs[j] for every entry of the j-th run of equal cells_in (in stretches)."""
+    out = np.empty(len(cells_in), dtype=runs.dtype)
+    previous, carry = -1, -1
+    for lo in range(0, len(cells_in), steps.CHUNK):
+        part = cells_in[lo:lo + steps.CHUNK]
+        change = np.empty(len(part), dtype=bool)
+        change[0] = part[0] != previous
+        np.not_equal(part[1:], part[:-1], out=change[1:])
+        run = np.cumsum(change) + carry
+        carry, previous = int(run[-1]), int(part[-1])
+        np.take(runs, run, out=out[lo:lo + len(part)])
+    return out
 
 
 def _pack_small(a: Mapping, out: Arrays) -> None:
@@ -288,8 +319,8 @@ def pack(full: Mapping[str, np.ndarray]) -> Arrays:
     """The members of a version-3 file holding the table whose full arrays are `full`: every
     array `unpack` gives back exactly is left out or narrowed; any other is kept as is."""
     out = dict(full)
-    for packer in (_pack_small, _pack_simplices, _pack_enter, _pack_forests, _pack_signatures,
-                   _pack_slots):
+    for packer in (_pack_small, _pack_simplices, _pack_enter, _pack_ranks, _pack_forests,
+                   _pack_signatures, _pack_slots):
         trial = dict(out)
         packer(full, trial)
         if _unpacks_to(trial, full):
@@ -323,6 +354,7 @@ def unpack(members: Mapping[str, np.ndarray]) -> Arrays:
     a = dict(members)
     _unpack_simplices(a)
     _unpack_enter(a)
+    _unpack_ranks(a)
     _unpack_small(a)
     _unpack_forests(a)
     for name, (needs, derive) in _derived(_dim(a)).items():
