@@ -25,7 +25,7 @@ from collections.abc import Callable, Mapping
 
 import numpy as np
 
-from core.parallel import searchsorted_ascending
+from core.parallel import both, searchsorted_ascending
 from core.storage import steps
 
 Arrays = dict[str, np.ndarray]
@@ -80,14 +80,13 @@ def _face_ids_top(a: Mapping) -> np.ndarray:
     dim = _dim(a)
     cells, slots = a["facet_cells"], a["facet_slots"]
     out = np.full((len(a[f"simplices_{dim}"]), dim + 1), -1, dtype=np.int32)
-    flat = out.reshape(-1)
-    for lo in range(0, len(cells), steps.CHUNK):
-        part, slot = cells[lo:lo + steps.CHUNK], slots[lo:lo + steps.CHUNK]
-        rows = np.arange(lo, lo + len(part), dtype=np.int32)
-        for side in (0, 1):
-            has = part[:, side] >= 0
-            at = part[has, side].astype(np.int64) * (dim + 1) + ((slot[has] >> 2 * side) & 3)
-            flat[at] = rows[has]
+    rows = np.arange(len(cells), dtype=np.int32)
+    for side in (0, 1):
+        has = np.flatnonzero(cells[:, side] >= 0) if side else rows
+        at = cells[has, side].astype(np.intp)
+        at *= dim + 1
+        at += (slots[has] >> 2 * side) & 3
+        out.reshape(-1)[at] = has
     return out
 
 
@@ -274,18 +273,14 @@ def _unpack_signatures(a: Arrays) -> None:
 
 
 def _by_run(cells_in: np.ndarray, runs: np.ndarray) -> np.ndarray:
-    """runs[j] for every entry of the j-th run of equal cells_in (in stretches)."""
-    out = np.empty(len(cells_in), dtype=runs.dtype)
-    previous, carry = -1, -1
-    for lo in range(0, len(cells_in), steps.CHUNK):
-        part = cells_in[lo:lo + steps.CHUNK]
-        change = np.empty(len(part), dtype=bool)
-        change[0] = part[0] != previous
-        np.not_equal(part[1:], part[:-1], out=change[1:])
-        run = np.cumsum(change) + carry
-        carry, previous = int(run[-1]), int(part[-1])
-        np.take(runs, run, out=out[lo:lo + len(part)])
-    return out
+    """runs[j] for every entry of the j-th run of equal cells_in."""
+    if not len(cells_in):
+        return np.zeros(0, dtype=runs.dtype)
+    change = np.empty(len(cells_in), dtype=np.intp)
+    change[0] = 0
+    np.not_equal(cells_in[1:], cells_in[:-1], out=change[1:])
+    np.cumsum(change, out=change)
+    return np.take(runs, change)
 
 
 def _pack_small(a: Mapping, out: Arrays) -> None:
@@ -350,18 +345,38 @@ def _unpacks_to(members: Arrays, full: Mapping[str, np.ndarray]) -> bool:
 def unpack(members: Mapping[str, np.ndarray]) -> Arrays:
     """The full arrays of a table from a version-3 file's members (a file that stores them all
     comes back as it is). KeyError, IndexError or ValueError for members that do not fit
-    together (the caller's checks name them)."""
-    a = dict(members)
-    _unpack_simplices(a)
-    _unpack_enter(a)
-    _unpack_ranks(a)
-    _unpack_small(a)
-    _unpack_forests(a)
-    for name, (needs, derive) in _derived(_dim(a)).items():
-        if name not in a and any(key in a for key in needs):
-            a[name] = derive(a)
-    _unpack_signatures(a)
+    together (the caller's checks name them). The structure (simplices, face ids) and the
+    values (intervals, topology, signatures) are unpacked at once, on two threads."""
+    given = dict(members)
+    dim = _dim(given)
+    structure, values = both(lambda: _unpacked(given, STRUCTURE, dim),
+                             lambda: _unpacked(given, VALUES, dim))
+    kept = {name: array for name, array in structure.items()
+            if name in values or name not in given}
+    kept.update((name, array) for name, array in values.items() if name not in given)
     for name in ("enter_values", "facet_slots", CELLS_IN,
-                 *(f"enter_steps_{k}" for k in range(_dim(a) + 1))):
-        a.pop(name, None)
+                 *(f"enter_steps_{k}" for k in range(dim + 1))):
+        kept.pop(name, None)
+    return kept
+
+
+def _unpacked(given: Arrays, passes: tuple, dim: int) -> Arrays:
+    """`given` (copied) after the passes of one group: unpack functions, then derived names."""
+    a = dict(given)
+    unpackers, derived = passes
+    for unpacker in unpackers:
+        unpacker(a)
+    for name, (needs, derive) in _derived(dim).items():
+        if derived(name) and name not in a and any(key in a for key in needs):
+            a[name] = derive(a)
+    if passes is VALUES:
+        _unpack_signatures(a)
     return a
+
+
+def _is_face_ids(name: str) -> bool:
+    return name.startswith("face_ids_")
+
+
+STRUCTURE = ((_unpack_simplices, _unpack_small), _is_face_ids)
+VALUES = ((_unpack_enter, _unpack_ranks, _unpack_forests), lambda name: not _is_face_ids(name))
