@@ -80,13 +80,18 @@ def _face_ids_top(a: Mapping) -> np.ndarray:
     dim = _dim(a)
     cells, slots = a["facet_cells"], a["facet_slots"]
     out = np.full((len(a[f"simplices_{dim}"]), dim + 1), -1, dtype=np.int32)
-    rows = np.arange(len(cells), dtype=np.int32)
-    for side in (0, 1):
-        has = np.flatnonzero(cells[:, side] >= 0) if side else rows
-        at = cells[has, side].astype(np.intp)
-        at *= dim + 1
-        at += (slots[has] >> 2 * side) & 3
-        out.reshape(-1)[at] = has
+    flat = out.reshape(-1)
+    for lo in range(0, len(cells), steps.STRETCH):
+        part, slot = cells[lo:lo + steps.STRETCH], slots[lo:lo + steps.STRETCH]
+        rows = np.arange(lo, lo + len(part), dtype=np.int32)
+        for side in (0, 1):
+            at = part[:, side].astype(np.intp)
+            at *= dim + 1
+            at += (slot >> 2 * side) & 3
+            if side:
+                has = part[:, 1] >= 0
+                at, rows = at[has], rows[has]
+            flat[at] = rows
     return out
 
 

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+STRETCH = 1 << 18  # entries unpacked at a time
+
 
 def marker(dtype: np.dtype) -> int:
     """The step value that says "look in far": the dtype's max (unsigned) or min (signed)."""
@@ -47,21 +49,51 @@ def decode(narrow: np.ndarray, far: np.ndarray, dtype: type = np.intp) -> np.nda
 
 
 def take_sorted(narrow: np.ndarray, far: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """values[the (n,) integers `encode_sorted` stored] (IndexError for one out of range)."""
-    ranks = decode(narrow, far)
-    np.cumsum(ranks, out=ranks)
-    return np.take(values, ranks)
+    """values[the (n,) integers `encode_sorted` stored] (IndexError for one out of range),
+    in stretches of STRETCH entries whose temporaries stay small (fresh memory is what a
+    reopen pays for most)."""
+    out = np.empty(len(narrow), dtype=values.dtype)
+    at = _markers(narrow, far)
+    carry = 0
+    for lo in range(0, len(narrow), STRETCH):
+        ranks = narrow[lo:lo + STRETCH].astype(np.intp)
+        _fill(ranks, at, far, lo)
+        np.cumsum(ranks, out=ranks)
+        ranks += carry
+        carry = int(ranks[-1])
+        out[lo:lo + len(ranks)] = values[ranks]
+    return out
+
+
+def _markers(narrow: np.ndarray, far: np.ndarray) -> np.ndarray:
+    """(e,) flat positions of the markers in narrow; ValueError unless far fills them."""
+    at = np.flatnonzero(narrow.reshape(-1) == marker(narrow.dtype))
+    if len(at) != len(far):
+        raise ValueError("steps and their far values disagree")
+    return at
+
+
+def _fill(wide: np.ndarray, at: np.ndarray, far: np.ndarray, lo: int) -> None:
+    """Put the far values whose markers fall in wide (the flat stretch from lo) in place."""
+    first, last = np.searchsorted(at, [lo, lo + wide.size])
+    if last > first:
+        wide.reshape(-1)[at[first:last] - lo] = far[first:last]
 
 
 def cumulative_rows(first: np.ndarray, narrow: np.ndarray, far: np.ndarray) -> np.ndarray:
     """(n, k + 1) int32 rows from their (n,) first entries and the (n, k) steps across each
-    row `encode` narrowed."""
+    row `encode` narrowed (in stretches, as take_sorted)."""
     n, k = narrow.shape
-    across = decode(narrow, far, np.int32)
     out = np.empty((n, k + 1), dtype=np.int32)
-    out[:, 0] = first
-    for column in range(1, k + 1):  # column by column: rows are only k + 1 long
-        np.add(out[:, column - 1], across[:, column - 1], out=out[:, column])
+    at = _markers(narrow, far)
+    rows = max(1, STRETCH // max(k, 1))
+    for lo in range(0, n, rows):
+        across = narrow[lo:lo + rows].astype(np.int32)
+        _fill(across, at, far, lo * k)
+        block = out[lo:lo + rows]
+        block[:, 0] = first[lo:lo + rows]
+        for column in range(1, k + 1):  # column by column: rows are only k + 1 long
+            np.add(block[:, column - 1], across[:, column - 1], out=block[:, column])
     return out
 
 
