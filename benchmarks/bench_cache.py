@@ -3,7 +3,7 @@ the reference layout (format version 2, every array stored) and the reference co
 in one run.
 
     flock /work/bench.lock .venv/bin/python benchmarks/bench_cache.py --n 200000 1000000 \
-        [--seed 0] [--reps 3] [--reference f6a487b] [--json out.json]
+        [--seed 0] [--reps 3] [--reference f6a487b | --reference-tree PATH] [--json out.json]
 
 For each size the noisy torus is built once with its signatures and stored in a fresh cache
 folder (the compact entry, core.storage.compact); the same table is written beside it in the
@@ -144,13 +144,20 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0, help="sample seed")
     parser.add_argument("--reps", type=int, default=3, help="reopens of each entry per size")
     parser.add_argument("--reference", default=REFERENCE, help="the reference commit")
+    parser.add_argument("--reference-tree", metavar="PATH",
+                        help="a checkout whose core/ is the reference (instead of --reference)")
     parser.add_argument("--json", metavar="PATH", help="also write the results as JSON")
     args = parser.parse_args(argv)
     out, results = [], {}
     with tempfile.TemporaryDirectory() as folder:
         work = Path(folder)
-        (work / "reference").mkdir()
-        reference = reference_tree(work / "reference", args.reference)
+        if args.reference_tree:
+            reference = Path(args.reference_tree).resolve()
+            if not (reference / "core").is_dir():
+                parser.error(f"{reference} holds no core/")
+        else:
+            (work / "reference").mkdir()
+            reference = reference_tree(work / "reference", args.reference)
         for n in args.n:
             start = time.perf_counter()
             results[n] = result = run_size(n, args, work, reference)
@@ -166,9 +173,11 @@ def main(argv: list[str] | None = None) -> int:
         write_json(args.json, {"seed": args.seed, "reference": args.reference,
                                "results": {str(n): r for n, r in results.items()}})
     load = ", ".join(f"{value:.1f}" for value in os.getloadavg())
+    reference_name = (f"the checkout {args.reference_tree}" if args.reference_tree
+                      else f"commit {args.reference}")
     save("bench_cache", out, notes=[
         f"Noisy torus (seed {args.seed}) with its signatures and topology. The reference is "
-        f"commit {args.reference}'s core reading the same table in its layout (format version "
+        f"{reference_name}'s core reading the same table in its layout (format version "
         f"2, every array stored); each reopen (obtain, a cache hit) in a fresh interpreter, "
         f"alternately, best of {args.reps}. Load average (1, 5, 15 min) {load} at the end."])
     return 0

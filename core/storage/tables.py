@@ -1,6 +1,8 @@
 """Saving and loading interval tables as .npz (no pickles), with atomic writes.
 
-Layout (format "alphascoop-table", version 2; version 1 lacks `checksums`): `points` (m, dim)
+Arrays (format "alphascoop-table"; the files of version 3 hold them in the compact layout of
+core/storage/compact.py, those of versions 1 and 2 as they are, version 1 without
+`checksums`; the folders of save_mapped as they are): `points` (m, dim)
 float64, `input_index` (n,) int64, `dim`, `ambient_dim`, optional `frame_origin` (3,) /
 `frame_basis` (2, 3); for each k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter,
 `enter_k`/`regular_k`/`interior_k` (n_k,) float64 radii (inf = never), `face_ids_k`
@@ -28,8 +30,9 @@ Optional, for a table built in a mode (core/modes/alpha_modes.py; absent = class
 (int, 0 = off), `mode_combine` (str), `mode_anisotropy` (float), `mode_normals` (str).
 
 Last, `checksums` (core/storage/checksums.py): the CRC-32 of every other member as written. A
-file of version 2 whose arrays do not match them is damaged (a FileFormatError naming the
-array); version 1 files, which have none, rely on the array checks alone.
+file of version 2 or 3 whose members do not match them is damaged (a FileFormatError naming the
+member; version 3 checks them before unpacking); version 1 files, which have none, rely on the
+array checks alone, which every version passes too, on the unpacked arrays.
 """
 
 from __future__ import annotations
