@@ -187,3 +187,31 @@ def test_an_entry_without_checksums_keeps_the_array_checks(tmp_path, scan):
     np.savez(tmp_path / "stripped.npz", **arrays)  # the current version, its checksums removed
     with pytest.raises(FileFormatError, match="no checksums"):
         AlphaComplex.load(tmp_path / "stripped.npz")
+
+
+def test_a_checksummed_entry_is_not_checked_again_array_by_array(cache, scan, monkeypatch):
+    """The cache trusts what its checksums vouch for (the reopen's cost); a table file
+    loaded directly is still checked array by array."""
+    from core.storage import tables
+
+    entry = obtain(scan).entry
+    calls = []
+    real = tables.check_table
+    monkeypatch.setattr(tables, "check_table", lambda *a: calls.append(1) or real(*a))
+    assert obtain(scan).source == "cache" and calls == []
+    AlphaComplex.load(entry)
+    assert calls == [1]
+
+
+def test_a_cached_entry_without_checksums_keeps_the_array_checks(cache, scan):
+    """An entry of the version before checksums, broken in one array, is refused through
+    the cache too (its arrays are checked), removed and rebuilt."""
+    entry = obtain(scan).entry
+    with np.load(entry, allow_pickle=False) as z:
+        arrays = unpack({key: z[key] for key in z.files if key != "checksums"})
+    arrays["version"] = np.array(1)
+    arrays["simplices_3"] = arrays["simplices_3"].copy()
+    arrays["simplices_3"][0, 0] = len(scan) + 5
+    np.savez(entry, **arrays)
+    again = obtain(scan)
+    assert again.source == "rebuilt" and "simplices_3" in again.damage

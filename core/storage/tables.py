@@ -258,6 +258,15 @@ def _read(path: Path, trusted: bool = False) -> dict[str, np.ndarray]:
         raise check.error(f"its arrays do not fit together: {exc}") from None
 
 
+def _has_sums(path: Path, arrays: dict[str, np.ndarray]) -> bool:
+    """True for an archive that records its arrays' checksums (versions 2 and 3), not for a
+    version-1 file or a mapped folder."""
+    version = str(arrays["version"])
+    if path.is_dir() or version == "1":
+        return False
+    return version == COMPACT or getattr(arrays, "crcs", None) is not None
+
+
 def _check_sums(check: Checker, arrays: dict[str, np.ndarray]) -> None:
     """A version-2 archive's arrays are the ones written (their CRCs, checked against the
     bytes read, match the checksums written last); folders and version-1 files have none."""
@@ -267,7 +276,7 @@ def _check_sums(check: Checker, arrays: dict[str, np.ndarray]) -> None:
         check.that(found is None, str(found))
 
 
-def load(path: str | os.PathLike, *, verify: bool = True,
+def load(path: str | os.PathLike, *, verify: bool = True, trust_checksums: bool = False,
          spectrum: np.ndarray | None = None) -> Saved:
     """Read a table written by `save` (or the folder written by `save_mapped`, whose arrays
     are mapped read-only, not read: core.storage.mapped); every array is checked
@@ -280,14 +289,19 @@ def load(path: str | os.PathLike, *, verify: bool = True,
     waited on disk. `spectrum`: the table's (TableIndex.spectrum) as this program found it
     beside the table, used instead of sorting the values again (checked cheaply: a 1-D
     float64 array that ends at the table's last value; a table with its signatures keeps
-    theirs)."""
+    theirs). trust_checksums=True (the table cache, whose entries only this program writes):
+    an archive whose arrays match the checksums written last is not checked array by array
+    again; a file without checksums (version 1) still is."""
     path = Path(path)
     a = _read(path, trusted=not verify)
     check = Checker(path)
     try:
         dim = scalar(check, a["dim"], "dim")
         check.that(dim in (2, 3), "dimension")
-        if verify:
+        summed = verify and trust_checksums and _has_sums(path, a)
+        if summed and str(a["version"]) != COMPACT:  # a compact one's were checked in _read
+            _check_sums(check, a)
+        if verify and not summed:
             check_table(check, a, dim)
         levels = [Level(a[f"simplices_{k}"], a[f"enter_{k}"], a[f"regular_{k}"],
                         a[f"interior_{k}"], a.get(f"face_ids_{k}")) for k in range(dim + 1)]
@@ -305,8 +319,8 @@ def load(path: str | os.PathLike, *, verify: bool = True,
         topology, signatures = (_derived(index, a["points"], a, check) if saved
                                 else (None, None))
         mode, build_info = _mode(a, path), _build_info(a, path)
-        if verify and str(a["version"]) != COMPACT:  # last: the checks above name the array
-            _check_sums(check, a)
+        if verify and not summed and str(a["version"]) != COMPACT:  # last: the checks above
+            _check_sums(check, a)                                     # name the array
         return Saved(a["points"], a["input_index"], index, frame, int(a["ambient_dim"]),
                      mode, a.get("weights"), build_info, topology, signatures)
     except KeyError as exc:
