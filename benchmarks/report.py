@@ -41,6 +41,8 @@ FEATURED = (
     ("bench_modes", "anisotropic_wall"),
     ("bench_weighted", "weighted_vs_gudhi_weighted_fast_wall"),
     ("molecule", "end_to_end_10008"),
+    ("bench_cache", "entry_size_1000000"),
+    ("bench_cache", "reopen_1000000_wall"),
 )
 
 

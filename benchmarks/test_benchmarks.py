@@ -202,6 +202,24 @@ def test_bench_passes_compares_two_checkouts_stage_by_stage(tmp_path, capsys) ->
         bench_passes.main(["--before", str(tmp_path)])  # no core/ there
 
 
+def test_bench_cache_reopens_both_layouts_from_the_cache(tmp_path, capsys) -> None:
+    import os
+
+    import bench_cache
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(bench_cache.__file__)))
+    out = tmp_path / "cache.json"
+    assert bench_cache.main(["--n", "2000", "--reps", "1", "--reference-tree", root,
+                             "--json", str(out)]) == 0
+    assert "cached reopen, 2,000 points, wall" in capsys.readouterr().out
+    run = json.loads(out.read_text())["results"]["2000"]
+    assert run["compact"]["seconds"] > 0 and run["reference"]["seconds"] > 0
+    assert run["compact_bytes"] < run["full_bytes"]
+    assert {"enter_values", "sig_betti_steps"} <= set(run["members"])
+    with pytest.raises(SystemExit):
+        bench_cache.main(["--reference-tree", str(tmp_path)])  # no core/ there
+
+
 def test_first_open_ratios_on_both_clocks_and_memory():
     """bench_first_open: time goals on wall and CPU clocks, the peak of either window process
     against scipy's, and the soak's worst re-open against the first open."""

@@ -2,7 +2,8 @@
 
 Entries live in platformdirs' user cache dir ("alphascoop/tables", or $ALPHASCOOP_CACHE_DIR)
 as the .npz files `AlphaComplex.save` writes, at most MAX_CACHE_BYTES of them (or
-$ALPHASCOOP_CACHE_LIMIT, e.g. "8G": a 1M-point table with its topology is about 2 GB).
+$ALPHASCOOP_CACHE_LIMIT, e.g. "8G": a 1M-point table with its topology is about 1 GB in the
+compact layout of core/storage/compact.py; entries of the layout before still load).
 core.obtain is the one path that reads and fills it; this module names, reads, writes and
 prunes entries. A corrupt or unreadable entry is deleted (and rebuilt by core.obtain), never
 an error; a cache that cannot be written is simply skipped. Temporary files of stores that
@@ -27,7 +28,7 @@ from core.errors import AlphaScoopError
 from core.modes.alpha_modes import Mode
 from core.storage.atomic import remove_stale_temporaries
 
-CACHE_VERSION = 2  # bump when the saved table layout or the build rules change
+CACHE_VERSION = 2  # bump when the build rules change, or older layouts no longer load
 MAX_CACHE_BYTES = 2 * 1024**3  # oldest entries are pruned beyond this ($ALPHASCOOP_CACHE_LIMIT)
 _UNITS = {"": 1, "K": 1024, "M": 1024**2, "G": 1024**3, "T": 1024**4}
 _SIZE = re.compile(r"\s*(\d+(?:\.\d*)?)\s*([KMGT]?)(?:I?B)?\s*", re.IGNORECASE)
@@ -112,7 +113,7 @@ def read_entry(path: Path, n_points: int, mode: Mode) -> tuple[AlphaComplex | No
     try:
         if not zipfile.is_zipfile(path):
             raise ValueError("not an .npz archive")
-        ac = AlphaComplex.load(path)
+        ac = AlphaComplex.load(path, trust_checksums=True)  # written here, checksummed
         if len(ac.input_index) != n_points:
             raise ValueError("it was built from other points")
         if ac.mode != mode:

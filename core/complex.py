@@ -187,13 +187,16 @@ class AlphaComplex:
 
     @classmethod
     def load(cls, path: str | os.PathLike, *, verify: bool = True,
+             trust_checksums: bool = False,
              spectrum: np.ndarray | None = None) -> AlphaComplex:
         """Read a table written by `save` (or the folder of `storage.save_mapped`: mapped, not
         read); FileFormatError if it is not one. verify=False skips most checks: only for a
         file this program has just written (core.storage.tables). `spectrum`: the table's spectrum
         as this program found it beside the table (a build process's hand-over), so it is
-        not sorted again (storage.load)."""
-        saved = storage.load(path, verify=verify, spectrum=spectrum)
+        not sorted again (storage.load). trust_checksums: an archive whose checksums match is
+        not checked array by array again (the table cache's own entries)."""
+        saved = storage.load(path, verify=verify, trust_checksums=trust_checksums,
+                             spectrum=spectrum)
         return cls(saved.points, saved.input_index, saved.index, saved.frame, saved.ambient_dim,
                    saved.mode, saved.weights, build_info=saved.build_info,
                    topology=saved.topology, signatures=saved.signatures)

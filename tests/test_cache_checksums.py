@@ -20,6 +20,7 @@ from core.cache import entry_path
 from core.errors import FileFormatError
 from core.io import read_points
 from core.obtain import obtain
+from core.storage.compact import unpack
 
 SCAN = Path(__file__).parent / "data" / "corpus" / "pcd" / "pcl_bun01.pcd"
 
@@ -41,9 +42,11 @@ ENTRY_ARRAYS = _entry_arrays()
 
 def damaged(array: np.ndarray) -> np.ndarray:
     """The array changed as damage changes one: an index array's rows shifted by one, a
-    float column scaled, a flag flipped, a text changed; a byte flipped when that leaves it
-    as it was (all zeros, one row)."""
+    float column scaled, a flag flipped, a text changed, an empty one given a row; a byte
+    flipped when that leaves it as it was (all zeros, one row)."""
     out = np.array(array, copy=True)
+    if out.size == 0 and out.ndim >= 1:  # an empty one (no far steps) gains a value
+        return np.ones((1, *out.shape[1:]), dtype=out.dtype)
     if out.dtype.kind in "iu" and out.ndim >= 1:
         out = np.roll(out, 1, axis=0)
     elif out.dtype.kind == "f" and out.ndim == 2:
@@ -83,8 +86,9 @@ def scan() -> np.ndarray:
 
 
 def test_the_entry_arrays_are_all_listed():
-    assert {"points", "enter_3", "simplices_3", "facet_cells", "topo_dual_edges",
-            "sig_betti", "format", "version"} <= set(ENTRY_ARRAYS)
+    assert {"points", "enter_values", "enter_steps_3", "simplices_steps_3", "facet_cells",
+            "facet_slots", "face_ids_2", "topo_dual_edges_32", "topo_solid_forest_steps",
+            "sig_betti_steps", "sig_boundary_runs", "format", "version"} <= set(ENTRY_ARRAYS)
 
 
 @pytest.mark.parametrize("name", ENTRY_ARRAYS)
@@ -143,7 +147,7 @@ def test_a_byte_flipped_in_place_is_refused(cache, scan):
     """A byte changed on disk behind the zip's CRC (the archive not rewritten)."""
     entry = obtain(scan).entry
     with zipfile.ZipFile(entry) as zf:
-        info = zf.getinfo("enter_3.npy")
+        info = zf.getinfo("enter_values.npy")
     data = bytearray(entry.read_bytes())
     data[info.header_offset + 30 + len(info.filename) + len(info.extra) + 200] ^= 0x40
     entry.write_bytes(bytes(data))
@@ -155,7 +159,7 @@ def test_the_reason_reaches_the_window_line(cache, scan):
     from app.dataset import Dataset
 
     entry = obtain(scan).entry
-    rewrite(entry, "enter_2")
+    rewrite(entry, "enter_steps_2")
     again = obtain(scan)
     line = Dataset(path=SCAN, ac=again.complex, spectrum=again.complex.spectrum(),
                    optimal_alpha=None, default_alpha=0.0, signatures=None, n_input=len(scan),
@@ -169,7 +173,7 @@ def test_an_entry_without_checksums_keeps_the_array_checks(tmp_path, scan):
     ac = AlphaComplex.from_points(scan)
     ac.save(tmp_path / "new.npz")
     with np.load(tmp_path / "new.npz", allow_pickle=False) as z:
-        arrays = {key: z[key] for key in z.files if key != "checksums"}
+        arrays = unpack({key: z[key] for key in z.files if key != "checksums"})
     arrays["version"] = np.array(1)
     np.savez(tmp_path / "old.npz", **arrays)
     old = AlphaComplex.load(tmp_path / "old.npz")
@@ -180,6 +184,34 @@ def test_an_entry_without_checksums_keeps_the_array_checks(tmp_path, scan):
     with pytest.raises(FileFormatError, match="simplices_3"):
         AlphaComplex.load(tmp_path / "old.npz")
     arrays = {key: z for key, z in np.load(tmp_path / "new.npz").items() if key != "checksums"}
-    np.savez(tmp_path / "stripped.npz", **arrays)  # version 2 with its checksums removed
+    np.savez(tmp_path / "stripped.npz", **arrays)  # the current version, its checksums removed
     with pytest.raises(FileFormatError, match="no checksums"):
         AlphaComplex.load(tmp_path / "stripped.npz")
+
+
+def test_a_checksummed_entry_is_not_checked_again_array_by_array(cache, scan, monkeypatch):
+    """The cache trusts what its checksums vouch for (the reopen's cost); a table file
+    loaded directly is still checked array by array."""
+    from core.storage import tables
+
+    entry = obtain(scan).entry
+    calls = []
+    real = tables.check_table
+    monkeypatch.setattr(tables, "check_table", lambda *a: calls.append(1) or real(*a))
+    assert obtain(scan).source == "cache" and calls == []
+    AlphaComplex.load(entry)
+    assert calls == [1]
+
+
+def test_a_cached_entry_without_checksums_keeps_the_array_checks(cache, scan):
+    """An entry of the version before checksums, broken in one array, is refused through
+    the cache too (its arrays are checked), removed and rebuilt."""
+    entry = obtain(scan).entry
+    with np.load(entry, allow_pickle=False) as z:
+        arrays = unpack({key: z[key] for key in z.files if key != "checksums"})
+    arrays["version"] = np.array(1)
+    arrays["simplices_3"] = arrays["simplices_3"].copy()
+    arrays["simplices_3"][0, 0] = len(scan) + 5
+    np.savez(entry, **arrays)
+    again = obtain(scan)
+    assert again.source == "rebuilt" and "simplices_3" in again.damage

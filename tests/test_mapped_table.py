@@ -1,6 +1,6 @@
 """A table handed over as mapped .npy files (core.storage.mapped, core.storage.tables.save_mapped):
-the same arrays as the saved file, read-only, every query the same, and the mapping gone with the
-complex."""
+the same arrays as the saved file unpacked (core.storage.compact), read-only, every query the
+same, and the mapping gone with the complex."""
 
 from __future__ import annotations
 
@@ -14,6 +14,7 @@ from core import AlphaComplex
 from core.query.cursor import cursor_orders
 from core.storage import mapped
 from core.storage import tables as storage
+from core.storage.compact import unpack
 from core.storage.npz import read_npz
 
 
@@ -37,8 +38,10 @@ def built(request, tmp_path):
 
 def test_a_mapped_table_holds_the_saved_files_arrays_bit_for_bit(built):
     _, folder = built
-    theirs, mine = read_npz(folder / "table.npz"), mapped.map_arrays(folder / "shared")
-    theirs.pop("checksums")  # an archive's only: the folder is read just after it is written
+    archive = read_npz(folder / "table.npz")
+    archive.pop("checksums")  # an archive's only: the folder is read just after it is written
+    theirs = unpack(archive)  # the file's full arrays (its compact members unpacked)
+    mine = mapped.map_arrays(folder / "shared")
     assert sorted(theirs) == sorted(mine) and "sig_betti" in mine
     for name, array in theirs.items():
         assert mine[name].dtype == array.dtype and mine[name].shape == array.shape, name

@@ -18,6 +18,7 @@ from surface_measure import surface_match
 
 from core import SINGULAR, AlphaComplex
 from core.io import read_points
+from core.storage.compact import unpack
 from core.storage.tables import OPENING_KEY
 from core.topology.opening import MAX_SPACINGS, OPENING_SHARE, piece_size
 from core.topology.pieces import pieces_at
@@ -120,7 +121,7 @@ def test_a_table_saved_with_the_one_piece_rule_gets_the_new_opening(tmp_path) ->
     ac.signatures()
     ac.save(tmp_path / "t.npz")
     with np.load(tmp_path / "t.npz") as saved:
-        arrays = {k: saved[k] for k in saved.files if k not in (OPENING_KEY, "checksums")}
+        arrays = unpack({k: saved[k] for k in saved.files if k not in (OPENING_KEY, "checksums")})
     arrays["version"] = np.array("1")
     np.savez(tmp_path / "old.npz", **arrays, sig_opening=np.array(123.0))
     assert AlphaComplex.load(tmp_path / "old.npz").signatures().opening_alpha == (

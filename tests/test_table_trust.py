@@ -13,13 +13,16 @@ from core import AlphaComplex
 from core.cache import entry_path
 from core.errors import FileFormatError
 from core.obtain import obtain
+from core.storage.compact import unpack
 from core.storage.npz import read_npz
 from core.storage.tables import FORMAT
 
 
 @pytest.fixture(params=[2, 3, "weighted"])
 def saved(request, tmp_path):
-    """(points, the complex with signatures, its arrays as saved by `save`, input weights)."""
+    """(points, the complex with signatures, its full arrays as `save` packs them, input
+    weights): version 1, without checksums, so that the array checks alone must find a craft
+    (the compact layout's members: tests/test_cache_compact.py)."""
     dim = 3 if request.param == "weighted" else request.param
     rng = np.random.default_rng(dim)
     points = rng.normal(size=(150, dim))
@@ -29,7 +32,8 @@ def saved(request, tmp_path):
     path = tmp_path / "good.npz"
     ac.save(path)
     with np.load(path, allow_pickle=False) as z:
-        arrays = {name: z[name].copy() for name in z.files}
+        arrays = unpack({name: z[name].copy() for name in z.files if name != "checksums"})
+    arrays["version"] = np.array("1")
     return points, ac, arrays, weights
 
 

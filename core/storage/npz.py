@@ -8,6 +8,7 @@ MemoryError (or minutes of swapping) on every run.
 from __future__ import annotations
 
 import math
+import mmap
 import os
 import struct
 import zipfile
@@ -22,6 +23,7 @@ from core.errors import FileFormatError
 from core.storage.memory import available_memory
 
 MAX_DEFLATE_RATIO = 1100  # deflate expands at most ~1032:1; beyond that a size is a lie
+MAPS_FILES = os.name != "nt"  # a mapped file can still be replaced and removed
 _LOCAL_HEADER = struct.Struct("<4s5H3L2H")  # a zip member's local header (30 bytes)
 _HEADER_READERS = {(1, 0): np.lib.format.read_array_header_1_0,
                    (2, 0): np.lib.format.read_array_header_2_0}
@@ -84,19 +86,42 @@ class _Member:
         return self.info.filename.removesuffix(".npy")
 
 
-def _read_stored(fh: BinaryIO, member: _Member, path: Path) -> np.ndarray:
-    """An uncompressed member's array read straight from the file: one copy, no CRC pass."""
+def _data_offset(fh: BinaryIO, member: _Member, path: Path) -> int:
+    """Where an uncompressed member's .npy bytes (its header first) start in the file."""
     fh.seek(member.info.header_offset)
     local = fh.read(_LOCAL_HEADER.size)
     if len(local) != _LOCAL_HEADER.size or local[:4] != b"PK\x03\x04":
         raise _bad(path, f"{member.info.filename}: bad local header")
     name_bytes, extra_bytes = _LOCAL_HEADER.unpack(local)[-2:]
+    return member.info.header_offset + len(local) + name_bytes + extra_bytes
+
+
+def _read_stored(fh: BinaryIO, member: _Member, path: Path, check_crc: bool,
+                 mapping: mmap.mmap | None) -> np.ndarray:
+    """An uncompressed member's array read straight from the file (one copy), or a read-only
+    view of the file's `mapping` (no copy); with `check_crc`, one CRC-32 pass over its bytes
+    compared with the zip's, as zipfile does while it reads, without its many small copies."""
+    start = _data_offset(fh, member, path)
     shape = member.shape[::-1] if member.fortran else member.shape
-    out = np.empty(shape, dtype=member.dtype)
-    fh.seek(member.info.header_offset + len(local) + name_bytes + extra_bytes
-            + member.header_bytes)
-    if out.nbytes and fh.readinto(out.reshape(-1).view(np.uint8)) != out.nbytes:
-        raise _bad(path, f"{member.info.filename} is cut short")
+    nbytes = math.prod(shape) * member.dtype.itemsize
+    end = start + member.header_bytes + nbytes
+    if mapping is not None:
+        if end > len(mapping):
+            raise _bad(path, f"{member.info.filename} is cut short")
+        header = memoryview(mapping)[start:start + member.header_bytes]
+        out = np.ndarray(shape, dtype=member.dtype, buffer=mapping,
+                         offset=start + member.header_bytes)
+        data = memoryview(mapping)[start + member.header_bytes:end]
+    else:
+        out = np.empty(shape, dtype=member.dtype)
+        fh.seek(start)
+        header = fh.read(member.header_bytes)
+        data = out.reshape(-1).view(np.uint8)
+        if len(header) != member.header_bytes or (
+                out.nbytes and fh.readinto(data) != out.nbytes):
+            raise _bad(path, f"{member.info.filename} is cut short")
+    if check_crc and zlib.crc32(data, zlib.crc32(header)) != member.info.CRC:
+        raise _bad(path, f"Bad CRC-32 for file {member.info.filename!r}")
     return out.T if member.fortran else out
 
 
@@ -108,13 +133,17 @@ class Arrays(dict):
     crcs: dict[str, int]
 
 
-def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> Arrays:
+def read_npz(path: str | os.PathLike, *, trusted: bool = False, mapped: bool = False
+             ) -> Arrays:
     """Every array of the archive at `path` by name, after checking the declared sizes.
 
-    FileFormatError (naming the file) for a missing, broken or lying archive. `trusted`: a
-    file this program wrote a moment ago, whose uncompressed members are read straight
-    into their arrays without the zip's CRC pass (the same arrays, read in about half the
-    time); never for a file that waited on disk.
+    FileFormatError (naming the file) for a missing, broken or lying archive. Uncompressed
+    members (what this program writes) are read straight into their arrays and their
+    CRC-32s compared with the zip's; `trusted`: a file this program wrote a moment ago,
+    read without that CRC pass (the same arrays, in about half the time); never for a file
+    that waited on disk. `mapped`: those arrays are read-only views of the file mapped into
+    memory (no copy: its pages are the page cache's; where an open mapping keeps a file
+    from being replaced, Windows, they are read as usual).
     """
     path = Path(path)
     try:  # our own handle: np.load leaks the one it opens when the zip is broken
@@ -126,9 +155,12 @@ def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> Arrays:
             _check_total(members, archive_bytes, path)
             out = Arrays()
             out.crcs = {m.info.filename: m.info.CRC for m in members}
-            if trusted and all(m.info.compress_type == zipfile.ZIP_STORED
-                               and m.info.compress_size == m.info.file_size for m in members):
-                out.update((m.name, _read_stored(fh, m, path)) for m in members)
+            if all(m.info.compress_type == zipfile.ZIP_STORED
+                   and m.info.compress_size == m.info.file_size for m in members):
+                mapping = (mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS_READ)
+                           if mapped and MAPS_FILES and archive_bytes else None)
+                out.update((m.name, _read_stored(fh, m, path, not trusted, mapping))
+                           for m in members)
                 return out
             fh.seek(0)
             data = np.load(fh, allow_pickle=False)

@@ -1,6 +1,8 @@
 """Saving and loading interval tables as .npz (no pickles), with atomic writes.
 
-Layout (format "alphascoop-table", version 2; version 1 lacks `checksums`): `points` (m, dim)
+Arrays (format "alphascoop-table"; the files of version 3 hold them in the compact layout of
+core/storage/compact.py, those of versions 1 and 2 as they are, version 1 without
+`checksums`; the folders of save_mapped as they are): `points` (m, dim)
 float64, `input_index` (n,) int64, `dim`, `ambient_dim`, optional `frame_origin` (3,) /
 `frame_basis` (2, 3); for each k in 0..dim: `simplices_k` (n_k, k+1) int32 sorted by enter,
 `enter_k`/`regular_k`/`interior_k` (n_k,) float64 radii (inf = never), `face_ids_k`
@@ -28,8 +30,9 @@ Optional, for a table built in a mode (core/modes/alpha_modes.py; absent = class
 (int, 0 = off), `mode_combine` (str), `mode_anisotropy` (float), `mode_normals` (str).
 
 Last, `checksums` (core/storage/checksums.py): the CRC-32 of every other member as written. A
-file of version 2 whose arrays do not match them is damaged (a FileFormatError naming the
-array); version 1 files, which have none, rely on the array checks alone.
+file of version 2 or 3 whose members do not match them is damaged (a FileFormatError naming the
+member; version 3 checks them before unpacking); version 1 files, which have none, rely on the
+array checks alone, which every version passes too, on the unpacked arrays.
 """
 
 from __future__ import annotations
@@ -59,14 +62,16 @@ from core.storage.checks import (
 )
 from core.storage.checksums import problem as checksum_problem
 from core.storage.checksums import write_npz
+from core.storage.compact import pack, unpack
 from core.storage.mapped import map_arrays, write_arrays
 from core.storage.npz import read_npz
 from core.topology.betti import Topology, ascending
 from core.topology.opening import opening_alpha_of
 from core.topology.signatures import Signatures, level_columns
 
-FORMAT, VERSION = "alphascoop-table", 2
-VERSIONS = ("1", "2")  # what `load` reads: version 1 has no checksums
+FORMAT, VERSION = "alphascoop-table", 3
+VERSIONS = ("1", "2", "3")  # what `load` reads: version 1 has no checksums, 3 is compact
+COMPACT = "3"  # the version whose files hold core.storage.compact's members
 OPENING_KEY = "sig_opening_pieces"  # the opening alpha (core.opening) saved with the signatures
 
 
@@ -217,8 +222,9 @@ def _build_info(a: dict[str, np.ndarray], path: Path) -> BuildInfo:
 
 
 def save(ac: Saveable, path: str | os.PathLike) -> None:
-    """Write `ac` to `path` (.npz) atomically."""
-    atomic_write(path, lambda handle: write_npz(handle, _arrays(ac)))
+    """Write `ac` to `path` (.npz) atomically, in the compact layout (core.storage.compact)."""
+    members = pack(_arrays(ac))
+    atomic_write(path, lambda handle: write_npz(handle, members))
 
 
 def save_mapped(ac: Saveable, folder: str | os.PathLike) -> bool:
@@ -229,15 +235,36 @@ def save_mapped(ac: Saveable, folder: str | os.PathLike) -> bool:
 
 
 def _read(path: Path, trusted: bool = False) -> dict[str, np.ndarray]:
-    """The archive's arrays (declared sizes checked first), or the folder's mapped arrays
-    (save_mapped), if it is one of our tables (`trusted`: core.storage.npz.read_npz's, for a file
-    this program has just written)."""
-    arrays = map_arrays(path) if path.is_dir() else read_npz(path, trusted=trusted)
+    """The table's full arrays from the archive (declared sizes checked first; a compact one's
+    checksums checked, then unpacked: core.storage.compact), or the folder's mapped arrays
+    (save_mapped), if it is one of our tables (`trusted`: core.storage.npz.read_npz's, for a
+    file this program has just written)."""
+    arrays = map_arrays(path) if path.is_dir() else read_npz(path, trusted=trusted, mapped=True)
     check = Checker(path)
     check.that(str(arrays.get("format", "")) == FORMAT, "missing format tag")
     check.that(arrays.get("version", np.array(-1)).shape == ()
                and str(arrays.get("version")) in VERSIONS, "unknown version")
-    return arrays
+    if str(arrays["version"]) != COMPACT or path.is_dir():
+        return arrays
+    if not trusted:  # first: unpacking a damaged member would name the wrong array
+        _check_sums(check, arrays)
+    check.that("dim" in arrays and arrays["dim"].shape == ()
+               and arrays["dim"].dtype.kind in "iu" and int(arrays["dim"]) in (2, 3), "dimension")
+    try:
+        return unpack(arrays)
+    except KeyError as exc:
+        raise check.error(f"missing {exc}") from None
+    except (IndexError, ValueError, TypeError) as exc:
+        raise check.error(f"its arrays do not fit together: {exc}") from None
+
+
+def _has_sums(path: Path, arrays: dict[str, np.ndarray]) -> bool:
+    """True for an archive that records its arrays' checksums (versions 2 and 3), not for a
+    version-1 file or a mapped folder."""
+    version = str(arrays["version"])
+    if path.is_dir() or version == "1":
+        return False
+    return version == COMPACT or getattr(arrays, "crcs", None) is not None
 
 
 def _check_sums(check: Checker, arrays: dict[str, np.ndarray]) -> None:
@@ -249,7 +276,7 @@ def _check_sums(check: Checker, arrays: dict[str, np.ndarray]) -> None:
         check.that(found is None, str(found))
 
 
-def load(path: str | os.PathLike, *, verify: bool = True,
+def load(path: str | os.PathLike, *, verify: bool = True, trust_checksums: bool = False,
          spectrum: np.ndarray | None = None) -> Saved:
     """Read a table written by `save` (or the folder written by `save_mapped`, whose arrays
     are mapped read-only, not read: core.storage.mapped); every array is checked
@@ -262,14 +289,19 @@ def load(path: str | os.PathLike, *, verify: bool = True,
     waited on disk. `spectrum`: the table's (TableIndex.spectrum) as this program found it
     beside the table, used instead of sorting the values again (checked cheaply: a 1-D
     float64 array that ends at the table's last value; a table with its signatures keeps
-    theirs)."""
+    theirs). trust_checksums=True (the table cache, whose entries only this program writes):
+    an archive whose arrays match the checksums written last is not checked array by array
+    again; a file without checksums (version 1) still is."""
     path = Path(path)
     a = _read(path, trusted=not verify)
     check = Checker(path)
     try:
         dim = scalar(check, a["dim"], "dim")
         check.that(dim in (2, 3), "dimension")
-        if verify:
+        summed = verify and trust_checksums and _has_sums(path, a)
+        if summed and str(a["version"]) != COMPACT:  # a compact one's were checked in _read
+            _check_sums(check, a)
+        if verify and not summed:
             check_table(check, a, dim)
         levels = [Level(a[f"simplices_{k}"], a[f"enter_{k}"], a[f"regular_{k}"],
                         a[f"interior_{k}"], a.get(f"face_ids_{k}")) for k in range(dim + 1)]
@@ -287,8 +319,8 @@ def load(path: str | os.PathLike, *, verify: bool = True,
         topology, signatures = (_derived(index, a["points"], a, check) if saved
                                 else (None, None))
         mode, build_info = _mode(a, path), _build_info(a, path)
-        if verify:  # last: the checks above name what is wrong more precisely
-            _check_sums(check, a)
+        if verify and not summed and str(a["version"]) != COMPACT:  # last: the checks above
+            _check_sums(check, a)                                     # name the array
         return Saved(a["points"], a["input_index"], index, frame, int(a["ambient_dim"]),
                      mode, a.get("weights"), build_info, topology, signatures)
     except KeyError as exc:
