@@ -37,7 +37,7 @@ from app.scene.painting import Painter
 from app.scene.picking import ViewPicker
 from core.storage.atomic import atomic_path
 
-LOD_CELLS = 30_000  # cells a layer draws at most while the slider is dragged
+LOD_CELLS = 8_000  # cells a layer draws at most while the slider is dragged
 
 
 def thinned(cells: np.ndarray, limit: int | None) -> np.ndarray:
@@ -45,6 +45,16 @@ def thinned(cells: np.ndarray, limit: int | None) -> np.ndarray:
     if limit is None or len(cells) <= limit:
         return cells
     return np.ascontiguousarray(cells[:: -(-len(cells) // limit)])
+
+
+def drag_style(actor: pv.Actor, options: dict, dragging: bool) -> None:
+    """A layer's look while dragging (lines 1 pixel wide, points flat squares: a software
+    renderer draws them several times faster) or its full look again (its DRAW_OPTIONS)."""
+    prop = actor.GetProperty()
+    if "line_width" in options:
+        prop.SetLineWidth(1.0 if dragging else options["line_width"])
+    if options.get("render_points_as_spheres"):
+        prop.SetRenderPointsAsSpheres(not dragging)
 
 
 class Scene:
@@ -61,7 +71,8 @@ class Scene:
         self._render = render or plotter.render
         self.lod_limit = LOD_CELLS  # cells a layer draws while the slider is dragged
         self.lod_cells: int | None = None  # the limit in force (None: the full frame)
-        self._samples = self.plotter.render_window.GetMultiSamples()
+        self._smoothing = (self.plotter.render_window.GetMultiSamples(),
+                           self.plotter.renderer.GetUseFXAA())  # the full frame's
         self.layers: dict[str, Layer] = {}  # one dict for the scene's life (helpers share it)
         self.styles: dict[str, LayerStyle] = {}
         self.shape = None
@@ -173,14 +184,19 @@ class Scene:
         self.overlay.set_counts(counts)
 
     def set_level_of_detail(self, dragging: bool) -> None:
-        """While the slider is dragged: no multisampling and at most LOD_CELLS cells a layer
-        (evenly picked), so frames keep up; after it, the full frame (one render)."""
+        """While the slider is dragged: at most `lod_limit` cells a layer (evenly picked),
+        thin lines, flat points and no anti-aliasing, so frames keep up; after it, the full
+        frame (one render)."""
         if dragging == (self.lod_cells is not None):
             return
-        window = self.plotter.render_window
+        window, renderer = self.plotter.render_window, self.plotter.renderer
         if dragging:
-            self._samples = window.GetMultiSamples()
-        window.SetMultiSamples(0 if dragging else self._samples)
+            self._smoothing = (window.GetMultiSamples(), renderer.GetUseFXAA())
+        samples, fxaa = (0, False) if dragging else self._smoothing
+        window.SetMultiSamples(samples)
+        renderer.SetUseFXAA(fxaa)
+        for name, layer in self.layers.items():
+            drag_style(layer.actor, DRAW_OPTIONS.get(name, {}), dragging)
         self.lod_cells = self.lod_limit if dragging else None
         if self.shape is not None:
             self.set_shape(self.shape)
