@@ -28,6 +28,7 @@ from app.inspect_panel import InspectPanel
 from app.inspector import Inspector
 from app.jobs import Runner
 from app.layers_panel import LayersPanel
+from app.layout_stop import contained
 from app.menus import MenuTools, build_menus
 from app.mode_panel import ModePanel
 from app.model import ExplorerModel
@@ -77,10 +78,10 @@ class MainWindow(QMainWindow):
         self.progress = ProgressWidget()
         self.job_progress = ProgressWidget()
         self.status = QLabel("Open a point set: File → Open, or drop a file here.")
-        self.statusBar().addWidget(self.status, 1)
+        self.statusBar().addWidget(contained(self.status, scroll_vertically=False), 1)
         self.statusBar().addPermanentWidget(self.progress)
         self.statusBar().addPermanentWidget(self.job_progress)
-        self._add_dock("Alpha", self.alpha_panel, Qt.DockWidgetArea.RightDockWidgetArea)
+        self._add_dock("Alpha", contained(self.alpha_panel), Qt.DockWidgetArea.RightDockWidgetArea)
         self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
         info = self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
         mode = self._add_dock("Mode", self.mode_panel, Qt.DockWidgetArea.LeftDockWidgetArea)

@@ -73,10 +73,9 @@ def test_a_release_draws_one_full_frame_at_the_released_alpha(window, qtbot) -> 
 
 
 def test_a_drag_move_is_painted_at_its_alpha_in_one_pass(window, qtbot) -> None:
-    """Every paint of the window after a drag move shows the alpha moved to (the slider's new
-    place and its shape are composed together), and the texts the step changed are laid out
-    before that paint rather than painted again after it: at most one more paint, the one Qt
-    makes after re-laying out the dock area."""
+    """A drag move paints the window once (a paint composes all of it in software GL), at the
+    alpha moved to: the slider's new place and its shape together, the texts the step changed
+    laid out before that paint rather than painted again after it."""
     from PySide6.QtCore import QEvent, QObject
 
     open_and_wait(qtbot, window, SAMPLE_PATH)
@@ -101,8 +100,7 @@ def test_a_drag_move_is_painted_at_its_alpha_in_one_pass(window, qtbot) -> None:
             slider.setSliderPosition(slider.value() - offset // 2)
             qtbot.wait(60)
             assert model.index != before
-            assert paints and set(paints) == {model.index}
-            assert len(paints) <= 2
+            assert paints == [model.index]
     finally:
         slider.setSliderDown(False)
         window.removeEventFilter(watcher)

@@ -37,7 +37,10 @@ from app.scene.painting import Painter
 from app.scene.picking import ViewPicker
 from core.storage.atomic import atomic_path
 
-LOD_CELLS = 8_000  # cells a layer draws at most while the slider is dragged
+LOD_CELLS = 16_000  # triangles a layer draws at most while the slider is dragged
+#: A layer's share of LOD_CELLS by kind: a line or point costs a software renderer about what
+#: a triangle does, a tetrahedron four triangles.
+LOD_SHARE = {"tris": 1.0, "lines": 0.5, "verts": 0.5, "tets": 0.25}
 
 
 def thinned(cells: np.ndarray, limit: int | None) -> np.ndarray:
@@ -177,14 +180,21 @@ class Scene:
                 continue
             if self.styles[name].visible:
                 cells = shape_cells(shape, name)
-                layer.set_cells(thinned(cells, self.lod_cells))
+                layer.set_cells(thinned(cells, self._limit(layer)))
                 counts[name] = len(cells)
             else:
                 layer.dirty = True
         self.overlay.set_counts(counts)
 
+    def _limit(self, layer: Layer) -> int | None:
+        """Cells the layer draws at most now (None: all of them)."""
+        if self.lod_cells is None:
+            return None
+        return max(1, int(self.lod_cells * LOD_SHARE.get(layer.kind, 1.0)))
+
     def set_level_of_detail(self, dragging: bool) -> None:
-        """While the slider is dragged: at most `lod_limit` cells a layer (evenly picked),
+        """While the slider is dragged: at most `lod_limit` cells a layer (its LOD_SHARE of
+        them, evenly picked),
         thin lines, flat points and no anti-aliasing, so frames keep up; after it, the full
         frame (one render)."""
         if dragging == (self.lod_cells is not None):
@@ -214,7 +224,7 @@ class Scene:
         layer = self.layers[name]
         self.styles[name] = style
         if style.visible and layer.dirty and self.shape is not None:
-            layer.set_cells(thinned(shape_cells(self.shape, name), self.lod_cells))
+            layer.set_cells(thinned(shape_cells(self.shape, name), self._limit(layer)))
         prop = layer.actor.prop
         prop.color = style.colour
         prop.opacity = style.opacity
