@@ -9,7 +9,7 @@ coalesced with a zero-interval timer, so a fast drag queues no stale work.
 
 from __future__ import annotations
 
-from PySide6.QtCore import QLocale, QSignalBlocker, Qt, QTimer
+from PySide6.QtCore import QLocale, QSignalBlocker, Qt, Signal
 from PySide6.QtGui import QDoubleValidator
 from PySide6.QtWidgets import (
     QFormLayout,
@@ -54,6 +54,8 @@ def radius_validator() -> QDoubleValidator:
 class AlphaPanel(QWidget):
     """Slider + radius field + r² + buttons, bound to an ExplorerModel."""
 
+    _indexQueued = Signal()  # delivered queued: hands the newest slider index to the model
+
     def __init__(self, model: ExplorerModel, parent: QWidget | None = None) -> None:
         """Build the widgets and wire them to model."""
         super().__init__(parent)
@@ -77,7 +79,7 @@ class AlphaPanel(QWidget):
         self.forward = QPushButton("Forward ▶")
         self.forward.setToolTip("redo Back (Alt+Right)")
         self._pending = 0
-        self._timer = QTimer(self, singleShot=True, interval=0)
+        self._queued = False  # an index waits for the queued call
         self._layout()
         self._connect()
         if model.dataset is not None:
@@ -116,11 +118,11 @@ class AlphaPanel(QWidget):
             lambda forward: self.model.go_forward() if forward else self.model.go_back())
         self.back.clicked.connect(self.model.go_back)
         self.forward.clicked.connect(self.model.go_forward)
-        self._timer.timeout.connect(lambda: self.model.set_index(self._pending))
+        self._indexQueued.connect(self.flush, Qt.ConnectionType.QueuedConnection)
         self.radius.editingFinished.connect(self._apply_radius)
         self.optimal.clicked.connect(lambda: self.model.set_index(self.model.optimal_index()))
         self.hull.clicked.connect(lambda: self.model.set_index(self.model.hull_index()))
-        self.model.datasetChanged.connect(self._timer.stop)
+        self.model.datasetChanged.connect(self._drop_queued)
         self.model.datasetChanged.connect(self._new_travel)
         self.model.datasetChanged.connect(self.sync)
         self.model.topologyChanged.connect(self._new_travel)
@@ -130,14 +132,27 @@ class AlphaPanel(QWidget):
 
     def _base(self) -> int:
         """The index a key moves from: a still-queued one, else the model's."""
-        return self._pending if self._timer.isActive() else self.model.index
+        return self._pending if self._queued else self.model.index
 
     def _queue_index(self, index: int) -> None:
         """Remember the newest slider index; the model gets it once events settle."""
         if self.model.dataset is None:
             return
         self._pending = max(0, min(index, self.model.hull_index()))
-        self._timer.start()
+        if not self._queued:
+            self._queued = True
+            self._indexQueued.emit()
+
+    def flush(self) -> None:
+        """Hand the model the still-queued slider index, if any (the queued call, or now: a
+        release draws no older alpha)."""
+        if self._queued:
+            self._queued = False
+            self.model.set_index(self._pending)
+
+    def _drop_queued(self) -> None:
+        """Forget a queued index (it belonged to the dataset before)."""
+        self._queued = False
 
     def _new_travel(self) -> None:
         """A new dataset or its topology: the log-alpha travel and tick marks (suggested,
@@ -149,7 +164,7 @@ class AlphaPanel(QWidget):
 
     def _forget(self) -> None:
         """The dataset was released: no travel (it holds the spectrum), no marks, disabled."""
-        self._timer.stop()
+        self._drop_queued()
         self.travel = None
         self.slider.set_marks(())
         self.sync()

@@ -13,7 +13,7 @@ os.environ["QT_API"] = "pyside6"
 
 from pathlib import Path
 
-from PySide6.QtCore import QSettings, Qt, QTimer
+from PySide6.QtCore import QCoreApplication, QEvent, QSettings, Qt, QTimer
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWidget
 
@@ -28,6 +28,7 @@ from app.inspect_panel import InspectPanel
 from app.inspector import Inspector
 from app.jobs import Runner
 from app.layers_panel import LayersPanel
+from app.layout_stop import contained
 from app.menus import MenuTools, build_menus
 from app.mode_panel import ModePanel
 from app.model import ExplorerModel
@@ -42,6 +43,7 @@ from app.signatures_dock import SignaturesPanel
 from app.worker import load_job, topology_job
 from core.modes.alpha_modes import Mode
 
+LAYOUT_DEPTH = 5  # rounds of layout requests a text change sends up (label, panel, dock, window)
 CLOSE_WAIT_MS = 2000  # how long closing waits for a running build before leaving it behind
 
 
@@ -76,10 +78,10 @@ class MainWindow(QMainWindow):
         self.progress = ProgressWidget()
         self.job_progress = ProgressWidget()
         self.status = QLabel("Open a point set: File → Open, or drop a file here.")
-        self.statusBar().addWidget(self.status, 1)
+        self.statusBar().addWidget(contained(self.status, scroll_vertically=False), 1)
         self.statusBar().addPermanentWidget(self.progress)
         self.statusBar().addPermanentWidget(self.job_progress)
-        self._add_dock("Alpha", self.alpha_panel, Qt.DockWidgetArea.RightDockWidgetArea)
+        self._add_dock("Alpha", contained(self.alpha_panel), Qt.DockWidgetArea.RightDockWidgetArea)
         self._add_dock("Layers", self.layers_panel, Qt.DockWidgetArea.RightDockWidgetArea)
         info = self._add_dock("Info", self.info_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
         mode = self._add_dock("Mode", self.mode_panel, Qt.DockWidgetArea.LeftDockWidgetArea)
@@ -131,7 +133,7 @@ class MainWindow(QMainWindow):
         self.model.alphaChanged.connect(self._show_shape)
         slider = self.alpha_panel.slider  # a drag draws a lighter frame; its release the full
         slider.sliderMoved.connect(lambda _position: self.scene.set_level_of_detail(True))
-        slider.sliderReleased.connect(lambda: self.scene.set_level_of_detail(False))
+        slider.sliderReleased.connect(self._end_drag)
         self.model.datasetReleased.connect(self._show_released)
         self.layers_panel.styleChanged.connect(self._set_style)
         self.mode_panel.modeChosen.connect(self.set_mode)
@@ -310,6 +312,12 @@ class MainWindow(QMainWindow):
         self.scene.render()
         self._show_status()
 
+    def _end_drag(self) -> None:
+        """The slider's release: its last alpha first (still queued when the release came
+        with the last move), then the full frame, drawn once."""
+        self.alpha_panel.flush()
+        self.scene.set_level_of_detail(False)
+
     def _show_status(self) -> None:
         """Status line: points, cells, alpha, where the table came from, the topology."""
         ds = self.model.dataset
@@ -328,6 +336,14 @@ class MainWindow(QMainWindow):
         if self.model.dataset is not None:
             self.prefs.set_style(self.model.dataset.ac.dim, name, style)
         self.scene.render()
+
+    def event(self, event: QEvent) -> bool:
+        """Before the window paints, lay out what a step's new texts asked for: Qt would lay
+        them out after this paint and paint (compose the whole window) again."""
+        if event.type() == QEvent.Type.UpdateRequest:
+            for _ in range(LAYOUT_DEPTH):
+                QCoreApplication.sendPostedEvents(None, QEvent.Type.LayoutRequest)
+        return super().event(event)
 
     def dragEnterEvent(self, event) -> None:
         """Accept drags that carry local files."""

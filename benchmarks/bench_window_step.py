@@ -18,7 +18,8 @@ scan200k and scan1m = datasets.bunny_scan samples (scan-like: the bunny's faces 
 noise); protein = shared/data/1A8O.pdb (556 atoms, drawn as balls).
 Goals (ratios in one run): median step <= 2 x bare render + 30 ms, 95th percentile
 <= 3 x + 50 ms, on every file; the protein's median <= 3 x the 40k scan's; >= 20 frames per
-second while dragging at 200k points.
+second while dragging at 200k points, and the full frame painted within 300 ms of the
+release.
 """
 
 from __future__ import annotations
@@ -97,14 +98,15 @@ def measure_file(path: Path, steps: int, drag_seconds: float, shots: Path | None
                   "view": list(win.scene.plotter.render_window.GetSize()), "kinds": {}}
         for kind in KINDS:
             result["kinds"][kind] = summary(timed_steps(win, timer, kind, steps))
-        if drag_seconds > 0 or shots is not None:
+        if drag_seconds > 0:
             win.model.set_index(win.model.default_index())
             drain()
-            shot = None if shots is None else (
-                lambda: save_shot(win, shots / f"{path.stem}_mid_drag.png"))
-            moved = drag(win, timer, drag_seconds or SHOT_DRAG_S, shot=shot)
-            if drag_seconds > 0:
-                result["drag"] = moved
+            result["drag"] = drag(win, timer, drag_seconds)
+        if shots is not None:  # after the timed drag: a grab of the window slows the frames
+            win.model.set_index(win.model.default_index())  # after it (same CPU, more wait)
+            drain()
+            drag(win, timer, SHOT_DRAG_S,
+                 shot=lambda: save_shot(win, shots / f"{path.stem}_mid_drag.png"))
         win.close()
     return result
 
@@ -155,10 +157,14 @@ def goal_figures(results: dict[str, dict]) -> list:
             "window_step.protein_vs_scan40k", "protein: median arrow step",
             results["protein"]["kinds"]["arrow"]["median"], "s", "40k scan: median arrow step",
             results["scan40k"]["kinds"]["arrow"]["median"], "<= 3"))
-    if "drag" in results.get("scan200k", {}):
+    drag = results.get("scan200k", {}).get("drag")
+    if drag:
         figures.append(Figure("window_step.drag_fps_200k", "frames per second dragging the "
-                              "slider at 200k points", results["scan200k"]["drag"]["fps"],
-                              "1/s", goal=">= 20"))
+                              "slider at 200k points", drag["fps"], "1/s", goal=">= 20"))
+    if drag and "release_seconds" in drag:
+        figures.append(Figure("window_step.release_200k", "200k points: the slider's release "
+                              "until its full frame is painted", drag["release_seconds"], "s",
+                              goal="<= 0.3"))
     return figures
 
 

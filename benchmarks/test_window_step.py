@@ -38,11 +38,13 @@ def test_summary_and_goal_figures_from_steps():
     protein = summary(rows([0.3, 0.3], bare=0.25))
     results = {"scan40k": {"file": "a.ply", "kinds": {"arrow": scan}},
                "protein": {"file": "p.pdb", "kinds": {"arrow": protein}},
-               "scan200k": {"file": "b.npy", "kinds": {"arrow": scan}, "drag": {"fps": 25.0}}}
+               "scan200k": {"file": "b.npy", "kinds": {"arrow": scan},
+                            "drag": {"fps": 25.0, "release_seconds": 0.4}}}
     figures = {f.name: f for f in goal_figures(results)}
     assert figures["window_step.scan40k.median"].anchor_value == pytest.approx(0.43)
     assert figures["window_step.scan40k.median"].met  # 0.275 <= 2 x 0.2 + 0.03
     assert not figures["window_step.scan40k.p95"].met  # 0.8+ > 3 x 0.2 + 0.05
     assert figures["window_step.protein_vs_scan40k"].ratio == pytest.approx(0.3 / 0.275)
     assert figures["window_step.drag_fps_200k"].met
+    assert not figures["window_step.release_200k"].met  # 0.4 s > 0.3 s
     assert len(table(results)["rows"]) == 3

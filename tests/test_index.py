@@ -83,3 +83,25 @@ def test_the_last_value_is_the_spectrums_without_sorting(ac, weighted):
     known = TableIndex(ac.index.table, weighted=ac.index.weighted,
                        known_spectrum=np.array([0.0, 1.5]))
     assert known.last_value() == 1.5
+
+
+@pytest.mark.parametrize("gather_cost", [0, 10**12])  # always the gather; always the pass
+def test_boundary_facets_by_either_path_are_the_definitions(ac, monkeypatch, gather_cost):
+    """Both ways a shape finds its boundary facets (a pass over the facets that entered, or
+    a gather of those not yet interior) give, at every alpha tried, the facets that entered
+    and are not interior, split by their regular value (the table read plainly)."""
+    import core.query.shape as shape_module
+
+    monkeypatch.setattr(shape_module, "GATHER_COST", gather_cost)
+    enter, regular, interior = (np.asarray(ac.index.intervals(ac.dim - 1))[:, k]
+                                for k in range(3))
+    spectrum = np.asarray(ac.spectrum())
+    for alpha in spectrum[:: max(1, len(spectrum) // 40)]:
+        shape = ac.shape(float(alpha))
+        boundary = (enter <= alpha) & (interior > alpha)
+        np.testing.assert_array_equal(shape.boundary_facets,
+                                      np.asarray(ac.index.simplices(ac.dim - 1))[boundary])
+        np.testing.assert_array_equal(shape.regular_facet_ids,
+                                      np.flatnonzero(boundary & (regular <= alpha)))
+        np.testing.assert_array_equal(shape.singular_ids(ac.dim - 1),
+                                      np.flatnonzero(boundary & (regular > alpha)))

@@ -37,7 +37,10 @@ from app.scene.painting import Painter
 from app.scene.picking import ViewPicker
 from core.storage.atomic import atomic_path
 
-LOD_CELLS = 30_000  # cells a layer draws at most while the slider is dragged
+LOD_CELLS = 16_000  # triangles a layer draws at most while the slider is dragged
+#: A layer's share of LOD_CELLS by kind: a line or point costs a software renderer about what
+#: a triangle does, a tetrahedron four triangles.
+LOD_SHARE = {"tris": 1.0, "lines": 0.5, "verts": 0.5, "tets": 0.25}
 
 
 def thinned(cells: np.ndarray, limit: int | None) -> np.ndarray:
@@ -45,6 +48,16 @@ def thinned(cells: np.ndarray, limit: int | None) -> np.ndarray:
     if limit is None or len(cells) <= limit:
         return cells
     return np.ascontiguousarray(cells[:: -(-len(cells) // limit)])
+
+
+def drag_style(actor: pv.Actor, options: dict, dragging: bool) -> None:
+    """A layer's look while dragging (lines 1 pixel wide, points flat squares: a software
+    renderer draws them several times faster) or its full look again (its DRAW_OPTIONS)."""
+    prop = actor.GetProperty()
+    if "line_width" in options:
+        prop.SetLineWidth(1.0 if dragging else options["line_width"])
+    if options.get("render_points_as_spheres"):
+        prop.SetRenderPointsAsSpheres(not dragging)
 
 
 class Scene:
@@ -61,7 +74,8 @@ class Scene:
         self._render = render or plotter.render
         self.lod_limit = LOD_CELLS  # cells a layer draws while the slider is dragged
         self.lod_cells: int | None = None  # the limit in force (None: the full frame)
-        self._samples = self.plotter.render_window.GetMultiSamples()
+        self._smoothing = (self.plotter.render_window.GetMultiSamples(),
+                           self.plotter.renderer.GetUseFXAA())  # the full frame's
         self.layers: dict[str, Layer] = {}  # one dict for the scene's life (helpers share it)
         self.styles: dict[str, LayerStyle] = {}
         self.shape = None
@@ -166,21 +180,33 @@ class Scene:
                 continue
             if self.styles[name].visible:
                 cells = shape_cells(shape, name)
-                layer.set_cells(thinned(cells, self.lod_cells))
+                layer.set_cells(thinned(cells, self._limit(layer)))
                 counts[name] = len(cells)
             else:
                 layer.dirty = True
         self.overlay.set_counts(counts)
 
+    def _limit(self, layer: Layer) -> int | None:
+        """Cells the layer draws at most now (None: all of them)."""
+        if self.lod_cells is None:
+            return None
+        return max(1, int(self.lod_cells * LOD_SHARE.get(layer.kind, 1.0)))
+
     def set_level_of_detail(self, dragging: bool) -> None:
-        """While the slider is dragged: no multisampling and at most LOD_CELLS cells a layer
-        (evenly picked), so frames keep up; after it, the full frame (one render)."""
+        """While the slider is dragged: at most `lod_limit` cells a layer (its LOD_SHARE of
+        them, evenly picked),
+        thin lines, flat points and no anti-aliasing, so frames keep up; after it, the full
+        frame (one render)."""
         if dragging == (self.lod_cells is not None):
             return
-        window = self.plotter.render_window
+        window, renderer = self.plotter.render_window, self.plotter.renderer
         if dragging:
-            self._samples = window.GetMultiSamples()
-        window.SetMultiSamples(0 if dragging else self._samples)
+            self._smoothing = (window.GetMultiSamples(), renderer.GetUseFXAA())
+        samples, fxaa = (0, False) if dragging else self._smoothing
+        window.SetMultiSamples(samples)
+        renderer.SetUseFXAA(fxaa)
+        for name, layer in self.layers.items():
+            drag_style(layer.actor, DRAW_OPTIONS.get(name, {}), dragging)
         self.lod_cells = self.lod_limit if dragging else None
         if self.shape is not None:
             self.set_shape(self.shape)
@@ -198,7 +224,7 @@ class Scene:
         layer = self.layers[name]
         self.styles[name] = style
         if style.visible and layer.dirty and self.shape is not None:
-            layer.set_cells(thinned(shape_cells(self.shape, name), self.lod_cells))
+            layer.set_cells(thinned(shape_cells(self.shape, name), self._limit(layer)))
         prop = layer.actor.prop
         prop.color = style.colour
         prop.opacity = style.opacity
