@@ -16,6 +16,7 @@ import numpy as np
 
 from core.build.points import Frame
 from core.errors import InputError
+from core.io.problems import unreadable
 from core.tiled.memory import prepared
 
 #: Points per chunk of a streamed source.
@@ -72,12 +73,15 @@ class LasSource:
         (core.io does the same)."""
         import laspy
 
-        with laspy.open(self.path) as reader:
-            for records in reader.chunk_iterator(self.chunk):
-                xyz = np.column_stack([np.asarray(records.x, dtype=np.float64),
-                                       np.asarray(records.y, dtype=np.float64),
-                                       np.asarray(records.z, dtype=np.float64)])
-                yield xyz[np.isfinite(xyz).all(axis=1)], None
+        try:
+            with laspy.open(self.path) as reader:
+                for records in reader.chunk_iterator(self.chunk):
+                    xyz = np.column_stack([np.asarray(records.x, dtype=np.float64),
+                                           np.asarray(records.y, dtype=np.float64),
+                                           np.asarray(records.z, dtype=np.float64)])
+                    yield xyz[np.isfinite(xyz).all(axis=1)], None
+        except Exception as exc:  # laspy, lazrs or the OS on a corrupt or vanished file
+            raise unreadable(self.path, "LAS/LAZ", exc) from exc
 
 
 @dataclass(frozen=True)
