@@ -15,8 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from core.build.points import Frame
-from core.errors import InputError
-from core.io.problems import unreadable
+from core.errors import FileFormatError, InputError
 from core.tiled.memory import prepared
 
 #: Points per chunk of a streamed source.
@@ -81,7 +80,9 @@ class LasSource:
                                            np.asarray(records.z, dtype=np.float64)])
                     yield xyz[np.isfinite(xyz).all(axis=1)], None
         except Exception as exc:  # laspy, lazrs or the OS on a corrupt or vanished file
-            raise unreadable(self.path, "LAS/LAZ", exc) from exc
+            reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise FileFormatError(f"{self.path}: not a readable LAS/LAZ file ({reason})"
+                                  ) from exc
 
 
 @dataclass(frozen=True)
