@@ -16,6 +16,41 @@ TITLE = "Export at full resolution"
 RUN_SHARE = 0.9
 
 
+#: Share of the memory available now that the window's build may plan for.
+WINDOW_MEMORY_SHARE = 0.5
+STREAMED = (".las", ".laz")
+
+
+def window_points() -> int:
+    """Points the window can build in the memory available now (core.tiled.plan's
+    BYTES_PER_POINT of a 3D build)."""
+    import psutil
+
+    from core.tiled.plan import BYTES_PER_POINT
+
+    return int(WINDOW_MEMORY_SHARE * psutil.virtual_memory().available // BYTES_PER_POINT[3])
+
+
+def declared_points(path: Path) -> int | None:
+    """The point count a LAS/LAZ header declares (None: another format, or unreadable: the
+    reader will say why)."""
+    if path.suffix.lower() not in STREAMED:
+        return None
+    try:
+        import laspy
+
+        with laspy.open(path) as reader:
+            return int(reader.header.point_count)
+    except Exception:  # any header laspy refuses: the open itself reports it
+        return None
+
+
+def above_budget(path: Path) -> bool:
+    """True when the file declares more points than the window can build (window_points)."""
+    count = declared_points(path)
+    return count is not None and count > window_points()
+
+
 def subsample_banner(dataset: Dataset) -> str | None:
     """The banner of a dataset read as a subsample ('Subsample: 20,000 of 108,000 points…'),
     None when every point was read."""

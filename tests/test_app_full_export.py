@@ -136,3 +136,16 @@ def test_a_failed_export_says_why_in_one_line(window, qtbot, crop, tmp_path, mon
     qtbot.waitUntil(lambda: bool(warnings), timeout=5_000)
     assert len(warnings) == 1 and "crop.las" in warnings[0] and "\n" not in warnings[0]
     assert not target.exists()
+
+
+def test_a_scan_above_the_memory_budget_is_offered_as_a_subsample(qtbot, crop, monkeypatch):
+    """A LAS/LAZ file small on disk (compressed) but with more points than the window can
+    build gets the import dialog, subsample checked."""
+    import app.import_dialog as import_dialog
+
+    assert not import_dialog.needs_dialog(crop)
+    monkeypatch.setattr("app.full_export.window_points", lambda: 14_999)
+    assert import_dialog.needs_dialog(crop)
+    dialog = import_dialog.ImportDialog(None, crop)
+    qtbot.addWidget(dialog)
+    assert dialog.subsample.isChecked()
