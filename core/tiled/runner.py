@@ -15,6 +15,7 @@ import shutil
 import tempfile
 import time
 from collections.abc import Iterator
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -218,6 +219,10 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
     if options.scratch is not None:
         os.makedirs(options.scratch, exist_ok=True)
     scratch = Path(tempfile.mkdtemp(prefix="alphascoop-tiles-", dir=options.scratch))
+    # the workers start while the points are split (a local cluster takes seconds)
+    pool = ThreadPoolExecutor(1, thread_name_prefix="alphascoop-cluster")
+    starting = pool.submit(client_for, options, workers, memory, scratch)
+    pool.shutdown(wait=False)
     client = None
     try:
         clock = time.perf_counter()
@@ -228,8 +233,8 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         report.seconds["partition"] = time.perf_counter() - clock
         clock = time.perf_counter()
         _step(options, 0.3, "starting the workers")
-        client = client_for(options, workers, memory, scratch)
-        report.seconds["start"] = time.perf_counter() - clock
+        client = starting.result()
+        report.seconds["start"] = time.perf_counter() - clock  # what was left to wait
         clock = time.perf_counter()
         paths = run_tiles(client, tiles, plan, scratch, source.dim,
                           source.weights is not None, q, options, report)
@@ -242,9 +247,18 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         report.seconds["merge"] = time.perf_counter() - clock
         return merged
     finally:
+        client = client if client is not None else _started(starting)
         if client is not None:
             _close(client, options)
         shutil.rmtree(scratch, ignore_errors=True)
+
+
+def _started(starting: Future):
+    """The client a start in the background made (waiting for it), None if it failed."""
+    try:
+        return starting.result()
+    except Exception:  # the run's own error is the one to report
+        return None
 
 
 def _close(client, options: RunOptions) -> None:

@@ -33,18 +33,21 @@ def compute_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray,
     core_point[index[in_core & (index >= 0)]] = True
     shape = ac.shape(**at)
     simplices, classes, intervals, measure = [], [], [], 0.0
+    touched = np.zeros(len(ac.points), dtype=bool)  # local points the kept simplices use
     for k in range(dim + 1):
         s, c, iv, keep = _owned_level(ac, ids, core_point, at, shape.alpha, k, dim)
         simplices.append(s)
         classes.append(c)
         intervals.append(iv)
+        if len(keep):
+            touched[np.asarray(ac.simplices(k))[keep]] = True
         if k == dim == ac.dim and len(keep):
             measure = float(np.sum(np.asarray(ac.cell_measures())[keep]))
     regular = np.empty((0, dim), dtype=np.int64)
     if ac.dim == dim:
         local = np.asarray(shape.regular_facets, dtype=np.int64)
         regular = ids[local[_owner_in_core(ids, local, core_point)]]
-    used = np.unique(np.concatenate([s.ravel() for s in simplices]))
+    used = np.sort(ids[touched])  # a mask, not np.unique of every simplex's vertices
     coords_of = input_coordinates(rows, coords, used)
     hidden = int(np.count_nonzero(in_core & (index < 0)))
     return TileResult(tuple(simplices), tuple(classes), tuple(intervals), regular, used,
