@@ -74,6 +74,7 @@ def main() -> None:
                         help="points per tile core (default n / 4: four tiles)")
     args = parser.parse_args()
     tile_points = args.tile_points or args.n // 4
+    load_before = os.getloadavg()
     with tempfile.TemporaryDirectory() as folder:
         path = os.path.join(folder, "torus.npy")
         np.save(path, noisy_torus(args.n, args.seed))
@@ -105,7 +106,11 @@ def main() -> None:
              f"{two['tiles']} tiles of at most {tile_points:,} core points; stages of the "
              f"2-worker run (s): {', '.join(f'{k} {v:.1f}' for k, v in two['stages'].items())}.",
              "The machine's cores are shared with other work: the 1 -> 2 worker ratio is "
-             "bounded by the cores free during the run."]
+             "bounded by the cores free during the run.",
+             "Load average (1, 5, 15 min) at the start: "
+             f"{', '.join(f'{x:.2f}' for x in load_before)}; at the end: "
+             f"{', '.join(f'{x:.2f}' for x in os.getloadavg())} "
+             f"({os.cpu_count()} cores)."]
     print(save("bench_tiled", figures, notes=notes))
     if not same:
         raise SystemExit("tiled and in-memory answers differ")
