@@ -41,6 +41,8 @@ FEATURED = (
     ("bench_modes", "anisotropic_wall"),
     ("bench_weighted", "weighted_vs_gudhi_weighted_fast_wall"),
     ("molecule", "end_to_end_10008"),
+    ("bench_tiled", "tiled_vs_memory"),
+    ("bench_tiled", "one_to_two_workers"),
 )
 
 
