@@ -81,6 +81,9 @@ class Dataset:
     #: The pieces the triangles make at the opening alpha (found with the topology, off the
     #: GUI thread; None before).
     opening_pieces: Pieces | None = None
+    #: How the file was read (columns, subsampling): a full-resolution export reads it
+    #: again with the same columns (app.full_export).
+    options: ImportOptions | None = None
 
     @property
     def has_topology(self) -> bool:
@@ -193,6 +196,7 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
         frame=frame_for(path, pointset.report, pointset.points),
         molecule=molecule, atomic_numbers=numbers, atom_labels=labels,
         attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
+        options=options,
     )
     if complete:
         dataset = with_topology(dataset)

@@ -29,9 +29,10 @@ def default_shape_name(stem: str, alpha: float, ext: str = ".ply") -> str:
 class ExportShapeDialog(QFileDialog):
     """Qt's own (non-native) save dialog, with a manifold check box under the file name."""
 
-    def __init__(self, parent: QWidget | None, start: Path, manifold: bool) -> None:
+    def __init__(self, parent: QWidget | None, start: Path, manifold: bool,
+                 title: str = "Export shape") -> None:
         """Start at `start` (folder / default name); the box checked as `manifold`."""
-        super().__init__(parent, "Export shape", str(start), name_filters(SHAPE_FORMATS))
+        super().__init__(parent, title, str(start), name_filters(SHAPE_FORMATS))
         self.setAcceptMode(QFileDialog.AcceptMode.AcceptSave)
         self.setOption(QFileDialog.Option.DontUseNativeDialog, True)
         self.manifold = QCheckBox(MANIFOLD_TEXT)
@@ -52,11 +53,12 @@ class ExportShapeDialog(QFileDialog):
         return path
 
 
-def ask_export_shape(parent: QWidget, prefs: Preferences, stem: str,
-                     alpha: float) -> tuple[Path, bool] | None:
-    """(path, manifold) for File → Export shape, or None if cancelled; both remembered."""
+def ask_export_shape(parent: QWidget, prefs: Preferences, stem: str, alpha: float,
+                     title: str = "Export shape") -> tuple[Path, bool] | None:
+    """(path, manifold) for File → Export shape (or another export of the shape: `title`),
+    or None if cancelled; both remembered."""
     start = Path(prefs.last_dir() or ".") / default_shape_name(stem, alpha)
-    dialog = ExportShapeDialog(parent, start, prefs.export_manifold())
+    dialog = ExportShapeDialog(parent, start, prefs.export_manifold(), title)
     try:
         if not run_dialog(dialog) or (path := dialog.chosen_path()) is None:
             return None

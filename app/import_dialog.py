@@ -25,6 +25,7 @@ from PySide6.QtWidgets import (
 )
 
 from app.dataset import ImportOptions
+from app.full_export import above_budget
 from app.modal import run_dialog
 from app.settings import Preferences
 from core.errors import FileFormatError
@@ -41,13 +42,18 @@ GEOGRAPHIC = "geographic: longitude/latitude degrees, projected to metres (local
 CARTESIAN = "cartesian: coordinates used as they are"
 
 
-def needs_dialog(path: Path) -> bool:
-    """Text files (columns to choose) and big files (subsampling to offer) get the dialog."""
+def is_big(path: Path) -> bool:
+    """A file of BIG_FILE_BYTES or more, or one whose header declares more points than the
+    window can build in the memory available (app.full_export.above_budget)."""
     try:
-        big = path.stat().st_size >= BIG_FILE_BYTES
+        return path.stat().st_size >= BIG_FILE_BYTES or above_budget(path)
     except OSError:
         return False  # the reader will say what is wrong with it
-    return path.suffix.lower() in TEXT_FORMATS or big
+
+
+def needs_dialog(path: Path) -> bool:
+    """Text files (columns to choose) and big files (subsampling to offer) get the dialog."""
+    return path.suffix.lower() in TEXT_FORMATS or is_big(path)
 
 
 def chosen_names(columns: str, names: list[str] | None) -> list[str] | None:
@@ -84,7 +90,7 @@ class ImportDialog(QDialog):
         self.count.setRange(1, 2_000_000_000)
         self.count.setGroupSeparatorShown(True)
         self.count.setValue(subsample or DEFAULT_SUBSAMPLE)
-        self.subsample.setChecked(bool(subsample) or _size(path) >= BIG_FILE_BYTES)
+        self.subsample.setChecked(bool(subsample) or is_big(path))
         self.method = QComboBox()
         self.method.addItems(SUBSAMPLE_METHODS)
         self.method.setCurrentText(method if method in SUBSAMPLE_METHODS else "voxel")

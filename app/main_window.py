@@ -19,8 +19,10 @@ from PySide6.QtWidgets import QDockWidget, QLabel, QMainWindow, QMessageBox, QWi
 
 from app import child_process, memory
 from app.alpha_panel import AlphaPanel
+from app.banner import banner_above, subsample_banner_label
 from app.colour_view import Colourer
 from app.dataset import POINTS_READ, ImportOptions
+from app.full_export import subsample_banner
 from app.help import ExplainPanel
 from app.import_dialog import ask_import_options
 from app.info_panel import InfoPanel
@@ -45,8 +47,6 @@ from core.modes.alpha_modes import Mode
 
 LAYOUT_DEPTH = 5  # rounds of layout requests a text change sends up (label, panel, dock, window)
 CLOSE_WAIT_MS = 2000  # how long closing waits for a running build before leaving it behind
-
-
 class MainWindow(QMainWindow):
     """Main window: 3D view in the centre, alpha/layers/info docks, status bar with progress."""
 
@@ -69,7 +69,8 @@ class MainWindow(QMainWindow):
         self.topology = Runner(self)  # the topology after a load (a newer one supersedes it)
         self.jobs = Runner(self, exclusive=True)  # exports: one at a time
         self.scene, view = interactive_scene(self)
-        self.setCentralWidget(view)
+        self.banner = subsample_banner_label()
+        self.setCentralWidget(banner_above(self.banner, view))
         self.alpha_panel = AlphaPanel(self.model)
         self.layers_panel = LayersPanel()
         self.info_panel = InfoPanel(self.model)
@@ -294,11 +295,18 @@ class MainWindow(QMainWindow):
         self.layers_panel.set_layers(styles)  # first: the docks it widens redraw no shape
         self.scene.set_dataset(scene_data(ds, styles, rgb))
         self.colourer.set_dataset(ds.attributes)
+        self._show_banner(subsample_banner(ds))
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
 
+    def _show_banner(self, text: str | None) -> None:
+        """Show the subsample banner with `text`, or hide it (None)."""
+        self.banner.setText(text or "")
+        self.banner.setVisible(text is not None)
+
     def _show_released(self) -> None:
         """The dataset was released: an empty view until the next one arrives."""
+        self._show_banner(None)
         self.scene.clear()
         self.scene.render()
         self.setWindowTitle("Alpha Scoop")

@@ -124,6 +124,27 @@ def on_export_shape(tools: MenuTools) -> None:
             ds.ac, alpha, path, progress, source=ds.path, georef=georef, manifold=manifold))
 
 
+def on_export_full(tools: MenuTools) -> None:
+    """File → Export at full resolution: the shape at the current alpha computed tile by
+    tile from every point of the file (app.full_export), in the background."""
+    from app import full_export
+
+    ds = tools.model.dataset
+    title = full_export.TITLE
+    if ds is None:
+        QMessageBox.information(tools.parent, title, "Open a point set first.")
+        return
+    if (why := full_export.refusal(ds)) is not None:
+        QMessageBox.information(tools.parent, title, f"{title}: {why}.")
+        return
+    alpha = tools.model.alpha
+    chosen = ask_export_shape(tools.parent, tools.prefs, f"{ds.path.stem}_full", alpha, title)
+    if chosen and not is_the_source(tools, title, chosen[0]):
+        (path, manifold), source, options = chosen, ds.path, ds.options  # not the dataset
+        run_in_background(tools, title, lambda progress: full_export.write_full_resolution(
+            source, options, alpha, path, manifold, progress))
+
+
 def on_export_table(tools: MenuTools) -> None:
     """File → Export table: the interval table (.npz or .csv) for analysis elsewhere."""
     ds = tools.model.dataset
@@ -182,7 +203,8 @@ def add_clip_action(menu: QMenu, scene: Scene) -> QAction:
 
 
 def add_file_menu(window: QMainWindow, tools: MenuTools) -> dict[str, QAction]:
-    """File: Open, Open Recent, Export shape/table, Save screenshot, Quit."""
+    """File: Open, Open Recent, Export shape/at full resolution/table, Save screenshot,
+    Quit."""
     menu = window.menuBar().addMenu("&File")
     actions = {"open": add_action(menu, "&Open…", partial(ask_and_open, tools), QKeySequence.Open)}
     recent = menu.addMenu("Open &Recent")
@@ -190,6 +212,8 @@ def add_file_menu(window: QMainWindow, tools: MenuTools) -> dict[str, QAction]:
     fill_recent(tools, recent)
     menu.addSeparator()
     actions["export_shape"] = add_action(menu, "&Export shape…", partial(on_export_shape, tools))
+    actions["export_full"] = add_action(menu, "Export at &full resolution…",
+                                        partial(on_export_full, tools))
     actions["export_table"] = add_action(menu, "Export &table…", partial(on_export_table, tools))
     actions["export_pockets"] = add_action(menu, "Export &pockets…",
                                            partial(on_export_pockets, tools))

@@ -68,21 +68,25 @@ def check_tiled(args, usage_error) -> None:
         raise usage_error("--table does not apply with --tiled (a tiled run has no table)")
 
 
-def _source(args):
-    """(chunked point source, georef, load report or None) for the file and options."""
+def point_source(path: str | Path, columns: str | None = None, subsample: int | None = None,
+                 weights: str | None = None, radius: str | None = None,
+                 radius_add: float | None = None):
+    """(chunked point source, georef, load report or None) of a file read with these
+    options: a plain LAS/LAZ is streamed (core.tiled.sources.LasSource), anything else is
+    read whole by core.io."""
     from core.io import read_points
     from core.tiled.sources import ArraySource, LasSource
 
-    path = Path(args.file)
-    plain = not (args.columns or args.subsample or args.weights or args.radius)
+    path = Path(path)
+    plain = not (columns or subsample or weights or radius)
     if path.suffix.lower() in STREAMED and plain:
         if not path.is_file():
             from core.errors import FileFormatError
 
             raise FileFormatError(f"{path}: no such file")
         return LasSource(path), None, None
-    ps = read_points(path, columns=args.columns, subsample=args.subsample,
-                     weights=args.weights, radius=args.radius, radius_add=args.radius_add)
+    ps = read_points(path, columns=columns, subsample=subsample, weights=weights,
+                     radius=radius, radius_add=radius_add)
     return ArraySource.from_points(ps.points, ps.weights), ps.report.georef, ps.report
 
 
@@ -91,7 +95,8 @@ def run_tiled(args, progress=None):
     from core.tiled.memory import query
     from core.tiled.runner import RunOptions, RunReport, tiled_run
 
-    source, georef, load_report = _source(args)
+    source, georef, load_report = point_source(args.file, args.columns, args.subsample,
+                                               args.weights, args.radius, args.radius_add)
     options = RunOptions(memory_per_worker=args.memory_per_worker, scheduler=args.scheduler,
                          scratch=args.scratch, tile_points=args.tile_points,
                          progress=progress)
@@ -154,13 +159,23 @@ def tiled_text(info: dict) -> str:
     return "\n".join(lines)
 
 
-def write_tiled(args, merged, georef) -> str:
-    """Write the merged shape with core.export (atomic); its one-line report."""
+def write_merged(merged, output: str | Path, *, alpha: float | None = None,
+                 alpha2: float | None = None, manifold: bool = True, sidecar: bool = False,
+                 source: str | Path | None = None, georef=None, progress=None) -> str:
+    """Write a merged tiled shape with core.export (atomic; never over `source`); its
+    one-line report."""
     from core.export import write_shape
     from core.tiled.view import MergedComplex
 
-    ac = MergedComplex(merged)
-    alpha = None if args.alpha2 is not None else args.alpha
-    report = write_shape(ac, alpha, args.output, alpha2=args.alpha2, manifold=args.manifold,
-                         sidecar=args.sidecar, source=args.file, georef=georef)
+    report = write_shape(MergedComplex(merged), alpha, output, alpha2=alpha2,
+                         manifold=manifold, sidecar=sidecar, source=source, georef=georef,
+                         progress=progress)
     return report.line() + f" [tiled: {merged.n_tiles:,} tiles]"
+
+
+def write_tiled(args, merged, georef) -> str:
+    """Write the merged shape the export options ask for; its one-line report."""
+    alpha = None if args.alpha2 is not None else args.alpha
+    return write_merged(merged, args.output, alpha=alpha, alpha2=args.alpha2,
+                        manifold=args.manifold, sidecar=args.sidecar, source=args.file,
+                        georef=georef)

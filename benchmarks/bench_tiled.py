@@ -57,6 +57,18 @@ def tiled(path: str, alpha: float, workers: int, tile_points: int) -> dict:
                         worker_peak_gib=report.peak_worker_bytes / GIB)
 
 
+def in_process(path: str, alpha: float, tile_points: int) -> dict:
+    """core.tiled.tiled_shape: the same tiles one after another in this process (no Dask,
+    no tile files): what the tiles' own work costs against the in-memory build."""
+    from core.tiled import tiled_shape
+
+    points = np.load(path, allow_pickle=False)
+    probe = Probe()
+    merged = tiled_shape(points, alpha, tile_points=tile_points)
+    counts = [[int(np.count_nonzero(c == v)) for v in (1, 2, 3)] for c in merged.classes]
+    return probe.result(counts=counts, tiles=merged.n_tiles)
+
+
 def estimate(run: dict, n: int, workers: int) -> float:
     """Seconds for BIG points at the same density of tile work: the measured seconds per
     tile point (margins included) and partition seconds per input point, scaled."""
@@ -74,19 +86,22 @@ def main() -> None:
                         help="points per tile core (default n / 4: four tiles)")
     args = parser.parse_args()
     tile_points = args.tile_points or args.n // 4
+    load_before = os.getloadavg()
     with tempfile.TemporaryDirectory() as folder:
         path = os.path.join(folder, "torus.npy")
         np.save(path, noisy_torus(args.n, args.seed))
         memory = run_isolated(in_memory, path, args.alpha)
         two = run_isolated(tiled, path, args.alpha, 2, tile_points)
         one = run_isolated(tiled, path, args.alpha, 1, tile_points)
-    for name, run in (("in memory", memory), ("2 workers", two), ("1 worker", one)):
+        local = run_isolated(in_process, path, args.alpha, tile_points)
+    for name, run in (("in memory", memory), ("2 workers", two), ("1 worker", one),
+                      ("in process", local)):
         if "error" in run:
             raise SystemExit(f"{name}: {run['error']}\n{run.get('trace', '')}")
         print(f"{name:>10}: {run['seconds']:.1f} s, peak {run['peak_mib']:.0f} MiB"
               + (f", {run['tiles']} tiles, worker peak {run['worker_peak_gib']:.2f} GiB, "
-                 f"stages {run['stages']}" if "tiles" in run else ""))
-    same = memory["counts"] == two["counts"] == one["counts"]
+                 f"stages {run['stages']}" if "stages" in run else ""))
+    same = memory["counts"] == two["counts"] == one["counts"] == local["counts"]
     label = f"{args.n / 1e6:g}M-point noisy torus, alpha {args.alpha:g}"
     figures = [
         Figure("tiled_vs_memory", f"{label}: tiled on a local cluster of 2 workers vs "
@@ -95,6 +110,9 @@ def main() -> None:
         Figure("one_to_two_workers", f"{label}: tiled with 1 worker vs 2 workers (the "
                "speed-up), wall time", one["seconds"], "s", "2 workers", two["seconds"],
                ">= 1.7"),
+        Figure("tiles_in_process_vs_memory", f"{label}: the same tiles one after another "
+               "in one process (no Dask, no tile files) vs the in-memory build, wall time",
+               local["seconds"], "s", "in memory", memory["seconds"]),
         Figure("worker_peak", f"{label}: largest peak memory of a worker",
                max(one["worker_peak_gib"], two["worker_peak_gib"]), "GiB", goal="<= 2"),
         Figure("estimate_100m", "100M points on 2 workers, estimated from this run's "
@@ -105,7 +123,11 @@ def main() -> None:
              f"{two['tiles']} tiles of at most {tile_points:,} core points; stages of the "
              f"2-worker run (s): {', '.join(f'{k} {v:.1f}' for k, v in two['stages'].items())}.",
              "The machine's cores are shared with other work: the 1 -> 2 worker ratio is "
-             "bounded by the cores free during the run."]
+             "bounded by the cores free during the run.",
+             "Load average (1, 5, 15 min) at the start: "
+             f"{', '.join(f'{x:.2f}' for x in load_before)}; at the end: "
+             f"{', '.join(f'{x:.2f}' for x in os.getloadavg())} "
+             f"({os.cpu_count()} cores)."]
     print(save("bench_tiled", figures, notes=notes))
     if not same:
         raise SystemExit("tiled and in-memory answers differ")

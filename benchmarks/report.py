@@ -43,6 +43,8 @@ FEATURED = (
     ("molecule", "end_to_end_10008"),
     ("bench_cache", "entry_size_1000000"),
     ("bench_cache", "reopen_1000000_wall"),
+    ("bench_tiled", "tiled_vs_memory"),
+    ("bench_tiled", "one_to_two_workers"),
 )
 
 

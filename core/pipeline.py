@@ -16,11 +16,12 @@ import numpy as np
 
 from core.backends import BACKENDS, Choice, check_backend, delaunay, regular
 from core.build.certify import Certified, certified_triangulation, point_ties
-from core.build.delaunay import Triangulation
+from core.build.delaunay import Triangulation, sort_rows
 from core.build.levels import Table
 from core.build.points import (
     Frame,
     as_points,
+    canonical_order,
     check_spread,
     merge_duplicates,
     spatial_order,
@@ -248,6 +249,28 @@ def _point_normals(normals: np.ndarray, input_index: np.ndarray, m: int,
     return unit_rows(out if frame is None else out @ frame.basis.T)
 
 
+def _renumbered(prep: _Prepared, tri: Triangulation) -> tuple[_Prepared, Triangulation, bool]:
+    """Stage 3c: the points renumbered in canonical_order (a function of each point alone),
+    cells and neighbours alongside, and whether anything moved. A simplex's vertices then
+    come in the same order in any subset of the points (a tile of core.tiled) as in the
+    whole set, so the table's radii, computed from the vertices in that order, round alike.
+    The certified cell spheres (computed in the old order) are not reused when it moved."""
+    order = canonical_order(prep.coords)
+    m = len(order)
+    if np.array_equal(order, np.arange(m)):
+        return prep, tri, False
+    rank = np.empty(m + 1, dtype=np.int64)
+    rank[order] = np.arange(m)
+    rank[m] = -1
+    cells = np.ascontiguousarray(rank[tri.cells], dtype=np.int32)
+    neighbors = np.array(tri.neighbors, dtype=np.int32, copy=True)
+    sort_rows(cells, neighbors)
+    identity = np.arange(m, dtype=np.int64)
+    moved = _Prepared(prep.coords[order], None if prep.weights is None else prep.weights[order],
+                      rank[prep.input_index], prep.frame)
+    return moved, Triangulation(cells, neighbors, identity, identity.copy()), True
+
+
 def _table(prep: _Prepared, tri: Triangulation, given: _Input, step: Stepper,
            exact: bool = True, certified: Certified | None = None) -> Table:
     """Stages 4-6: the interval table on the points scaled exactly by a power of two (its
@@ -311,8 +334,8 @@ def build_complex(points: object, progress: Progress | None = None, *,
         step(0.55, "certifying the triangulation")
         certified = _certified(prep, tri)
         tri = certified.triangulation
-    prep = _compacted(prep, tri)
-    table = _table(prep, tri, given, step, exact, certified)
+    prep, tri, moved = _renumbered(_compacted(prep, tri), tri)
+    table = _table(prep, tri, given, step, exact, None if moved else certified)
     info = BuildInfo(choice.backend, choice.note) if certified is None else BuildInfo(
         choice.backend, choice.note, certified.exact_predicates + table.exact_predicates,
         certified.flips, certified.uncertified)

@@ -185,3 +185,60 @@ def spatial_order(points: np.ndarray) -> np.ndarray:
 
     in_chunks(part, len(points), CODE_CHUNK)  # the codes' temporaries stay in cache
     return argsort_stable(code)
+
+
+def orderable_bits(points: np.ndarray) -> np.ndarray:
+    """(m, d) uint64 keys ordered as the coordinates are (-0.0 taken as 0.0): the float bits
+    with the sign bit flipped for positive values and every bit flipped for negative ones."""
+    bits = (np.ascontiguousarray(points, dtype=np.float64) + 0.0).view(np.uint64)
+    negative = (bits >> np.uint64(63)).astype(bool)
+    return np.where(negative, ~bits, bits | np.uint64(1 << 63))
+
+
+def canonical_order(points: np.ndarray) -> np.ndarray:
+    """(m,) permutation putting the points in Morton (Z-curve) order of their coordinates'
+    bits (orderable_bits): the numbering of the points the interval table is built on.
+
+    The order of two points depends on those two points alone (every bit is interleaved,
+    from the highest one any two points of the set differ in), so any subset of a set is
+    numbered in the same relative order as the set: a simplex's vertices come in the same
+    order in a tile (core.tiled) as in the whole set, so its radii round alike. Locality is
+    that of spatial_order, which orders Qhull's input (its grid follows the set's box).
+    """
+    m, dim = points.shape
+    if m < 2:
+        return np.arange(m)
+    keys = orderable_bits(points)
+    differing = np.bitwise_or.reduce(keys ^ keys[0], axis=0)
+    top = max(int(x).bit_length() for x in differing.tolist())
+    width = 32 if dim == 2 else 21
+    windows = [(max(high - width, 0), high) for high in range(top, 0, -width)]
+    order = argsort_stable(_morton_word(keys, *windows[0]))
+    if len(windows) == 1:
+        return order
+    first = _morton_word(keys[order], *windows[0])
+    tied = np.r_[False, first[1:] == first[:-1]]
+    tied[:-1] |= tied[1:]  # both ends of every run of equal words
+    if not tied.any():
+        return order
+    rows = np.flatnonzero(tied)  # positions in `order`; runs stay in place, sorted inside
+    later = [_morton_word(keys[order[rows]], lo, hi) for lo, hi in windows[1:]]
+    order[rows] = order[rows[np.lexsort([*later[::-1], first[rows]])]]
+    return order
+
+
+def _morton_word(keys: np.ndarray, low: int, high: int) -> np.ndarray:
+    """(m,) uint64 Morton code of the bits low..high-1 of (m, d) `keys`, interleaved with
+    the last axis highest (spatial_order)."""
+    m, dim = keys.shape
+    shift, mask = np.uint64(low), np.uint64((1 << (high - low)) - 1)
+    code = np.empty(m, dtype=np.uint64)
+
+    def part(start: int, stop: int) -> None:  # element by element: chunks change nothing
+        mine = code[start:stop]
+        mine[:] = 0
+        for axis in range(dim):
+            mine |= _spread_bits((keys[start:stop, axis] >> shift) & mask, dim) << np.uint64(axis)
+
+    in_chunks(part, m, CODE_CHUNK)  # the codes' temporaries stay in cache
+    return code

@@ -57,6 +57,11 @@ classic points have w = 0.
    triangulation is unique. (Weighted builds use Qhull's regular triangulation without
    that certification: exact ties there are resolved by Qhull.) Planar 3D input is
    projected on its plane once, for the whole set, exactly as the in-memory build does.
+   Rounding is alike too: radii are computed from a simplex's vertices in their order in
+   the build, and that order (core.build.points.canonical_order, a Morton order of each
+   point's own coordinate bits) is the same in a tile as in the whole set, so congruent
+   cells of a lattice, whose radii differ only by rounding, fall on the same side of alpha
+   in both (power-of-two scalings, the only other difference, are exact).
 7. Flat tiles. A tile whose points are all on one plane (3D) has no member cell near its
    core (any member cell would have all its vertices in T); its members are those of the
    plane's 2D complex (the same empty balls), none is INTERIOR, faces of members are

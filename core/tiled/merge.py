@@ -93,25 +93,37 @@ def merge_tiles(results: Iterable[TileResult], *, dim: int, ambient_dim: int,
                            return_index=True)
     coords = np.concatenate(parts["coords"] or [np.empty((0, dim))])[first]
     simplices, classes, intervals = [], [], []
+    row_of = _row_lookup(ids)
     for k in range(dim + 1):
-        s, c, iv = _level(per_k[k], k, ids)
+        s, c, iv = _level(per_k[k], k, row_of)
         simplices.append(readonly(s))
         classes.append(readonly(c))
         intervals.append(readonly(iv))
     regular = np.concatenate(parts["regular"] or [np.empty((0, dim), np.int64)])
     return TiledShape(dim, ambient_dim, frame, float(alpha), float(alpha2), readonly(coords),
                       readonly(ids), tuple(simplices), tuple(classes), tuple(intervals),
-                      readonly(np.searchsorted(ids, regular)), measure, boundary,
+                      readonly(row_of[regular].astype(np.int64)), measure, boundary,
                       components(len(ids), simplices[1] if dim >= 1 else None),
                       n_points, hidden, weighted, n_tiles)
 
 
-def _level(parts: list[tuple], k: int, ids: np.ndarray):
-    """The k-simplices of all tiles as rows of `ids` (tile after tile: no sort, the merge
-    costs about its copies), with their classes and intervals."""
+def _row_lookup(ids: np.ndarray) -> np.ndarray:
+    """(ids[-1] + 1,) the row of each global id in the ascending `ids` (a gather per vertex
+    instead of a binary search: 5-10x faster on the tens of millions of vertices of a big
+    merge), int32 where the rows fit."""
+    dtype = np.int32 if len(ids) < 2**31 else np.int64
+    lookup = np.zeros(int(ids[-1]) + 1 if len(ids) else 0, dtype=dtype)
+    lookup[ids] = np.arange(len(ids), dtype=dtype)
+    return lookup
+
+
+def _level(parts: list[tuple], k: int, row_of: np.ndarray):
+    """The k-simplices of all tiles as rows of the merged points (`row_of` a global id's
+    row; tile after tile: no sort, the merge costs about its copies), with their classes
+    and intervals."""
     if not parts:
         return np.empty((0, k + 1), np.int64), np.empty(0, np.int8), np.empty((0, 3))
-    s = np.searchsorted(ids, np.concatenate([p[0] for p in parts]).reshape(-1, k + 1))
+    s = np.concatenate([row_of[p[0]] for p in parts]).reshape(-1, k + 1).astype(np.int64)
     c = np.concatenate([p[1] for p in parts])
     iv = np.concatenate([p[2] for p in parts]).reshape(-1, 3)
     return s, c, iv

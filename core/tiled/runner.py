@@ -15,6 +15,7 @@ import shutil
 import tempfile
 import time
 from collections.abc import Iterator
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -41,6 +42,8 @@ from core.tiled.tile import compute_tile
 MEMORY_SHARE, MEMORY_CAP = 0.6, 4 << 30
 #: Part of a worker's memory a tile's build may plan for (the rest: Dask, the result).
 BUILD_SHARE = 0.7
+#: Seconds between progress calls while tiles run (how soon a cancel is seen).
+HEARTBEAT = 0.25
 
 
 class TileError(AlphaScoopError):
@@ -135,16 +138,20 @@ def partition_source(source, plan: TilePlan, scratch: Path, options: RunOptions,
     return sorted(tiles)
 
 
-def client_for(options: RunOptions, workers: int, memory: int):
+def client_for(options: RunOptions, workers: int, memory: int, scratch: Path):
     """A distributed Client: of the cluster at `options.scheduler`, or of a new local
     cluster of `workers` single-threaded processes with `memory` bytes each (on
-    127.0.0.1, no dashboard)."""
+    127.0.0.1, no dashboard, their own files under `scratch`)."""
     from distributed import Client, LocalCluster
 
     if options.scheduler:
         return Client(options.scheduler, timeout="30s")
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                           memory_limit=memory, host="127.0.0.1", dashboard_address=None)
+    import dask
+
+    with dask.config.set({"temporary-directory": str(scratch / "workers")}):
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                               memory_limit=memory, host="127.0.0.1",
+                               dashboard_address=None, local_directory=str(scratch / "workers"))
     return Client(cluster)
 
 
@@ -152,8 +159,9 @@ def run_tiles(client, tiles: list[int], plan: TilePlan, scratch: Path, dim: int,
               weighted: bool, q: Query, options: RunOptions, report: RunReport
               ) -> list[Path]:
     """Submit one task per tile, wait for all with progress; the result files in tile
-    order. A tile failing after its retries raises TileError naming it; an interrupt
-    cancels every task before it propagates."""
+    order. While tiles run, `progress` is called at least every HEARTBEAT seconds (so a
+    Cancelled raised from it stops the run promptly). A tile failing after its retries
+    raises TileError naming it; an interrupt cancels every task before it propagates."""
     from distributed import as_completed
 
     (scratch / "results").mkdir(exist_ok=True)
@@ -162,12 +170,23 @@ def run_tiles(client, tiles: list[int], plan: TilePlan, scratch: Path, dim: int,
                              weighted, q.at, key=f"alphascoop-tile-{t}-{scratch.name}",
                              retries=options.retries, pure=False): t for t in tiles}
     try:
-        for done, future in enumerate(as_completed(futures), 1):
-            tile = futures[future]
-            if future.status != "finished":
-                raise _tile_error(plan, tile, future)
-            report.tiles.append({"tile": tile, **future.result()})
-            _step(options, 0.3 + 0.6 * done / len(tiles), f"tiles {done:,} of {len(tiles):,}")
+        done, stage = 0, f"tiles 0 of {len(tiles):,}"
+        _step(options, 0.3, stage)
+        pending = as_completed(futures)
+        while not pending.is_empty():
+            batch = pending.next_batch(block=False)
+            if not batch:
+                time.sleep(HEARTBEAT)
+                _step(options, 0.3 + 0.6 * done / len(tiles), stage)
+                continue
+            for future in batch:
+                tile = futures[future]
+                if future.status != "finished":
+                    raise _tile_error(plan, tile, future)
+                report.tiles.append({"tile": tile, **future.result()})
+                done += 1
+            stage = f"tiles {done:,} of {len(tiles):,}"
+            _step(options, 0.3 + 0.6 * done / len(tiles), stage)
     except BaseException:
         client.cancel(list(futures), force=True)
         raise
@@ -200,6 +219,10 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
     if options.scratch is not None:
         os.makedirs(options.scratch, exist_ok=True)
     scratch = Path(tempfile.mkdtemp(prefix="alphascoop-tiles-", dir=options.scratch))
+    # the workers start while the points are split (a local cluster takes seconds)
+    pool = ThreadPoolExecutor(1, thread_name_prefix="alphascoop-cluster")
+    starting = pool.submit(client_for, options, workers, memory, scratch)
+    pool.shutdown(wait=False)
     client = None
     try:
         clock = time.perf_counter()
@@ -210,8 +233,8 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         report.seconds["partition"] = time.perf_counter() - clock
         clock = time.perf_counter()
         _step(options, 0.3, "starting the workers")
-        client = client_for(options, workers, memory)
-        report.seconds["start"] = time.perf_counter() - clock
+        client = starting.result()
+        report.seconds["start"] = time.perf_counter() - clock  # what was left to wait
         clock = time.perf_counter()
         paths = run_tiles(client, tiles, plan, scratch, source.dim,
                           source.weights is not None, q, options, report)
@@ -224,9 +247,18 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         report.seconds["merge"] = time.perf_counter() - clock
         return merged
     finally:
+        client = client if client is not None else _started(starting)
         if client is not None:
             _close(client, options)
         shutil.rmtree(scratch, ignore_errors=True)
+
+
+def _started(starting: Future):
+    """The client a start in the background made (waiting for it), None if it failed."""
+    try:
+        return starting.result()
+    except Exception:  # the run's own error is the one to report
+        return None
 
 
 def _close(client, options: RunOptions) -> None:

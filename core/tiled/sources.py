@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from core.build.points import Frame
-from core.errors import InputError
+from core.errors import FileFormatError, InputError
 from core.tiled.memory import prepared
 
 #: Points per chunk of a streamed source.
@@ -72,12 +72,17 @@ class LasSource:
         (core.io does the same)."""
         import laspy
 
-        with laspy.open(self.path) as reader:
-            for records in reader.chunk_iterator(self.chunk):
-                xyz = np.column_stack([np.asarray(records.x, dtype=np.float64),
-                                       np.asarray(records.y, dtype=np.float64),
-                                       np.asarray(records.z, dtype=np.float64)])
-                yield xyz[np.isfinite(xyz).all(axis=1)], None
+        try:
+            with laspy.open(self.path) as reader:
+                for records in reader.chunk_iterator(self.chunk):
+                    xyz = np.column_stack([np.asarray(records.x, dtype=np.float64),
+                                           np.asarray(records.y, dtype=np.float64),
+                                           np.asarray(records.z, dtype=np.float64)])
+                    yield xyz[np.isfinite(xyz).all(axis=1)], None
+        except Exception as exc:  # laspy, lazrs or the OS on a corrupt or vanished file
+            reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise FileFormatError(f"{self.path}: not a readable LAS/LAZ file ({reason})"
+                                  ) from exc
 
 
 @dataclass(frozen=True)

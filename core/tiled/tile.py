@@ -33,23 +33,27 @@ def compute_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray,
     core_point[index[in_core & (index >= 0)]] = True
     shape = ac.shape(**at)
     simplices, classes, intervals, measure = [], [], [], 0.0
+    touched = np.zeros(len(ac.points), dtype=bool)  # local points the kept simplices use
     for k in range(dim + 1):
         s, c, iv, keep = _owned_level(ac, ids, core_point, at, shape.alpha, k, dim)
         simplices.append(s)
         classes.append(c)
         intervals.append(iv)
+        if len(keep):
+            touched[np.asarray(ac.simplices(k))[keep]] = True
         if k == dim == ac.dim and len(keep):
             measure = float(np.sum(np.asarray(ac.cell_measures())[keep]))
-    regular = np.empty((0, dim), dtype=np.int64)
-    if ac.dim == dim:
+    regular, boundary = np.empty((0, dim), dtype=np.int64), 0.0
+    if ac.dim == dim:  # the complex's points are the input's coordinates (not flattened)
         local = np.asarray(shape.regular_facets, dtype=np.int64)
-        regular = ids[local[_owner_in_core(ids, local, core_point)]]
-    used = np.unique(np.concatenate([s.ravel() for s in simplices]))
+        owned = local[_owner_in_core(ids, local, core_point)]
+        regular = ids[owned]
+        boundary = facet_measure(np.asarray(ac.points), owned)
+    used = np.sort(ids[touched])  # a mask, not np.unique of every simplex's vertices
     coords_of = input_coordinates(rows, coords, used)
     hidden = int(np.count_nonzero(in_core & (index < 0)))
     return TileResult(tuple(simplices), tuple(classes), tuple(intervals), regular, used,
-                      coords_of, measure, facet_measure(coords_of, used, regular),
-                      int(np.count_nonzero(in_core)), hidden)
+                      coords_of, measure, boundary, int(np.count_nonzero(in_core)), hidden)
 
 
 def _owner_in_core(ids: np.ndarray, local: np.ndarray, core_point: np.ndarray) -> np.ndarray:
@@ -91,12 +95,12 @@ def input_coordinates(rows: np.ndarray, coords: np.ndarray, used: np.ndarray) ->
     return np.ascontiguousarray(coords[order[np.searchsorted(rows, used, sorter=order)]])
 
 
-def facet_measure(coords: np.ndarray, ids: np.ndarray, facets: np.ndarray) -> float:
-    """Total length (2D edges) or area (3D triangles) of `facets` (f, dim) global ids whose
-    coordinates are `coords` rows of the sorted `ids`."""
+def facet_measure(points: np.ndarray, facets: np.ndarray) -> float:
+    """Total length (2D edges) or area (3D triangles) of `facets` (f, dim) rows of
+    `points`."""
     if len(facets) == 0:
         return 0.0
-    p = coords[np.searchsorted(ids, facets)]
+    p = points[facets]
     if facets.shape[1] == 2:
         return float(np.sum(np.linalg.norm(p[:, 1] - p[:, 0], axis=1)))
     cross = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
