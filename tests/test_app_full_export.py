@@ -26,8 +26,7 @@ ALPHA = 3.0  # feet: a few point spacings of the crop
 @pytest.fixture
 def crop(tmp_path) -> Path:
     """A 15,000-point crop of a real airborne LiDAR tile (autzen_trim.las), as a LAS file
-    without its CRS records (a second read of them in the window's worker thread crashes
-    in PROJ: a separate, known problem)."""
+    with its CRS records (read again by each open and by the export)."""
     import laspy
 
     src = SHARED / "autzen_trim.las"
@@ -37,7 +36,6 @@ def crop(tmp_path) -> Path:
     x = np.asarray(las.x)
     keep = np.argsort(x, kind="stable")[:15_000]
     header = las.header
-    header.vlrs = [v for v in header.vlrs if "Projection" not in v.user_id]
     out = laspy.LasData(header)
     out.points = las.points[np.sort(keep)]
     path = tmp_path / "crop.las"
