@@ -15,7 +15,7 @@ from core.molecule.measures import union_measures
 from core.molecule.pockets import find_pockets, open_area
 from core.molecule.regions import dual_facts, region_measures
 from core.molecule.sectors import tet_pieces, tet_volumes
-from tests.molecule_reference import shell
+from tests.molecule_reference import free_in_tets, shell, uniform_in_tets
 
 TET = 10.0 * np.array([[0.0, 0, 0], [1, 0, 0], [0.5, np.sqrt(3) / 2, 0],
                        [0.5, np.sqrt(3) / 6, np.sqrt(2 / 3)]])
@@ -25,14 +25,6 @@ def _in_tet(x: np.ndarray, corners: np.ndarray) -> np.ndarray:
     """(p,) bool: points x (p, 3) inside the tetrahedron corners (4, 3)."""
     lam = np.linalg.solve((corners[1:] - corners[0]).T, (x - corners[0]).T).T
     return (lam >= 0).all(1) & (lam.sum(1) <= 1)
-
-
-def _uniform_in_tets(corners: np.ndarray, n: int, rng) -> tuple[np.ndarray, np.ndarray]:
-    """(n, 3) points uniform in the union of tetrahedra (t, 4, 3), and the cell of each."""
-    vol = tet_volumes(corners)
-    cell = rng.choice(len(corners), size=n, p=vol / vol.sum())
-    lam = rng.dirichlet(np.ones(4), size=n)
-    return np.einsum("pi,pij->pj", lam, corners[cell]), cell
 
 
 def _sphere_points(centres, radii, per_area: float, rng):
@@ -78,7 +70,7 @@ def test_tetrahedron_pieces_against_sampling(radii, edges, faces):
     edge_in[0, list(edges)], face_in[0, list(faces)] = True, True
     covered, area = tet_pieces(TET[None], r[None], edge_in, face_in)
     n = 2_000_000
-    x, _ = _uniform_in_tets(TET[None], n, rng)
+    x, _ = uniform_in_tets(TET[None], n, rng)
     inside = (np.linalg.norm(x[:, None] - TET[None], axis=2) <= r).any(1)
     vol = tet_volumes(TET[None])[0]
     p = inside.mean()
@@ -164,27 +156,6 @@ def _cup(seed: int = 4, radius: float = 1.2, spread: float = 0.0
     return centres[keep], radii[keep]
 
 
-def _free_in_tets(corners, centres, radii, n: int, rng, chunk: int = 1_000_000
-                  ) -> tuple[float, float]:
-    """(volume, standard error) of the part of the tetrahedra (t, 4, 3) in no ball: n
-    uniform samples of them (chunked; the nearest centre decides most, the 32 nearest the
-    rest, checked enough)."""
-    vol = tet_volumes(corners)
-    tree, free, reach = cKDTree(centres), 0, radii.max()
-    for start in range(0, n, chunk):
-        x, _ = _uniform_in_tets(corners, min(chunk, n - start), rng)
-        dist, idx = tree.query(x)
-        ask = np.flatnonzero(dist > radii[idx])  # the nearest ball misses: look further
-        if np.ptp(radii) > 0 and len(ask):
-            dist, idx = tree.query(x[ask], k=32, distance_upper_bound=reach)
-            assert np.isinf(dist[:, -1]).all()  # every ball that may hold a sample was seen
-            found = np.isfinite(dist)
-            ask = ask[~(found & (dist <= radii[np.where(found, idx, 0)])).any(1)]
-        free += len(ask)
-    p = free / n
-    return p * vol.sum(), vol.sum() * np.sqrt(p * (1 - p) / n)
-
-
 def test_cup_has_one_pocket_with_one_mouth_at_its_rim():
     centres, radii = _cup()
     ac = AlphaComplex.from_points(centres, weights=radii ** 2)
@@ -217,7 +188,7 @@ def test_cup_pocket_volume_and_area_exact_against_1e7_samples(radius, spread):
     pockets = find_pockets(facts)
     mine = facts.cells[pockets.cells == 0]
     rng = np.random.default_rng(2)
-    volume, error = _free_in_tets(facts.centres[mine], facts.centres, facts.radii,
+    volume, error = free_in_tets(facts.centres[mine], facts.centres, facts.radii,
                                   10_000_000, rng)
     assert abs(pockets.volume[0] - volume) < 4 * error
     pts, ball, weight = _sphere_points(facts.centres, facts.radii, 100, rng)
