@@ -37,17 +37,31 @@ def cell_planes(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return normals, offsets
 
 
-def _meets(normals, offsets, g, reach, centre, radius) -> np.ndarray:
-    """Whether balls (centre (m, 3), radius (m,)) may meet cells given by their facet planes
-    (m, 4, 3), (m, 4), centroid g (m, 3) and bounding radius reach (m,): inside every facet's
-    halfspace grown by the radius, and within the bounding sphere grown by it."""
-    side = np.einsum("mvc,mc->mv", normals, centre) - offsets
-    return ((side <= radius[:, None]).all(1)
-            & (np.linalg.norm(centre - g, axis=1) <= reach + radius))
+def _distance(corners: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """(m,) Euclidean distance from points x (m, 3) to tetrahedra corners (m, 4, 3): 0
+    inside, else the least over the facets the point projects into and over the edges."""
+    normals, offsets = cell_planes(corners)
+    side = np.einsum("mvc,mc->mv", normals, x) - offsets  # > 0: beyond that facet
+    best = np.full(len(x), np.inf)
+    for v in range(4):
+        i, j, k = (w for w in range(4) if w != v)
+        y = x - side[:, v, None] * normals[:, v]  # projection onto the facet's plane
+        into = np.ones(len(x), bool)
+        for a, b, o in ((i, j, k), (j, k, i), (k, i, j)):
+            n = np.cross(corners[:, b] - corners[:, a], normals[:, v])
+            into &= (np.einsum("mc,mc->m", n, y - corners[:, a])
+                     * np.einsum("mc,mc->m", n, corners[:, o] - corners[:, a])) >= 0
+        best = np.where(into & (side[:, v] > 0), np.minimum(best, side[:, v]), best)
+    for a, b in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
+        e = corners[:, b] - corners[:, a]
+        t = np.clip(np.einsum("mc,mc->m", x - corners[:, a], e)
+                    / np.einsum("mc,mc->m", e, e), 0.0, 1.0)
+        best = np.minimum(best, np.linalg.norm(x - corners[:, a] - t[:, None] * e, axis=1))
+    return np.where((side <= 0).all(1), 0.0, best)
 
 
 def _near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.ndarray]:
-    """Pairs (position in rows, ball) of the balls of K that may meet each cell (`_meets`)."""
+    """Pairs (position in rows, ball) of the balls of K that meet each cell."""
     c = facts.centres[facts.cells[rows]]
     g = c.mean(1)
     reach = np.linalg.norm(c - g[:, None], axis=2).max(1)
@@ -56,9 +70,9 @@ def _near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.
     count = np.fromiter(map(len, lists), np.int64, len(lists))
     i = np.repeat(np.arange(len(rows)), count)
     j = np.fromiter((b for near in lists for b in near), np.int64, int(count.sum()))
-    normals, offsets = cell_planes(c)
-    keep = vertex[j] & _meets(normals[i], offsets[i], g[i], reach[i], facts.centres[j],
-                              facts.radii[j])
+    keep = vertex[j]
+    i, j = i[keep], j[keep]
+    keep = _distance(c[i], facts.centres[j]) <= facts.radii[j]
     return i[keep], j[keep]
 
 
@@ -110,8 +124,7 @@ def _with_all_vertices(simplices: np.ndarray, pair_i: np.ndarray, pair_j: np.nda
     return cell[keep], simplex[keep]
 
 
-def _common_part_may_meet(facts, members: np.ndarray, normals, offsets, g, reach
-                          ) -> np.ndarray:
+def _common_part_may_meet(facts, members: np.ndarray, corners: np.ndarray) -> np.ndarray:
     """(m,) bool: the balls' common part may meet the cell. When the radical point z of
     the balls lies in the hull of their centres, that part lies within sqrt(-power(z)) of
     z (Σλ_i pow_i(x) = |x - z|² + pow(z) with the weights λ of z, all >= 0)."""
@@ -122,8 +135,7 @@ def _common_part_may_meet(facts, members: np.ndarray, normals, offsets, g, reach
     mu = np.linalg.solve(gram, np.einsum("mci,mc->mi", e, z - c[:, 0])[..., None])[..., 0]
     inside = (mu >= 0).all(1) & (mu.sum(1) <= 1)
     out = np.ones(len(members), bool)
-    out[inside] = _meets(normals[inside], offsets[inside], g[inside], reach[inside],
-                         z[inside], t[inside])
+    out[inside] = _distance(corners[inside], z[inside]) <= t[inside]
     return out
 
 
@@ -137,16 +149,12 @@ def clipped_cell_measures(facts, rows: np.ndarray, tree: cKDTree
     normals, offsets = cell_planes(facts.centres[v] - origin[:, None])
     pair_i, pair_j = _near_balls(facts, rows, tree)
     corners = facts.centres[v]
-    centroid = corners.mean(1)
-    reach = np.linalg.norm(corners - centroid[:, None], axis=2).max(1)
-    planes_abs = cell_planes(corners)
     covered = np.zeros(len(rows))
     groups = [(0, pair_i, pair_j[:, None])]
     for k, simplices in _simplices_of_k(facts).items():
         cell, simplex = _with_all_vertices(simplices, pair_i, pair_j, n)
         members = simplices[simplex]
-        keep = _common_part_may_meet(facts, members, planes_abs[0][cell],
-                                     planes_abs[1][cell], centroid[cell], reach[cell])
+        keep = _common_part_may_meet(facts, members, corners[cell])
         groups.append((k, cell[keep], members[keep]))
     out_i, out_a, out_v = [], [], []
     for k, cell, members in groups:

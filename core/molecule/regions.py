@@ -11,6 +11,7 @@ from scipy.spatial import cKDTree
 
 from core.molecule.exact_cells import clipped_cell_measures, needs_clipping
 from core.molecule.sectors import tet_edge_ids, tet_pieces, tet_volumes
+from core.parallel import both
 
 CHUNK = 100_000  # tetrahedra per vectorized batch
 
@@ -97,10 +98,14 @@ def region_measures(facts: DualFacts, labels: np.ndarray, count: int) -> RegionM
         volume += np.bincount(lab, weights=tet_volumes(c) - covered, minlength=count)
         area += np.bincount(lab, weights=sphere.sum(1), minlength=count)
         parts.append((np.repeat(lab, 4), v.ravel(), sphere.ravel()))
-    for start in range(0, int(clip.sum()), CHUNK):
-        cell = rows[clip][start:start + CHUNK]
+    clipped = rows[clip]
+    half = len(clipped) // 2
+    # the clipped cells (the costly part) in two halves, one in a helper thread
+    for cell, (covered, pos, ball, sphere) in zip(
+            (clipped[:half], clipped[half:]),
+            both(lambda: clipped_cell_measures(facts, clipped[:half], tree),
+                 lambda: clipped_cell_measures(facts, clipped[half:], tree)), strict=True):
         c = facts.centres[facts.cells[cell]]
-        covered, pos, ball, sphere = clipped_cell_measures(facts, cell, tree)
         lab = labels[cell]
         volume += np.bincount(lab, weights=tet_volumes(c - c[:, :1]) - covered,
                               minlength=count)
