@@ -144,6 +144,8 @@ def clipped_cell_measures(facts, rows: np.ndarray, tree: cKDTree
     """(covered volume (t,), and the exposed sphere area as entries (positions, balls,
     values)) of the union of balls inside each cell `rows` (t,) of the triangulation."""
     n = len(facts.radii)
+    if len(rows) == 0:
+        return np.zeros(0), np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
     v = facts.cells[rows]
     origin = facts.centres[v[:, 0]]
     normals, offsets = cell_planes(facts.centres[v] - origin[:, None])
