@@ -1,13 +1,13 @@
 """The part of a union of balls inside chosen tetrahedra, exact, clipped to each tetrahedron.
 
-The short inclusion–exclusion over the dual complex K holds point by point (Edelsbrunner
-1995): 1_∪B = Σ_{σ ∈ K} (-1)^dim σ 1_{∩B_σ}. Restricted to a tetrahedron T it needs every σ
-whose balls all meet T, its own faces and the foreign ones. Each ∩B_σ is the union of the
-pieces B_a ∩ F_a (F_a: the points where ball a has the largest power among σ's balls, an
-intersection of halfspaces), and the sphere of a inside the other balls of σ is its part in
-F_a; clipped to T these are a ball or a sphere inside a convex polyhedron (`clipped`). The
-sector split of `sectors` is exact for a tetrahedron that no foreign ball meets and whose
-balls do not cross their opposite facets; the others (`needs_clipping`) are measured here.
+The power cells V_a of the balls tile space, and within V_a a point is in the union exactly
+when it is in B_a (a point of V_a inside some ball is inside B_a, whose power there is the
+least), so the union inside a tetrahedron T is the disjoint union of the convex pieces
+B_a ∩ V_a ∩ T, and its boundary there is the sphere of a inside V_a ∩ T (`clipped`). Only
+the balls that meet T count, and of V_a's planes (one per edge ab of the triangulation) only
+those that cut both B_a and T. The sector split of `sectors` is exact for a tetrahedron that
+no foreign ball meets and whose balls do not cross their opposite facets; the others
+(`needs_clipping`) are measured here.
 """
 
 from __future__ import annotations
@@ -16,9 +16,9 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from core.molecule.clipped import ball_in_polyhedron
-from core.molecule.intersections import radical_point
 
 CHUNK = 1024  # ball pieces per vectorized batch (each holds P(P-1) x P plane tests)
+BLOCK = 20_000  # (ball, cell) pairs whose power planes are sorted out at once
 
 
 def cell_planes(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -91,97 +91,71 @@ def needs_clipping(facts, rows: np.ndarray, tree: cKDTree) -> np.ndarray:
     return over
 
 
-def _simplices_of_k(facts) -> dict[int, np.ndarray]:
-    """{k: (n_k, k+1) int64 ascending rows} of the dual complex K's simplices, k = 1..3."""
-    tri = facts.triangles
-    pairs = np.concatenate([np.delete(tri, v, axis=1) for v in range(3)])
-    ids = facts.tri_edges.T.ravel()
-    _, first = np.unique(ids, return_index=True)
-    edges = np.zeros((int(ids.max()) + 1 if len(ids) else 0, 2), np.int64)
-    edges[ids[first]] = np.sort(pairs[first], 1)
-    return {1: edges[facts.edge_in[:len(edges)]], 2: np.sort(tri[facts.facet_in], 1),
-            3: np.sort(facts.cells[facts.cell_in], 1)}
+def _neighbours(facts) -> tuple[np.ndarray, np.ndarray]:
+    """(starts (n+1,), others) int64: the balls joined to each ball by an edge of the
+    triangulation, others[starts[a]:starts[a+1]]; their planes bound a's power cell."""
+    n = len(facts.radii)
+    a = facts.cells[:, [0, 0, 0, 1, 1, 2, 3, 3, 3, 2, 2, 1]].ravel()
+    b = facts.cells[:, [1, 2, 3, 2, 3, 3, 0, 1, 2, 0, 1, 0]].ravel()
+    key = np.unique(a * n + b)
+    return np.searchsorted(key // n, np.arange(n + 1)), key % n
 
 
-def _with_all_vertices(simplices: np.ndarray, pair_i: np.ndarray, pair_j: np.ndarray,
-                       n: int) -> tuple[np.ndarray, np.ndarray]:
-    """(cell positions, simplex rows): simplices whose vertices are all near a cell, from
-    the pairs (cell position, near ball)."""
-    if len(simplices) == 0 or len(pair_i) == 0:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    order = np.argsort(simplices[:, 0], kind="stable")
-    starts = np.searchsorted(simplices[order, 0], np.arange(n + 1))
+def _power_planes(facts, pair_i, pair_j, corners, starts, others):
+    """Rows (piece, neighbour, (k, 3) normals, (k,) offsets about the piece's centre) of the
+    power planes that cut both the piece's ball and its cell, and (pieces,) bool: the
+    piece is empty (its ball or its cell wholly beyond one power plane)."""
     count = starts[pair_j + 1] - starts[pair_j]
-    cell = np.repeat(pair_i, count)
-    offset = np.arange(len(cell)) - np.repeat(np.cumsum(count) - count, count)
-    simplex = order[np.repeat(starts[pair_j], count) + offset]
-    keys = np.sort(pair_i.astype(np.int64) * n + pair_j)
-    keep = np.ones(len(cell), bool)
-    for col in range(1, simplices.shape[1]):
-        want = cell.astype(np.int64) * n + simplices[simplex, col]
-        pos = np.minimum(np.searchsorted(keys, want), len(keys) - 1)
-        keep &= keys[pos] == want
-    return cell[keep], simplex[keep]
-
-
-def _common_part_may_meet(facts, members: np.ndarray, corners: np.ndarray) -> np.ndarray:
-    """(m,) bool: the balls' common part may meet the cell. When the radical point z of
-    the balls lies in the hull of their centres, that part lies within sqrt(-power(z)) of
-    z (Σλ_i pow_i(x) = |x - z|² + pow(z) with the weights λ of z, all >= 0)."""
-    c, r = facts.centres[members], facts.radii[members]
-    z, t = radical_point(c, r)
-    e = np.transpose(c[:, 1:] - c[:, :1], (0, 2, 1))  # (m, 3, k)
-    gram = np.einsum("mci,mcj->mij", e, e)
-    mu = np.linalg.solve(gram, np.einsum("mci,mc->mi", e, z - c[:, 0])[..., None])[..., 0]
-    inside = (mu >= 0).all(1) & (mu.sum(1) <= 1)
-    out = np.ones(len(members), bool)
-    out[inside] = _distance(corners[inside], z[inside]) <= t[inside]
-    return out
+    piece = np.repeat(np.arange(len(pair_i)), count)
+    offset = np.arange(len(piece)) - np.repeat(np.cumsum(count) - count, count)
+    ball = pair_j[piece]
+    other = others[starts[ball] + offset]
+    e = facts.centres[other] - facts.centres[ball]
+    dist = np.linalg.norm(e, axis=1)
+    ra, rb = facts.radii[ball], facts.radii[other]
+    normal = e / dist[:, None]
+    bound = (dist * dist + ra * ra - rb * rb) / (2 * dist)
+    side = np.einsum("mvc,mc->mv", corners[pair_i[piece]] - facts.centres[ball][:, None],
+                     normal) - bound[:, None]
+    empty = np.zeros(len(pair_i), bool)
+    empty[piece[(bound <= -ra) | (side >= 0).all(1)]] = True
+    keep = (bound < ra) & (side > 0).any(1) & ~empty[piece]
+    return piece[keep], normal[keep], bound[keep], empty
 
 
 def clipped_cell_measures(facts, rows: np.ndarray, tree: cKDTree
                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(covered volume (t,), and the exposed sphere area as entries (positions, balls,
-    values)) of the union of balls inside each cell `rows` (t,) of the triangulation."""
-    n = len(facts.radii)
+    values)) of the union of balls inside each cell `rows` (t,) of the triangulation: the
+    sum over the balls meeting a cell of each ball inside its power cell and the cell."""
     if len(rows) == 0:
         return np.zeros(0), np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
-    v = facts.cells[rows]
-    origin = facts.centres[v[:, 0]]
-    normals, offsets = cell_planes(facts.centres[v] - origin[:, None])
+    corners = facts.centres[facts.cells[rows]]
+    normals, offsets = cell_planes(corners)
     pair_i, pair_j = _near_balls(facts, rows, tree)
-    corners = facts.centres[v]
+    starts, others = _neighbours(facts)
     covered = np.zeros(len(rows))
-    groups = [(0, pair_i, pair_j[:, None])]
-    for k, simplices in _simplices_of_k(facts).items():
-        cell, simplex = _with_all_vertices(simplices, pair_i, pair_j, n)
-        members = simplices[simplex]
-        keep = _common_part_may_meet(facts, members, corners[cell])
-        groups.append((k, cell[keep], members[keep]))
     out_i, out_a, out_v = [], [], []
-    for k, cell, members in groups:
-        sign = -1.0 if k % 2 else 1.0
-        for a in range(k + 1):
-            others = [b for b in range(k + 1) if b != a]
-            for start in range(0, len(cell), CHUNK):
-                i = cell[start:start + CHUNK]
-                ball = members[start:start + CHUNK, a]
-                centre = facts.centres[ball] - origin[i]
-                ra = facts.radii[ball]
-                planes = [normals[i]]
-                bounds = [offsets[i] - np.einsum("tvc,tc->tv", normals[i], centre)]
-                for b in others:
-                    e = facts.centres[members[start:start + CHUNK, b]] - facts.centres[ball]
-                    dist = np.linalg.norm(e, axis=1)
-                    rb = facts.radii[members[start:start + CHUNK, b]]
-                    planes.append((-e / dist[:, None])[:, None])
-                    bounds.append((-(dist * dist + ra * ra - rb * rb) / (2 * dist))[:, None])
-                vol, sphere = ball_in_polyhedron(np.concatenate(planes, 1),
-                                                 np.concatenate(bounds, 1), ra)
-                covered += sign * np.bincount(i, weights=vol, minlength=len(rows))
+    for block in range(0, len(pair_i), BLOCK):
+        pi, pj = pair_i[block:block + BLOCK], pair_j[block:block + BLOCK]
+        piece, normal, bound, empty = _power_planes(facts, pi, pj, corners, starts, others)
+        count = np.bincount(piece, minlength=len(pi))
+        first = np.cumsum(count) - count
+        for k in np.unique(count[~empty]):
+            group = np.flatnonzero((count == k) & ~empty)
+            for start in range(0, len(group), CHUNK):
+                p = group[start:start + CHUNK]
+                i, ball = pi[p], pj[p]
+                at = first[p, None] + np.arange(k)
+                centre = facts.centres[ball]
+                planes = np.concatenate((normals[i], normal[at]), 1)
+                limits = np.concatenate(
+                    (offsets[i] - np.einsum("tvc,tc->tv", normals[i], centre), bound[at]), 1)
+                vol, sphere = ball_in_polyhedron(planes, limits, facts.radii[ball])
+                covered += np.bincount(i, weights=vol, minlength=len(rows))
                 out_i.append(i)
                 out_a.append(ball)
-                out_v.append(sign * sphere)
+                out_v.append(sphere)
     if not out_i:
         return covered, np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
     return covered, np.concatenate(out_i), np.concatenate(out_a), np.concatenate(out_v)

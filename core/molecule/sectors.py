@@ -14,7 +14,8 @@ and the same sum of the sphere areas gives the exposed area of each of T's verti
 (Liang, Edelsbrunner, Fu, Sudhakar, Subramaniam, "Analytical shape computation of
 macromolecules", Proteins 33, 1998). A piece can reach out of T through a facet (a ball
 over its opposite facet) and a foreign ball can reach into T: there the split is not T's
-share, and `exact_cells` clips the balls to T instead (`regions` decides which).
+share, and `exact_cells` clips each ball to its power cell and T instead (`regions` decides
+which).
 
 Arrays: centres (t, 4, 3) float64 (relative to the first vertex is best), radii (t, 4).
 """
