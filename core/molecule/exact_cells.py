@@ -60,8 +60,8 @@ def _distance(corners: np.ndarray, x: np.ndarray) -> np.ndarray:
     return np.where((side <= 0).all(1), 0.0, best)
 
 
-def _near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.ndarray]:
-    """Pairs (position in rows, ball) of the balls of K that meet each cell."""
+def near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs (position in rows, ball) (m,) int64 of the balls of K that meet each cell."""
     c = facts.centres[facts.cells[rows]]
     g = c.mean(1)
     reach = np.linalg.norm(c - g[:, None], axis=2).max(1)
@@ -70,28 +70,32 @@ def _near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.
     count = np.fromiter(map(len, lists), np.int64, len(lists))
     i = np.repeat(np.arange(len(rows)), count)
     j = np.fromiter((b for near in lists for b in near), np.int64, int(count.sum()))
-    keep = vertex[j]
-    i, j = i[keep], j[keep]
-    keep = _distance(c[i], facts.centres[j]) <= facts.radii[j]
+    x, r = facts.centres[j], facts.radii[j]
+    keep = vertex[j] & (np.linalg.norm(x - g[i], axis=1) <= reach[i] + r)
+    i, j, x, r = i[keep], j[keep], x[keep], r[keep]
+    keep = (np.linalg.norm(c[i] - x[:, None], axis=2) <= r[:, None]).any(1)  # holds a corner
+    ask = np.flatnonzero(~keep)
+    keep[ask] = _distance(c[i[ask]], x[ask]) <= r[ask]
     return i[keep], j[keep]
 
 
-def needs_clipping(facts, rows: np.ndarray, tree: cKDTree) -> np.ndarray:
+def needs_clipping(facts, rows: np.ndarray, pairs: tuple[np.ndarray, np.ndarray]
+                   ) -> np.ndarray:
     """(len(rows),) bool: cells whose sector measure may differ from the union inside them
     (a ball reaches over its opposite facet or is no vertex of K, or a foreign ball may
-    meet the cell)."""
+    meet the cell); pairs: `near_balls` of rows."""
     v = facts.cells[rows]
     c = facts.centres[v]
     normals, offsets = cell_planes(c)
     height = offsets - np.einsum("tvc,tvc->tv", normals, c)
     over = (facts.radii[v] > height).any(1) | ~facts.vertices_in()[v].all(1)
-    i, j = _near_balls(facts, rows, tree)
+    i, j = pairs
     foreign = (v[i] != j[:, None]).all(1)
     over[i[foreign]] = True
     return over
 
 
-def _neighbours(facts) -> tuple[np.ndarray, np.ndarray]:
+def neighbours(facts) -> tuple[np.ndarray, np.ndarray]:
     """(starts (n+1,), others) int64: the balls joined to each ball by an edge of the
     triangulation, others[starts[a]:starts[a+1]]; their planes bound a's power cell."""
     n = len(facts.radii)
@@ -123,17 +127,19 @@ def _power_planes(facts, pair_i, pair_j, corners, starts, others):
     return piece[keep], normal[keep], bound[keep], empty
 
 
-def clipped_cell_measures(facts, rows: np.ndarray, tree: cKDTree
+def clipped_cell_measures(facts, rows: np.ndarray, pairs: tuple[np.ndarray, np.ndarray],
+                          neighbours: tuple[np.ndarray, np.ndarray]
                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(covered volume (t,), and the exposed sphere area as entries (positions, balls,
     values)) of the union of balls inside each cell `rows` (t,) of the triangulation: the
-    sum over the balls meeting a cell of each ball inside its power cell and the cell."""
+    sum over the balls meeting a cell of each ball inside its power cell and the cell;
+    pairs: `near_balls` of rows; neighbours: `neighbours(facts)`."""
     if len(rows) == 0:
         return np.zeros(0), np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
     corners = facts.centres[facts.cells[rows]]
     normals, offsets = cell_planes(corners)
-    pair_i, pair_j = _near_balls(facts, rows, tree)
-    starts, others = _neighbours(facts)
+    pair_i, pair_j = pairs
+    starts, others = neighbours
     covered = np.zeros(len(rows))
     out_i, out_a, out_v = [], [], []
     for block in range(0, len(pair_i), BLOCK):

@@ -9,7 +9,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.spatial import cKDTree
 
-from core.molecule.exact_cells import clipped_cell_measures, needs_clipping
+from core.molecule.exact_cells import clipped_cell_measures, near_balls, needs_clipping, neighbours
 from core.molecule.sectors import tet_edge_ids, tet_pieces, tet_volumes
 from core.parallel import both
 
@@ -84,8 +84,8 @@ def region_measures(facts: DualFacts, labels: np.ndarray, count: int) -> RegionM
     rows = np.flatnonzero(labels >= 0)
     volume, area = np.zeros(count), np.zeros(count)
     parts = []
-    tree = cKDTree(facts.centres) if len(rows) else None
-    clip = needs_clipping(facts, rows, tree) if len(rows) else np.zeros(0, bool)
+    pairs = near_balls(facts, rows, cKDTree(facts.centres)) if len(rows) else None
+    clip = needs_clipping(facts, rows, pairs) if len(rows) else np.zeros(0, bool)
     sector_rows = rows[~clip]
     for start in range(0, len(sector_rows), CHUNK):
         cell = sector_rows[start:start + CHUNK]
@@ -100,11 +100,20 @@ def region_measures(facts: DualFacts, labels: np.ndarray, count: int) -> RegionM
         parts.append((np.repeat(lab, 4), v.ravel(), sphere.ravel()))
     clipped = rows[clip]
     half = len(clipped) // 2
+    halves = (clipped[:half], clipped[half:])
+    if len(clipped):
+        at = np.cumsum(clip) - 1  # position among the clipped cells
+        mine = clip[pairs[0]]
+        i, j = at[pairs[0][mine]], pairs[1][mine]
+        pairs = ((i[i < half], j[i < half]), (i[i >= half] - half, j[i >= half]))
+        around = neighbours(facts)
+    else:
+        around = None
+        pairs = ((np.zeros(0, np.int64),) * 2,) * 2
     # the clipped cells (the costly part) in two halves, one in a helper thread
-    for cell, (covered, pos, ball, sphere) in zip(
-            (clipped[:half], clipped[half:]),
-            both(lambda: clipped_cell_measures(facts, clipped[:half], tree),
-                 lambda: clipped_cell_measures(facts, clipped[half:], tree)), strict=True):
+    for cell, (covered, pos, ball, sphere) in zip(halves, both(
+            lambda: clipped_cell_measures(facts, halves[0], pairs[0], around),
+            lambda: clipped_cell_measures(facts, halves[1], pairs[1], around)), strict=True):
         c = facts.centres[facts.cells[cell]]
         lab = labels[cell]
         volume += np.bincount(lab, weights=tet_volumes(c - c[:, :1]) - covered,
