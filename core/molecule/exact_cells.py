@@ -73,7 +73,11 @@ def near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.n
     x, r = facts.centres[j], facts.radii[j]
     keep = vertex[j] & (np.linalg.norm(x - g[i], axis=1) <= reach[i] + r)
     i, j, x, r = i[keep], j[keep], x[keep], r[keep]
-    keep = (np.linalg.norm(c[i] - x[:, None], axis=2) <= r[:, None]).any(1)  # holds a corner
+    normals, offsets = cell_planes(c)
+    side = np.einsum("mvc,mc->mv", normals[i], x) - offsets[i]  # > r: wholly beyond a facet
+    i, j, x, r, side = (a[(side <= r[:, None]).all(1)] for a in (i, j, x, r, side))
+    keep = (side <= 0).all(1) | (np.linalg.norm(c[i] - x[:, None], axis=2)
+                                 <= r[:, None]).any(1)  # holds its centre or a corner
     ask = np.flatnonzero(~keep)
     keep[ask] = _distance(c[i[ask]], x[ask]) <= r[ask]
     return i[keep], j[keep]
