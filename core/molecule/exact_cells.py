@@ -109,10 +109,13 @@ def neighbours(facts) -> tuple[np.ndarray, np.ndarray]:
     return np.searchsorted(key // n, np.arange(n + 1)), key % n
 
 
-def _power_planes(facts, pair_i, pair_j, corners, starts, others):
-    """Rows (piece, neighbour, (k, 3) normals, (k,) offsets about the piece's centre) of the
-    power planes that cut both the piece's ball and its cell, and (pieces,) bool: the
-    piece is empty (its ball or its cell wholly beyond one power plane)."""
+def _power_planes(facts, pair_i, pair_j, corners, planes, starts, others):
+    """(piece (r,), normals (r, 3), offsets (r,) about the piece's centre) of the power
+    planes that may cut a piece's ball inside its cell, and (pieces,) bool: the piece is
+    empty (its ball or its cell wholly beyond one power plane). A plane is left out when
+    the ball or the cell lies on its inner side, or when the cap it cuts off the ball
+    (inside the ball about its foot of radius sqrt(r² - offset²)) is beyond a facet plane
+    of the cell; planes: `cell_planes(corners)`."""
     count = starts[pair_j + 1] - starts[pair_j]
     piece = np.repeat(np.arange(len(pair_i)), count)
     offset = np.arange(len(piece)) - np.repeat(np.cumsum(count) - count, count)
@@ -123,11 +126,17 @@ def _power_planes(facts, pair_i, pair_j, corners, starts, others):
     ra, rb = facts.radii[ball], facts.radii[other]
     normal = e / dist[:, None]
     bound = (dist * dist + ra * ra - rb * rb) / (2 * dist)
-    side = np.einsum("mvc,mc->mv", corners[pair_i[piece]] - facts.centres[ball][:, None],
+    cell = pair_i[piece]
+    side = np.einsum("mvc,mc->mv", corners[cell] - facts.centres[ball][:, None],
                      normal) - bound[:, None]
     empty = np.zeros(len(pair_i), bool)
     empty[piece[(bound <= -ra) | (side >= 0).all(1)]] = True
     keep = (bound < ra) & (side > 0).any(1) & ~empty[piece]
+    cap = np.flatnonzero(keep & (bound > 0))
+    foot = facts.centres[ball[cap]] + bound[cap, None] * normal[cap]
+    beyond = (np.einsum("mvc,mc->mv", planes[0][cell[cap]], foot) - planes[1][cell[cap]]
+              > np.sqrt(ra[cap] ** 2 - bound[cap] ** 2)[:, None]).any(1)
+    keep[cap[beyond]] = False
     return piece[keep], normal[keep], bound[keep], empty
 
 
@@ -148,7 +157,8 @@ def clipped_cell_measures(facts, rows: np.ndarray, pairs: tuple[np.ndarray, np.n
     out_i, out_a, out_v = [], [], []
     for block in range(0, len(pair_i), BLOCK):
         pi, pj = pair_i[block:block + BLOCK], pair_j[block:block + BLOCK]
-        piece, normal, bound, empty = _power_planes(facts, pi, pj, corners, starts, others)
+        piece, normal, bound, empty = _power_planes(facts, pi, pj, corners, (normals, offsets),
+                                                    starts, others)
         count = np.bincount(piece, minlength=len(pi))
         first = np.cumsum(count) - count
         for k in np.unique(count[~empty]):
