@@ -86,12 +86,15 @@ def ball_in_polyhedron(normals: np.ndarray, offsets: np.ndarray, r: np.ndarray
     # clip the line x0 + s·direction by every halfspace (its own two hold on it)
     slope = np.matmul(direction, np.transpose(normals, (0, 2, 1)))  # (m, E, P)
     room = offsets[:, None, :] - np.matmul(x0, np.transpose(normals, (0, 2, 1)))
-    own = (np.arange(planes)[None, :] == f[:, None]) | (np.arange(planes)[None, :] == g[:, None])
+    pairs = np.arange(len(f))
+    for own in (f, g):  # the line's own planes bound nothing
+        slope[:, pairs, own] = 0.0
+        room[:, pairs, own] = 0.0
     with np.errstate(divide="ignore", invalid="ignore"):
         bound = room / slope
-    upper = np.where((slope > 0) & ~own, bound, np.inf).min(-1)
-    lower = np.where((slope < 0) & ~own, bound, -np.inf).max(-1)
-    blocked = ((slope == 0) & (room < 0) & ~own).any(-1)
+    upper = np.where(slope > 0, bound, np.inf).min(-1)
+    lower = np.where(slope < 0, bound, -np.inf).max(-1)
+    blocked = ((slope == 0) & (room < 0)).any(-1)
     ok &= ~blocked & (upper > lower) & np.isfinite(upper) & np.isfinite(lower)
     row, pair = np.nonzero(ok)  # the polyhedra's edges only
     direction, x0 = direction[row, pair], x0[row, pair]
