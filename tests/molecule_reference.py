@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import ndimage
+from scipy.spatial import cKDTree
 
 from tests.reference import data_dir
 
@@ -113,3 +114,35 @@ def shell(centre, radius: float, n: int, ball: float) -> tuple[np.ndarray, np.nd
     phi, theta = np.arccos(1 - 2 * i / n), np.pi * (1 + 5 ** 0.5) * i
     pts = np.stack([np.cos(theta) * np.sin(phi), np.sin(theta) * np.sin(phi), np.cos(phi)], 1)
     return np.asarray(centre) + radius * pts, np.full(n, ball)
+
+
+def tet_volumes(corners: np.ndarray) -> np.ndarray:
+    """(t,) volumes of the tetrahedra (t, 4, 3)."""
+    e = corners[:, 1:] - corners[:, :1]
+    return np.abs(np.linalg.det(e)) / 6.0
+
+
+def uniform_in_tets(corners: np.ndarray, n: int, rng) -> tuple[np.ndarray, np.ndarray]:
+    """(n, 3) points uniform in the union of tetrahedra (t, 4, 3), and the cell of each."""
+    vol = tet_volumes(corners)
+    cell = rng.choice(len(corners), size=n, p=vol / vol.sum())
+    lam = np.diff(np.sort(rng.random((n, 3)), 1), prepend=0.0, append=1.0, axis=1)
+    return np.einsum("pi,pij->pj", lam, corners[cell]), cell
+
+
+def free_in_tets(corners, centres, radii, n: int, rng, chunk: int = 1_000_000
+                 ) -> tuple[float, float]:
+    """(volume, standard error) of the part of the tetrahedra (t, 4, 3) in no ball: n
+    uniform samples of them, chunked. The ball of least power decides a sample: it is the
+    nearest centre lifted to (c, sqrt(R² - r²)) in 4D (R the largest radius), the sample
+    taken as (x, 0), since |x - c|² + R² - r² is its power plus R²."""
+    vol = tet_volumes(corners)
+    reach = radii.max()
+    tree = cKDTree(np.column_stack([centres, np.sqrt(reach ** 2 - radii ** 2)]))
+    free = 0
+    for start in range(0, n, chunk):
+        x, _ = uniform_in_tets(corners, min(chunk, n - start), rng)
+        dist, _ = tree.query(np.column_stack([x, np.zeros(len(x))]))
+        free += int((dist > reach).sum())
+    p = free / n
+    return p * vol.sum(), vol.sum() * np.sqrt(p * (1 - p) / n)

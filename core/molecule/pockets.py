@@ -28,14 +28,11 @@ every ball to radius² w + alpha²). A tetrahedron of D not in K is *empty*.
   less half-lenses at edges in K, the sector rule of `sectors` in the plane), its `perimeter`
   the length of its rim: the triangle edges bounding it, a polygon through the rim atoms'
   centres (CASTp's rim).
-- A pocket's `volume` is the volume of its tetrahedra less the balls' sector pieces
-  attributed to them (`sectors`, `regions`: CASTp's analytic measure); its `area` the union's
-  surface attributed the same way; its atoms the balls with a positive share of that area.
-  For a void (bounded by triangles of K) this is exactly its empty space. A pocket is open at
-  its mouths, and a ball's sector that reaches through a mouth triangle is counted on the side
-  of its own tetrahedron: on 1A8O the volumes differ from the sampled empty space of the
-  pockets' tetrahedra by up to 2 % on the large ones, 0.05 Å³ on small ones
-  (tests/test_molecule_real.py).
+- A pocket's `volume` is the volume of its tetrahedra less the union of balls inside them,
+  its `area` the union's surface inside them, both exact (`regions`: the sector split where
+  it is exact, each tetrahedron clipped on its own elsewhere, as near the mouths where a
+  ball reaches through an open triangle); its atoms the balls with a positive share of that
+  area.
 """
 
 from __future__ import annotations

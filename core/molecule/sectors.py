@@ -12,10 +12,10 @@ wedges), one half on each side of a triangle (three-ball bodies). So for a tetra
 
 and the same sum of the sphere areas gives the exposed area of each of T's vertices in T
 (Liang, Edelsbrunner, Fu, Sudhakar, Subramaniam, "Analytical shape computation of
-macromolecules", Proteins 33, 1998). A piece that reaches out of T through a facet is counted
-in T, not in the neighbour it lies in; summed over a region of tetrahedra bounded by
-triangles of the complex K (a void, a pocket) these exchanges stay inside the region, which is
-what tests/test_molecule_regions.py checks against dense sampling.
+macromolecules", Proteins 33, 1998). A piece can reach out of T through a facet (a ball
+over its opposite facet) and a foreign ball can reach into T: there the split is not T's
+share, and `exact_cells` clips each ball to its power cell and T instead (`regions` decides
+which).
 
 Arrays: centres (t, 4, 3) float64 (relative to the first vertex is best), radii (t, 4).
 """
