@@ -39,7 +39,10 @@ def cloud(n: int = 6000) -> np.ndarray:
     return np.random.default_rng(21).random((n, 3))
 
 
-def test_runner_equals_in_memory(tmp_path):
+def test_runner_equals_in_memory(tmp_path, monkeypatch):
+    for name in ("OMP_NUM_THREADS", "MALLOC_TRIM_THRESHOLD_"):  # what the nannies set
+        monkeypatch.delenv(name, raising=False)
+    environ = dict(os.environ)
     points, at = cloud(), {"alpha": 0.05}
     report = RunReport()
     options = RunOptions(workers=2, memory_per_worker=1 << 30, tile_points=800,
@@ -49,6 +52,7 @@ def test_runner_equals_in_memory(tmp_path):
     assert differences(AlphaComplex.from_points(points), merged, at) == []
     assert len(report.tiles) == merged.n_tiles >= 6
     assert list(tmp_path.iterdir()) == []  # the scratch folder is gone
+    assert dict(os.environ) == environ  # later child processes get this process's settings
 
 
 def test_failed_tile_is_named(tmp_path):

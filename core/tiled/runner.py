@@ -219,6 +219,7 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
     if options.scratch is not None:
         os.makedirs(options.scratch, exist_ok=True)
     scratch = Path(tempfile.mkdtemp(prefix="alphascoop-tiles-", dir=options.scratch))
+    environ = dict(os.environ)  # distributed's nannies write their workers' settings into it
     # the workers start while the points are split (a local cluster takes seconds)
     pool = ThreadPoolExecutor(1, thread_name_prefix="alphascoop-cluster")
     starting = pool.submit(client_for, options, workers, memory, scratch)
@@ -251,6 +252,18 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         if client is not None:
             _close(client, options)
         shutil.rmtree(scratch, ignore_errors=True)
+        _restore(environ)
+
+
+def _restore(environ: dict[str, str]) -> None:
+    """Put back the process's environment as it was before the run: a local cluster's
+    nannies set OMP_NUM_THREADS=1, MALLOC_TRIM_THRESHOLD_ and the like in this process for
+    their workers, which every process started later (a window's build) would inherit."""
+    for name in set(os.environ) - set(environ):
+        del os.environ[name]
+    for name, value in environ.items():
+        if os.environ.get(name) != value:
+            os.environ[name] = value
 
 
 def _started(starting: Future):
