@@ -61,15 +61,27 @@ def test_the_folding_order_builds_gudhis_exact_complex(monkeypatch) -> None:
     assert_matches_gudhi(ac, gudhi_table(pts, precision="exact"))
 
 
-@pytest.mark.parametrize("seed", range(4))
-def test_grids_in_a_shuffled_order_certify_convex_hulls(seed: int) -> None:
-    """Jittered grids in random orders: whatever Qhull returns, the certified hull is convex."""
-    rng = np.random.default_rng(seed)
-    pts = range_grid(300, 3, 1e-13, seed=200 + seed)
-    pts = pts[rng.permutation(len(pts))]
+#: Smaller jittered grids (range_grid(n, 3, 1e-13, seed)) whose hull Qhull folds in the given
+#: order: canonical_order, or a permutation drawn with the same seed.
+SMALL_FOLDS = {"120-canonical": (120, 14, "canonical"), "200-shuffled-4": (200, 4, "shuffled"),
+               "200-shuffled-38": (200, 38, "shuffled")}
+
+
+@pytest.mark.parametrize("case", SMALL_FOLDS.values(), ids=list(SMALL_FOLDS))
+def test_small_grids_qhull_folds_certify_convex_hulls(case) -> None:
+    import gudhi
+
+    n, seed, how = case
+    pts = range_grid(n, 3, 1e-13, seed=seed)
+    order = (canonical_order(pts) if how == "canonical"
+             else np.random.default_rng(seed).permutation(len(pts)))
+    pts = pts[order]
     tri = triangulate(pts)
+    assert len(tri.kept) == len(pts)
     out = certified_triangulation(pts, tri, point_ties(pts))
-    if out.uncertified:
-        pytest.fail(f"{out.uncertified} facets left uncertified")
+    assert out.uncertified == 0
     cells, nbs = out.triangulation.cells, out.triangulation.neighbors
     assert hull_facets_with_a_point_outside(pts, cells, nbs) == 0
+    st = gudhi.AlphaComplex(points=pts, precision="exact").create_simplex_tree()
+    exact = {tuple(sorted(s)) for s, _ in st.get_simplices() if len(s) == 4}
+    assert {tuple(sorted(c)) for c in cells.tolist()} == exact
