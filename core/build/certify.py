@@ -347,7 +347,7 @@ def _hull_not_convex(mesh: _Mesh) -> np.ndarray:
     facets = np.take_along_axis(mesh.cells[t], others[k], axis=1)
     verts, local = np.unique(np.concatenate((facets.ravel(), mesh.cells[t, k])),
                              return_inverse=True)
-    centre = mesh.points[mesh.cells[mesh.alive].ravel()].mean(axis=0)  # strictly inside
+    centre = mesh.points.mean(axis=0)  # every point is a vertex: strictly inside the hull
     pts = np.vstack((mesh.points[verts], centre))
     local_facets = local[: facets.size].reshape(facets.shape)
     inner = local[facets.size:]
