@@ -330,6 +330,49 @@ def _fill_reflex_hull(mesh: _Mesh) -> int:
     return found - int(mesh.alive[w].sum())
 
 
+def _hull_not_convex(mesh: _Mesh) -> np.ndarray:
+    """Cells whose hull facet leaves the points' centroid o on its outer side or on its plane
+    (exact orientations), or every hull cell when the hull facets, all facing o, wrap around
+    it more than once (their angles seen from o sum to 2, 4pi or more). Local convexity at every
+    ridge (_fill_reflex_hull) misses a hull folded over itself at a vertex; with this global
+    check a hull that passes is convex (a locally convex closed surface star-shaped once
+    around o)."""
+    d = mesh.cells.shape[1] - 1
+    t, k = rows_cols(nonzero(lambda lo, hi: mesh.nbs[lo:hi] < 0, len(mesh.nbs)), d + 1)
+    keep = mesh.alive[t] & ~mesh.bad[t]
+    t, k = t[keep], k[keep]
+    if not len(t):
+        return t
+    others = np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
+    facets = np.take_along_axis(mesh.cells[t], others[k], axis=1)
+    verts, local = np.unique(np.concatenate((facets.ravel(), mesh.cells[t, k])),
+                             return_inverse=True)
+    centre = mesh.points.mean(axis=0)  # every point is a vertex: strictly inside the hull
+    pts = np.vstack((mesh.points[verts], centre))
+    local_facets = local[: facets.size].reshape(facets.shape)
+    inner = local[facets.size:]
+    o = np.full(len(t), len(verts))
+    side, n_side = orientations(pts, np.column_stack((local_facets, o)))
+    inside, n_inside = orientations(pts, np.column_stack((local_facets, inner)))
+    mesh.exact += n_side + n_inside
+    wrong = side != inside
+    if wrong.any():
+        return t[wrong]
+    rays = [pts[local_facets[:, i]] - centre for i in range(d)]
+    if d == 2:
+        a, b = rays
+        turns = np.arctan2(np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]),
+                           np.einsum("ij,ij->i", a, b)).sum() / (2 * np.pi)
+    else:
+        a, b, c = rays
+        la, lb, lc = (np.linalg.norm(x, axis=1) for x in rays)
+        den = (la * lb * lc + np.einsum("ij,ij->i", a, b) * lc
+               + np.einsum("ij,ij->i", a, c) * lb + np.einsum("ij,ij->i", b, c) * la)
+        num = np.abs(np.einsum("ij,ij->i", a, np.cross(b, c)))
+        turns = (2 * np.arctan2(num, den)).sum() / (4 * np.pi)
+    return t if turns > 1.5 else t[:0]
+
+
 def reflex_owner(f: np.ndarray, g: np.ndarray, reflex: np.ndarray) -> np.ndarray:
     """Hull facet rows on a reflex ridge (either side): the only candidates to be glued."""
     return np.unique(np.concatenate((f[reflex], g[reflex])))
@@ -459,6 +502,9 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
             if mesh.flips == before:
                 break
         pending = np.unique(np.concatenate((t, u, np.arange(size, len(mesh.cells)))))
+    folded = _hull_not_convex(mesh)
+    mesh.concave = np.concatenate((mesh.concave, folded))
+    concave += len(folded)
     broken = bool(mesh.flips) and not _valid(mesh)
     # a repair went wrong: the backend's cells, unless the local re-triangulation mends it
     backend = Certified(tri, mesh.exact, 0, int((tri.neighbors >= 0).sum()) // 2)
