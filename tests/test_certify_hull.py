@@ -39,15 +39,21 @@ def hull_facets_with_a_point_outside(points: np.ndarray, cells: np.ndarray,
 FOLDED = {"n": 500, "dim": 3, "jitter": 1e-13, "seed": 100}
 
 
-def test_a_hull_qhull_folds_is_repaired_to_the_convex_hull() -> None:
-    pts = range_grid(**FOLDED)
-    pts = pts[canonical_order(pts)]  # the order Qhull folds the hull in
+def certified_convex_cells(pts: np.ndarray) -> np.ndarray:
+    """Qhull's cells of pts in their given order, certified: every one certified and no hull
+    facet with a point outside it (an exact brute force)."""
     tri = triangulate(pts)
     assert len(tri.kept) == len(pts)
     out = certified_triangulation(pts, tri, point_ties(pts))
     assert out.uncertified == 0
     cells, nbs = out.triangulation.cells, out.triangulation.neighbors
     assert hull_facets_with_a_point_outside(pts, cells, nbs) == 0
+    return cells
+
+
+def test_a_hull_qhull_folds_is_repaired_to_the_convex_hull() -> None:
+    pts = range_grid(**FOLDED)
+    certified_convex_cells(pts[canonical_order(pts)])  # the order Qhull folds the hull in
 
 
 def test_the_folding_order_builds_gudhis_exact_complex(monkeypatch) -> None:
@@ -76,12 +82,7 @@ def test_small_grids_qhull_folds_certify_convex_hulls(case) -> None:
     order = (canonical_order(pts) if how == "canonical"
              else np.random.default_rng(seed).permutation(len(pts)))
     pts = pts[order]
-    tri = triangulate(pts)
-    assert len(tri.kept) == len(pts)
-    out = certified_triangulation(pts, tri, point_ties(pts))
-    assert out.uncertified == 0
-    cells, nbs = out.triangulation.cells, out.triangulation.neighbors
-    assert hull_facets_with_a_point_outside(pts, cells, nbs) == 0
+    cells = certified_convex_cells(pts)
     st = gudhi.AlphaComplex(points=pts, precision="exact").create_simplex_tree()
     exact = {tuple(sorted(s)) for s, _ in st.get_simplices() if len(s) == 4}
     assert {tuple(sorted(c)) for c in cells.tolist()} == exact
