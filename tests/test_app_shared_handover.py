@@ -156,8 +156,7 @@ def test_without_shared_memory_the_runner_hands_a_file_over(monkeypatch, tmp_pat
                                        on_saved=lambda _e, _n, shared: seen.append(shared))
     obtained = obtain(points, runner=runner)
     assert seen == [None] and obtained.entry == entry_path(points)
-    base = obtained.complex.points.base  # read from the entry (a view of its file, mapped
-    assert not isinstance(base, np.memmap)  # by core.storage.npz), not the shared folder's
+    assert obtained.complex.points.base is None  # read from the entry, not mapped
 
 
 def test_the_folder_goes_once_the_window_and_the_topology_process_mapped_it():

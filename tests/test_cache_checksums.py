@@ -215,3 +215,34 @@ def test_a_cached_entry_without_checksums_keeps_the_array_checks(cache, scan):
     np.savez(entry, **arrays)
     again = obtain(scan)
     assert again.source == "rebuilt" and "simplices_3" in again.damage
+
+
+ENTRY_CUT_IN_PLACE = """
+import sys
+import numpy as np
+from core.obtain import obtain
+points = np.random.default_rng(5).random((3000, 3))
+obtain(points)  # builds and stores the entry
+again = obtain(points)  # read from the cache
+assert again.source == "cache", again.source
+again.entry.write_bytes(b"damaged")  # cut in place, not replaced: the same file
+ac = again.complex
+touched = [float(ac.intervals(k).sum()) for k in range(4)] + [float(ac.points.sum())]
+print(len(touched), "arrays read")
+"""
+
+
+def test_an_entry_cut_in_place_leaves_the_complex_read_from_it_whole(tmp_path):
+    """A complex read from the cache owns its arrays: cutting its file in place later (not
+    something this program does, but a disk tool or a user may) is no bus error."""
+    import os
+    import subprocess
+    import sys
+
+    root = Path(__file__).resolve().parents[1]
+    done = subprocess.run([sys.executable, "-c", ENTRY_CUT_IN_PLACE], capture_output=True,
+                          text=True, cwd=root, timeout=120,
+                          env={**os.environ, "PYTHONPATH": str(root),
+                               "ALPHASCOOP_CACHE_DIR": str(tmp_path)})
+    assert done.returncode == 0, done.stderr[-1500:]
+    assert done.stdout.strip() == "5 arrays read"

@@ -239,7 +239,7 @@ def _read(path: Path, trusted: bool = False) -> dict[str, np.ndarray]:
     checksums checked, then unpacked: core.storage.compact), or the folder's mapped arrays
     (save_mapped), if it is one of our tables (`trusted`: core.storage.npz.read_npz's, for a
     file this program has just written)."""
-    arrays = map_arrays(path) if path.is_dir() else read_npz(path, trusted=trusted, mapped=True)
+    arrays = map_arrays(path) if path.is_dir() else read_npz(path, trusted=trusted)
     check = Checker(path)
     check.that(str(arrays.get("format", "")) == FORMAT, "missing format tag")
     check.that(arrays.get("version", np.array(-1)).shape == ()
