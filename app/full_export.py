@@ -14,21 +14,18 @@ from core.progress import Progress, Stepper
 TITLE = "Export at full resolution"
 #: Share of the progress bar the tiled run takes (the write takes the rest).
 RUN_SHARE = 0.9
-
-
 #: Share of the memory available now that the window's build may plan for.
 WINDOW_MEMORY_SHARE = 0.5
 STREAMED = (".las", ".laz")
 
 
 def window_points() -> int:
-    """Points the window can build in the memory available now (core.tiled.plan's
-    BYTES_PER_POINT of a 3D build)."""
-    import psutil
-
+    """Points the window can build in the memory available now (core.storage.memory, which
+    also heeds rlimits and cgroups; core.tiled.plan's BYTES_PER_POINT of a 3D build)."""
+    from core.storage.memory import available_memory
     from core.tiled.plan import BYTES_PER_POINT
 
-    return int(WINDOW_MEMORY_SHARE * psutil.virtual_memory().available // BYTES_PER_POINT[3])
+    return int(WINDOW_MEMORY_SHARE * available_memory() // BYTES_PER_POINT[3])
 
 
 def declared_points(path: Path) -> int | None:

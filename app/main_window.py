@@ -47,6 +47,8 @@ from core.modes.alpha_modes import Mode
 
 LAYOUT_DEPTH = 5  # rounds of layout requests a text change sends up (label, panel, dock, window)
 CLOSE_WAIT_MS = 2000  # how long closing waits for a running build before leaving it behind
+
+
 class MainWindow(QMainWindow):
     """Main window: 3D view in the centre, alpha/layers/info docks, status bar with progress."""
 

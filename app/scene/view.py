@@ -194,9 +194,8 @@ class Scene:
 
     def set_level_of_detail(self, dragging: bool) -> None:
         """While the slider is dragged: at most `lod_limit` cells a layer (its LOD_SHARE of
-        them, evenly picked),
-        thin lines, flat points and no anti-aliasing, so frames keep up; after it, the full
-        frame (one render)."""
+        them, evenly picked), thin lines, flat points and no anti-aliasing, so frames keep
+        up; after it, the full frame (one render)."""
         if dragging == (self.lod_cells is not None):
             return
         window, renderer = self.plotter.render_window, self.plotter.renderer

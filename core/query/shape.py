@@ -13,7 +13,7 @@ from core.query.alpha import threshold
 from core.query.index import TableIndex
 
 #: A facet taken from the suffix by interior (a gather, then a sort back into table order)
-#: costs about 20 times one of the contiguous pass over the prefix that entered (measured on
+#: costs about 24 times one of the contiguous pass over the prefix that entered (measured on
 #: a 200k-point scan's table).
 GATHER_COST = 24
 
