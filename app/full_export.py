@@ -4,10 +4,11 @@ point of the file at the window's alpha, as `alphascoop export --tiled` writes i
 
 from __future__ import annotations
 
+import importlib.util
 from pathlib import Path
 
 from app.dataset import Dataset, ImportOptions
-from app.tiled_cli import point_source, write_merged
+from app.tiled_cli import STREAMED, point_source, write_merged
 from core.complex import at_value
 from core.progress import Progress, Stepper
 
@@ -16,7 +17,6 @@ TITLE = "Export at full resolution"
 RUN_SHARE = 0.9
 #: Share of the memory available now that the window's build may plan for.
 WINDOW_MEMORY_SHARE = 0.5
-STREAMED = (".las", ".laz")
 
 
 def window_points() -> int:
@@ -61,6 +61,8 @@ def subsample_banner(dataset: Dataset) -> str | None:
 
 def refusal(dataset: Dataset) -> str | None:
     """Why this dataset cannot be exported at full resolution (None: it can)."""
+    if importlib.util.find_spec("distributed") is None:
+        return "it runs on Dask, which is not installed (pip install 'alphascoop[tiled]')"
     if dataset.molecule is not None:
         return "a molecule is never subsampled: use Export shape"
     if dataset.ac.mode.active:

@@ -11,11 +11,11 @@ runner was shut down) are dropped: listeners see exactly one outcome of the curr
 
 from __future__ import annotations
 
+import queue
 import sys
 import threading
 import traceback
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 from PySide6.QtCore import QObject, Signal
@@ -79,10 +79,12 @@ class Runner(QObject):
         """A one-thread pool: a new job waits for the previous one to stop. Its thread is a
         Python thread for the runner's life, not a Qt pool thread whose Python state is made
         and dropped around each job: pyproj 3.7 keeps a PROJ context per thread through that
-        state and crashed on a second job's CRS."""
+        state and crashed on a second job's CRS. The thread is a daemon: a job that ignores
+        Cancel is left behind at exit (closeEvent), it does not hold the process."""
         super().__init__(parent)
         self.exclusive = exclusive
-        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="alphascoop-job")
+        self._queue: queue.SimpleQueue = queue.SimpleQueue()
+        self._thread: threading.Thread | None = None  # started with the first job
         self._active = 0  # jobs submitted and not yet returned
         self._idle = threading.Condition()
         self._current = 0
@@ -118,7 +120,11 @@ class Runner(QObject):
         self._unfinished.add(request)
         with self._idle:
             self._active += 1
-        self._pool.submit(self._run, request, job, cancel)
+        if self._thread is None:
+            self._thread = threading.Thread(target=self._serve, name="alphascoop-job",
+                                            daemon=True)
+            self._thread.start()
+        self._queue.put((request, job, cancel))
         return request
 
     def cancel(self) -> None:
@@ -138,6 +144,11 @@ class Runner(QObject):
         stopped = self.wait(msecs)
         self._current += 1  # every outstanding request is stale from now on
         return stopped
+
+    def _serve(self) -> None:
+        """The runner's thread: run the queued jobs one after another, for its whole life."""
+        while True:
+            self._run(*self._queue.get())
 
     def _run(self, request: int, job: Job, cancel: threading.Event) -> None:
         """Worker-thread body: report exactly one outcome of request."""

@@ -8,7 +8,10 @@ core.obtain is the one path that reads and fills it; this module names, reads, w
 prunes entries. A corrupt or unreadable entry is deleted (and rebuilt by core.obtain), never
 an error; a cache that cannot be written is simply skipped. Temporary files of stores that
 were killed (a cancelled build process) are removed on every lookup and prune; only finished
-entries (named by their key) ever count as results.
+entries (named by their key) ever count as results. An entry whose members match the
+checksums written last is taken as this program wrote it, without the array-by-array checks
+a table file from elsewhere gets (core.storage.tables.load's trust_checksums): the checksums
+catch damage, not an entry crafted on purpose in the user's own cache folder.
 """
 
 from __future__ import annotations

@@ -97,7 +97,9 @@ class SkipGuard:
     @pytest.hookimpl(optionalhook=True)
     def pytest_testnodedown(self, node, error) -> None:
         """xdist controller: take in what a finished worker refused."""
-        self.refused.extend(getattr(node, "workeroutput", {}).get(WORKER_KEY, []))
+        seen = set(self.refused)  # a module skipped at collection is seen by every worker
+        self.refused.extend(line for line in getattr(node, "workeroutput", {}).get(WORKER_KEY, [])
+                            if line not in seen)
 
     @pytest.hookimpl(trylast=True)
     def pytest_sessionfinish(self, session: pytest.Session) -> None:

@@ -38,3 +38,32 @@ def test_every_job_runs_in_one_python_thread(qtbot):
                 (threading.current_thread().ident, threading.current_thread().name))))
     assert seen[0] == seen[1] and not seen[0][1].startswith("Dummy")
     assert runner.wait(1000) and not runner.is_busy()
+
+
+LEFT_BEHIND = """
+import os, time
+os.environ["QT_QPA_PLATFORM"] = "offscreen"
+from PySide6.QtCore import QCoreApplication
+from app.jobs import Job, Runner
+
+app = QCoreApplication([])
+runner = Runner()
+runner.start(Job("stuck", lambda progress, cancel: time.sleep(60)))  # ignores Cancel
+print(runner.shut_down(200))
+"""
+
+
+def test_a_job_that_ignores_cancel_does_not_hold_the_exit():
+    """Closing leaves a stuck job behind (CLOSE_WAIT_MS): the process still exits."""
+    import os
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    start = time.monotonic()
+    done = subprocess.run([sys.executable, "-c", LEFT_BEHIND], capture_output=True, text=True,
+                          cwd=root, env={**os.environ, "PYTHONPATH": str(root)}, timeout=120)
+    assert done.returncode == 0, done.stderr[-1500:]
+    assert done.stdout.strip() == "False" and time.monotonic() - start < 40

@@ -41,9 +41,10 @@ FOLDED = {"n": 500, "dim": 3, "jitter": 1e-13, "seed": 100}
 
 def certified_convex_cells(pts: np.ndarray) -> np.ndarray:
     """Qhull's cells of pts in their given order, certified: every one certified and no hull
-    facet with a point outside it (an exact brute force)."""
+    facet with a point outside it (an exact brute force), where Qhull's own hull had one."""
     tri = triangulate(pts)
     assert len(tri.kept) == len(pts)
+    assert hull_facets_with_a_point_outside(pts, tri.cells, tri.neighbors) > 0  # it folded
     out = certified_triangulation(pts, tri, point_ties(pts))
     assert out.uncertified == 0
     cells, nbs = out.triangulation.cells, out.triangulation.neighbors

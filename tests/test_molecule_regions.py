@@ -193,7 +193,8 @@ def test_cup_pocket_volume_and_area_exact_against_1e7_samples(radius, spread):
     assert abs(pockets.volume[0] - volume) < 4 * error
     pts, ball, weight = _sphere_points(facts.centres, facts.radii, 100, rng)
     locator = Locator(facts.centres, facts.cells, ac.face_ids(3), facts.facet_cells)
-    inside = pockets.cells[np.maximum(locator.locate(pts), 0)] == 0
+    cell = locator.locate(pts)  # -1 outside the hull
+    inside = (cell >= 0) & (pockets.cells[np.maximum(cell, 0)] == 0)
     exposed = inside.copy()
     exposed[inside] = _exposed(pts[inside], ball[inside], facts.centres, facts.radii)
     sampled, error = _sampled_area(exposed, ball, weight)

@@ -103,7 +103,7 @@ def test_on_xdist_workers_the_controller_fails_the_run_for_their_skips(tmp_path)
     assert done.returncode == 1, done.stdout
     refused = done.stdout.split("skips refused in CI")[1]
     assert "test_b.py::test_needs_a_library: could not import" in refused
-    assert "test_c.py: could not import" in refused
+    assert refused.count("test_c.py: could not import") == 1
     assert "test_d.py::test_hidden: xfail" in refused
     assert "test_known_gap" not in refused and "test_needs_the_shared_data" not in refused
 

@@ -502,7 +502,7 @@ def certify(points: np.ndarray, tri: Triangulation, ties: np.ndarray | None = No
             if mesh.flips == before:
                 break
         pending = np.unique(np.concatenate((t, u, np.arange(size, len(mesh.cells)))))
-    folded = _hull_not_convex(mesh)
+    folded = np.setdiff1d(_hull_not_convex(mesh), mesh.concave)  # a cell counted once
     mesh.concave = np.concatenate((mesh.concave, folded))
     concave += len(folded)
     broken = bool(mesh.flips) and not _valid(mesh)

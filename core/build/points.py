@@ -211,6 +211,8 @@ def canonical_order(points: np.ndarray) -> np.ndarray:
     keys = orderable_bits(points)
     differing = np.bitwise_or.reduce(keys ^ keys[0], axis=0)
     top = max(int(x).bit_length() for x in differing.tolist())
+    if top == 0:  # every point the same
+        return np.arange(m)
     width = 32 if dim == 2 else 21
     windows = [(max(high - width, 0), high) for high in range(top, 0, -width)]
     order = argsort_stable(_morton_word(keys, *windows[0]))

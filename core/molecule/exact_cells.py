@@ -12,6 +12,8 @@ no foreign ball meets and whose balls do not cross their opposite facets; the ot
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 from scipy.spatial import cKDTree
 
@@ -69,7 +71,7 @@ def near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.n
     lists = tree.query_ball_point(g, reach + facts.radii.max())
     count = np.fromiter(map(len, lists), np.int64, len(lists))
     i = np.repeat(np.arange(len(rows)), count)
-    j = np.fromiter((b for near in lists for b in near), np.int64, int(count.sum()))
+    j = np.fromiter(itertools.chain.from_iterable(lists), np.int64, int(count.sum()))
     x, r = facts.centres[j], facts.radii[j]
     keep = vertex[j] & (np.linalg.norm(x - g[i], axis=1) <= reach[i] + r)
     i, j, x, r = i[keep], j[keep], x[keep], r[keep]

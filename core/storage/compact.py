@@ -337,14 +337,14 @@ def pack(full: Mapping[str, np.ndarray]) -> Arrays:
 def _gives_back(derive: Callable[[Mapping], np.ndarray], context: Mapping, name: str) -> bool:
     try:
         return _same(derive(context), context[name])
-    except (IndexError, KeyError, ValueError):
+    except (IndexError, KeyError, TypeError, ValueError):
         return False
 
 
 def _unpacks_to(members: Arrays, full: Mapping[str, np.ndarray]) -> bool:
     try:
         got = unpack(members)
-    except (IndexError, KeyError, ValueError):
+    except (IndexError, KeyError, TypeError, ValueError):
         return False
     return set(got) == set(full) and all(_same(got[name], full[name]) for name in full)
 

@@ -8,7 +8,6 @@ MemoryError (or minutes of swapping) on every run.
 from __future__ import annotations
 
 import math
-import mmap
 import os
 import struct
 import zipfile
@@ -23,7 +22,6 @@ from core.errors import FileFormatError
 from core.storage.memory import available_memory
 
 MAX_DEFLATE_RATIO = 1100  # deflate expands at most ~1032:1; beyond that a size is a lie
-MAPS_FILES = os.name != "nt"  # a mapped file can still be replaced and removed
 _LOCAL_HEADER = struct.Struct("<4s5H3L2H")  # a zip member's local header (30 bytes)
 _HEADER_READERS = {(1, 0): np.lib.format.read_array_header_1_0,
                    (2, 0): np.lib.format.read_array_header_2_0}
@@ -96,30 +94,19 @@ def _data_offset(fh: BinaryIO, member: _Member, path: Path) -> int:
     return member.info.header_offset + len(local) + name_bytes + extra_bytes
 
 
-def _read_stored(fh: BinaryIO, member: _Member, path: Path, check_crc: bool,
-                 mapping: mmap.mmap | None) -> np.ndarray:
-    """An uncompressed member's array read straight from the file (one copy), or a read-only
-    view of the file's `mapping` (no copy); with `check_crc`, one CRC-32 pass over its bytes
-    compared with the zip's, as zipfile does while it reads, without its many small copies."""
+def _read_stored(fh: BinaryIO, member: _Member, path: Path, check_crc: bool) -> np.ndarray:
+    """An uncompressed member's array read straight from the file (one copy); with
+    `check_crc`, one CRC-32 pass over its bytes compared with the zip's, as zipfile does while
+    it reads, without its many small copies."""
     start = _data_offset(fh, member, path)
     shape = member.shape[::-1] if member.fortran else member.shape
-    nbytes = math.prod(shape) * member.dtype.itemsize
-    end = start + member.header_bytes + nbytes
-    if mapping is not None:
-        if end > len(mapping):
-            raise _bad(path, f"{member.info.filename} is cut short")
-        header = memoryview(mapping)[start:start + member.header_bytes]
-        out = np.ndarray(shape, dtype=member.dtype, buffer=mapping,
-                         offset=start + member.header_bytes)
-        data = memoryview(mapping)[start + member.header_bytes:end]
-    else:
-        out = np.empty(shape, dtype=member.dtype)
-        fh.seek(start)
-        header = fh.read(member.header_bytes)
-        data = out.reshape(-1).view(np.uint8)
-        if len(header) != member.header_bytes or (
-                out.nbytes and fh.readinto(data) != out.nbytes):
-            raise _bad(path, f"{member.info.filename} is cut short")
+    out = np.empty(shape, dtype=member.dtype)
+    fh.seek(start)
+    header = fh.read(member.header_bytes)
+    data = out.reshape(-1).view(np.uint8)
+    if len(header) != member.header_bytes or (
+            out.nbytes and fh.readinto(data) != out.nbytes):
+        raise _bad(path, f"{member.info.filename} is cut short")
     if check_crc and zlib.crc32(data, zlib.crc32(header)) != member.info.CRC:
         raise _bad(path, f"Bad CRC-32 for file {member.info.filename!r}")
     return out.T if member.fortran else out
@@ -133,17 +120,15 @@ class Arrays(dict):
     crcs: dict[str, int]
 
 
-def read_npz(path: str | os.PathLike, *, trusted: bool = False, mapped: bool = False
-             ) -> Arrays:
+def read_npz(path: str | os.PathLike, *, trusted: bool = False) -> Arrays:
     """Every array of the archive at `path` by name, after checking the declared sizes.
 
     FileFormatError (naming the file) for a missing, broken or lying archive. Uncompressed
     members (what this program writes) are read straight into their arrays and their
     CRC-32s compared with the zip's; `trusted`: a file this program wrote a moment ago,
     read without that CRC pass (the same arrays, in about half the time); never for a file
-    that waited on disk. `mapped`: those arrays are read-only views of the file mapped into
-    memory (no copy: its pages are the page cache's; where an open mapping keeps a file
-    from being replaced, Windows, they are read as usual).
+    that waited on disk. The arrays are the process's own, never views of the file (one cut
+    in place later would be a bus error where they are read).
     """
     path = Path(path)
     try:  # our own handle: np.load leaks the one it opens when the zip is broken
@@ -157,10 +142,7 @@ def read_npz(path: str | os.PathLike, *, trusted: bool = False, mapped: bool = F
             out.crcs = {m.info.filename: m.info.CRC for m in members}
             if all(m.info.compress_type == zipfile.ZIP_STORED
                    and m.info.compress_size == m.info.file_size for m in members):
-                mapping = (mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS_READ)
-                           if mapped and MAPS_FILES and archive_bytes else None)
-                out.update((m.name, _read_stored(fh, m, path, not trusted, mapping))
-                           for m in members)
+                out.update((m.name, _read_stored(fh, m, path, not trusted)) for m in members)
                 return out
             fh.seek(0)
             data = np.load(fh, allow_pickle=False)

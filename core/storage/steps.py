@@ -41,10 +41,7 @@ def decode(narrow: np.ndarray, far: np.ndarray, dtype: type = np.intp) -> np.nda
     """The steps `encode` narrowed, as `dtype`, in narrow's shape (ValueError when far does
     not fill the markers: a damaged or crafted pair)."""
     out = narrow.astype(dtype)
-    at = np.flatnonzero(narrow.reshape(-1) == marker(narrow.dtype))
-    if len(at) != len(far):
-        raise ValueError("steps and their far values disagree")
-    out.reshape(-1)[at] = far
+    out.reshape(-1)[_markers(narrow, far)] = far
     return out
 
 

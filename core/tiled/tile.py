@@ -14,6 +14,7 @@ from core.complex import AlphaComplex
 from core.errors import InputError
 from core.tiled.degenerate import line_tile
 from core.tiled.result import TileResult, global_ids
+from core.topology.signatures import facet_measures
 
 
 def compute_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray,
@@ -48,7 +49,7 @@ def compute_tile(rows: np.ndarray, coords: np.ndarray, in_core: np.ndarray,
         local = np.asarray(shape.regular_facets, dtype=np.int64)
         owned = local[_owner_in_core(ids, local, core_point)]
         regular = ids[owned]
-        boundary = facet_measure(np.asarray(ac.points), owned)
+        boundary = float(facet_measures(ac.points, owned).sum())
     used = np.sort(ids[touched])  # a mask, not np.unique of every simplex's vertices
     coords_of = input_coordinates(rows, coords, used)
     hidden = int(np.count_nonzero(in_core & (index < 0)))
@@ -93,15 +94,3 @@ def input_coordinates(rows: np.ndarray, coords: np.ndarray, used: np.ndarray) ->
     the tile), exactly as given (never rebuilt from a flat tile's plane)."""
     order = np.argsort(rows)
     return np.ascontiguousarray(coords[order[np.searchsorted(rows, used, sorter=order)]])
-
-
-def facet_measure(points: np.ndarray, facets: np.ndarray) -> float:
-    """Total length (2D edges) or area (3D triangles) of `facets` (f, dim) rows of
-    `points`."""
-    if len(facets) == 0:
-        return 0.0
-    p = points[facets]
-    if facets.shape[1] == 2:
-        return float(np.sum(np.linalg.norm(p[:, 1] - p[:, 0], axis=1)))
-    cross = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    return float(0.5 * np.sum(np.linalg.norm(cross, axis=1)))
