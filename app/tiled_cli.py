@@ -72,10 +72,11 @@ def point_source(path: str | Path, columns: str | None = None, subsample: int | 
                  weights: str | None = None, radius: str | None = None,
                  radius_add: float | None = None):
     """(chunked point source, georef, load report or None) of a file read with these
-    options: a plain LAS/LAZ is streamed (core.tiled.sources.LasSource), anything else is
-    read whole by core.io."""
+    options: a plain LAS/LAZ is streamed (core.tiled.sources.LasSource), and so is a big
+    plain text or PLY file (core.tiled.streams); anything else is read whole by core.io."""
     from core.io import read_points
     from core.tiled.sources import ArraySource, LasSource
+    from core.tiled.streams import streamed_source
 
     path = Path(path)
     plain = not (columns or subsample or weights or radius)
@@ -85,6 +86,9 @@ def point_source(path: str | Path, columns: str | None = None, subsample: int | 
 
             raise FileFormatError(f"{path}: no such file")
         return LasSource(path), None, None
+    source = streamed_source(path) if plain else None
+    if source is not None:
+        return source, None, None
     ps = read_points(path, columns=columns, subsample=subsample, weights=weights,
                      radius=radius, radius_add=radius_add)
     return ArraySource.from_points(ps.points, ps.weights), ps.report.georef, ps.report

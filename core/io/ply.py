@@ -20,7 +20,7 @@ COLOR_NAMES = (("red", "green", "blue"), ("r", "g", "b"), ("diffuse_red", "diffu
                                                            "diffuse_blue"))
 
 
-def _check_size(header: Header, body: int, path: Path) -> None:
+def check_size(header: Header, body: int, path: Path) -> None:
     """Refuse element counts the file is too small to hold (bogus or truncated headers)."""
     need = 0
     for el in header.elements:
@@ -106,7 +106,7 @@ def read_ply(path: Path, columns=None) -> tuple[np.ndarray, dict[str, np.ndarray
     with open(path, "rb") as fh:
         header = parse_header(fh, str(path))
         body_start = fh.tell()
-        _check_size(header, os.fstat(fh.fileno()).st_size - body_start, path)
+        check_size(header, os.fstat(fh.fileno()).st_size - body_start, path)
         table = _vertex_table(fh, header, path)
         faces = face_note(fh, body_start, header, len(table), str(path))
     names = table.dtype.names or ()

@@ -7,6 +7,7 @@ from __future__ import annotations
 import csv
 import itertools
 import re
+import warnings
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -74,12 +75,17 @@ def _without_counts(lines: Iterator[str], counts: list[int]) -> Iterator[str]:
             yield line
 
 
+def _fast_options(layout: Layout, usecols: list[int]) -> dict:
+    """np.loadtxt's options for this layout (numpy allows quotes with one comment marker only)."""
+    quoted = layout.delimiter is not None
+    return {"delimiter": layout.delimiter, "quotechar": '"' if quoted else None,
+            "usecols": usecols, "comments": "#" if quoted else COMMENTS, "ndmin": 2,
+            "dtype": np.float64}
+
+
 def _read_fast(path: Path, layout: Layout, usecols: list[int]) -> tuple[np.ndarray, list[int]]:
     """numpy's C parser; raises ValueError on anything unusual (missing values, ragged rows)."""
-    quoted = layout.delimiter is not None  # numpy allows quotes with one comment marker only
-    options = {"delimiter": layout.delimiter, "quotechar": '"' if quoted else None,
-               "usecols": usecols, "comments": "#" if quoted else COMMENTS, "ndmin": 2,
-               "dtype": np.float64}
+    options = _fast_options(layout, usecols)
     counts: list[int] = []
     if layout.style.plain and not layout.pts:
         return np.loadtxt(path, skiprows=layout.skiprows, encoding="utf-8-sig", **options), counts
@@ -87,17 +93,50 @@ def _read_fast(path: Path, layout: Layout, usecols: list[int]) -> tuple[np.ndarr
         return np.loadtxt(_lines(fh, layout, counts), **options), counts
 
 
-def _read_careful(path: Path, layout: Layout, usecols: list[int]) -> tuple[np.ndarray, list[int]]:
+def _first_line(layout: Layout) -> int:
+    """The line number (from 1) of the first line _lines yields."""
+    return 1 if layout.pts else layout.skiprows + 1
+
+
+def _parse_lines(lines: Iterable[str], layout: Layout, usecols: list[int], path: Path,
+                 first: int) -> np.ndarray:
     """Line by line: missing values become NaN; a bad value is reported with its line."""
-    out, counts = [], []
-    first = 1 if layout.pts else layout.skiprows + 1
+    out = []
+    for lineno, line in enumerate(lines, first):
+        if not line.strip() or line.lstrip().startswith(COMMENTS):
+            continue
+        row = split(uncomment(line), layout.delimiter)
+        out.append(_parse_row(row, usecols, path, lineno))
+    return np.array(out, dtype=np.float64).reshape(-1, len(usecols))
+
+
+def _read_careful(path: Path, layout: Layout, usecols: list[int]) -> tuple[np.ndarray, list[int]]:
+    """The whole file parsed line by line (_parse_lines)."""
+    counts: list[int] = []
     with open(path, encoding="utf-8-sig", errors="replace") as fh:
-        for lineno, line in enumerate(_lines(fh, layout, counts), first):
-            if not line.strip() or line.lstrip().startswith(COMMENTS):
-                continue
-            row = split(uncomment(line), layout.delimiter)
-            out.append(_parse_row(row, usecols, path, lineno))
-    return np.array(out, dtype=np.float64).reshape(-1, len(usecols)), counts
+        table = _parse_lines(_lines(fh, layout, counts), layout, usecols, path,
+                             _first_line(layout))
+    return table, counts
+
+
+def row_chunks(path: Path, layout: Layout, usecols: list[int], lines: int
+               ) -> Iterator[np.ndarray]:
+    """read_rows's table in pieces of at most `lines` lines, parsed alike (numpy's parser,
+    the careful pass for a piece it refuses), so a file bigger than memory can be streamed."""
+    options = _fast_options(layout, usecols)
+    first = _first_line(layout)
+    with open(path, encoding="utf-8-sig", errors="replace") as fh:
+        source = _lines(fh, layout, [])
+        while batch := list(itertools.islice(source, lines)):
+            try:
+                with warnings.catch_warnings():  # a piece of comments only holds no data
+                    warnings.filterwarnings("ignore", "loadtxt: input contained no data")
+                    table = np.loadtxt(batch, **options)
+            except ValueError:
+                table = _parse_lines(batch, layout, usecols, path, first)
+            first += len(batch)
+            if len(table):
+                yield table
 
 
 def pts_note(counts: list[int], n_rows: int) -> tuple[str, ...]:

@@ -1,10 +1,11 @@
 """Exact alpha shapes at one alpha, tile by tile: scans bigger than memory.
 
-Modules: plan (tile sizes from density and memory budget), partition (points into tiles
-with their margins, in memory or streamed to per-tile files), tile (one tile's complex,
+Modules: plan (tile sizes from density and memory budget), partition (points into tiles with
+their margins, in memory or streamed to per-tile files), tile (one tile's complex,
 classified, owned simplices in global ids), degenerate (tiles on a line), merge (union of
 the tiles, components, measures), memory (all of it in this process), sources (chunked
-readers), runner (tiles as Dask tasks), view (the merged shape seen by core.export).
+readers; LAS/LAZ), streams (big text and PLY files in chunks), runner (tiles as Dask tasks),
+view (the merged shape seen by core.export).
 
 Why the union of the tiles equals the whole complex at alpha
 ============================================================
