@@ -73,10 +73,10 @@ def point_source(path: str | Path, columns: str | None = None, subsample: int | 
                  radius_add: float | None = None):
     """(chunked point source, georef, load report or None) of a file read with these
     options: a plain LAS/LAZ is streamed (core.tiled.sources.LasSource), and so is a big
-    plain text or PLY file (core.tiled.streams); anything else is read whole by core.io."""
+    plain text or PLY file (core.io.streams); anything else is read whole by core.io."""
     from core.io import read_points
+    from core.io.streams import streamed_source
     from core.tiled.sources import ArraySource, LasSource
-    from core.tiled.streams import streamed_source
 
     path = Path(path)
     plain = not (columns or subsample or weights or radius)

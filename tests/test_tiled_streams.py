@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from core.errors import FileFormatError
+from core.io import streams
 from core.io.ply import read_ply
+from core.io.streams import PlySource, TextSource, streamed_source
 from core.io.text import read_text
-from core.tiled import streams
-from core.tiled.streams import PlySource, TextSource, streamed_source
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data"
 SHARED = SHARED if SHARED.is_dir() else Path("/work/shared/data")

@@ -2,7 +2,7 @@
 largest weight, flatness).
 
 LAS/LAZ files are streamed with laspy's chunked reader, so no step holds all points (big
-text and PLY files: core.tiled.streams); other files are read whole by core.io (as the
+text and PLY files: core.io.streams); other files are read whole by core.io (as the
 window and `alphascoop` read them) and then handed on in chunks. Planar 3D input is
 projected on its plane once, as core.build does.
 """

@@ -1,4 +1,4 @@
-"""Text and PLY point files streamed in chunks for tiled runs, parsed exactly as core.io
+"""Text and PLY point files read in chunks (for tiled runs), parsed exactly as core.io
 parses them whole, so a file bigger than memory never has all its points in one array.
 
 Only what a whole read would return unchanged is streamed: plain coordinates (no weight or
