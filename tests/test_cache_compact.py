@@ -165,3 +165,49 @@ def test_an_entry_of_the_layout_before_is_served(built, torus, tmp_path):
     for k in range(4):
         np.testing.assert_array_equal(got.complex.intervals(k), built.intervals(k))
     np.testing.assert_array_equal(got.complex.signatures().betti, built.signatures().betti)
+
+
+def _one_by_one(full: dict) -> dict:
+    """pack's members the slow way: each codec tried on its own, kept if it unpacks."""
+    out = dict(full)
+    for packer in compact.PACKERS:
+        trial = dict(out)
+        packer(full, trial)
+        if compact._unpacks_to(trial, full):
+            out = trial
+    out = compact._without_derived(full, out)
+    return out if compact._unpacks_to(out, full) else dict(full)
+
+
+@pytest.mark.parametrize("kind", sorted(TABLES))
+def test_pack_checks_a_usual_table_with_one_unpack(kind, tmp_path, monkeypatch):
+    """Every codec at once, checked by one unpack (a classic table); the members are the
+    ones codec-by-codec trials give, for every kind of table."""
+    full = dict(full_arrays(TABLES[kind], tmp_path / "full"))
+    want = _one_by_one(full)
+    calls = []
+    unpack = compact.unpack
+    monkeypatch.setattr(compact, "unpack", lambda m: calls.append(1) or unpack(m))
+    got = compact.pack(full)
+    assert sorted(got) == sorted(want)
+    assert all(got[n].dtype == want[n].dtype and got[n].tobytes() == want[n].tobytes()
+               for n in want)
+    if kind in ("2D", "3D"):
+        assert len(calls) == 1
+
+
+def test_a_codec_that_does_not_give_back_is_left_out(tmp_path, monkeypatch):
+    """One codec losing an array: the others still pack, and the entry unpacks exactly."""
+    full = dict(full_arrays(TABLES["3D"], tmp_path / "full"))
+
+    def lossy(a, out):
+        out["cell_measure"] = a["cell_measure"].astype(np.float32)
+
+    monkeypatch.setattr(compact, "PACKERS", (*compact.PACKERS[:3], lossy,
+                                             *compact.PACKERS[3:]))
+    got = compact.pack(full)
+    assert got["cell_measure"].dtype == np.float64
+    assert "simplices_2" not in got and "facet_flip" not in got  # the other codecs packed
+    back = compact.unpack(got)
+    assert sorted(back) == sorted(full)
+    assert all(back[n].tobytes() == full[n].tobytes() for n in full)
