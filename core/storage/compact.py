@@ -6,7 +6,7 @@ point on a scan, where every array stored took about 2,100).
 `unpack` turns them back, every array equal to the one packed (same dtype, same bits). Each
 codec below replaces some arrays; `pack` keeps an array as it is whenever its codec does not
 give it back exactly (a table of a mode whose values follow other rules, a weighted one), so
-the layout is never lossy. Derived, in one vectorized pass each:
+the layout is never lossy. Derived (core/storage/derived.py), one vectorized pass each:
 - a facet's regular and interior: the enter values of its cells 0 and 1 (cells are sorted
   by enter and cell 0 is the lower-numbered one; inf on the hull); a cell's are its enter;
 - face_ids_1 from the vertices' rows; the cells' face ids from facet_cells and
