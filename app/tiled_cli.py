@@ -35,7 +35,8 @@ def add_tiled_options(sub: argparse.ArgumentParser, count) -> None:
     group = sub.add_argument_group("tiled (exact shapes of point sets bigger than memory)")
     group.add_argument("--tiled", action="store_true",
                        help="compute the shape at --alpha/--alpha2 tile by tile (exact; "
-                            "LAS/LAZ streamed in chunks), on a local Dask cluster")
+                            "LAS/LAZ streamed in chunks, COPC read by its index), on a "
+                            "local Dask cluster")
     group.add_argument("--tile-points", type=count, metavar="N",
                        help="at most N points in a tile's core (default: from the memory)")
     group.add_argument("--memory-per-worker", type=memory_size, metavar="SIZE",

@@ -4,8 +4,13 @@ result is the in-memory one; a damaged file is one line and leaves no tile file.
 
 from __future__ import annotations
 
+import contextlib
+import os
 import shutil
+import socket
 import struct
+import subprocess
+import sys
 from pathlib import Path
 
 import laspy
@@ -32,7 +37,8 @@ from tests.tiled_reference import differences, mid_gap_alpha
 
 pytest.importorskip("distributed")
 
-LAS = Path(__file__).parent / "data" / "corpus" / "las"
+ROOT = Path(__file__).resolve().parents[1]
+LAS = ROOT / "tests" / "data" / "corpus" / "las"
 #: laspy's test COPC files: one hierarchy page, and the same points with a child page.
 COPC = [LAS / "laspy_simple.copc.laz", LAS / "laspy_simple_with_page.copc.laz"]
 
@@ -76,6 +82,20 @@ def test_rows_are_the_files_rows(path):
     theirs = np.column_stack([np.asarray(found.x), np.asarray(found.y), np.asarray(found.z)])
     assert 0 < len(theirs) == inside.sum()
     np.testing.assert_array_equal(np.sort(coords[inside], axis=0), np.sort(theirs, axis=0))
+
+
+def test_boxes_with_nodes_kept_between_reads():
+    """Random boxes one after another (coarse nodes kept between reads, few enough points
+    kept that some are let go): every box gives its nodes' points with their file rows."""
+    source, expected = CopcSource.open(COPC[0], chunk=150), file_points(COPC[0])
+    extent = np.ptp(expected, axis=0)
+    rng = np.random.default_rng(5)
+    for _ in range(60):
+        lo = expected.min(axis=0) + rng.random(3) * extent
+        rows, coords = source.box(lo, lo + rng.random(3) * extent / 3)
+        np.testing.assert_array_equal(coords, expected[rows])
+        assert np.all(np.diff(rows) > 0)
+        assert sum(len(c) for c in source.kept.values()) <= 150
 
 
 def test_tiles_read_by_box_are_the_streamed_tiles(tmp_path):
@@ -144,6 +164,27 @@ def test_damaged_copc_is_one_line(tmp_path, capsys, monkeypatch):
         assert code == 1, name
         assert len(err.splitlines()) == 1 and "COPC" in err, (name, err)
         assert not scratch.exists() or list(scratch.iterdir()) == [], name
+
+
+def test_damage_found_while_the_cluster_starts_is_one_line(tmp_path):
+    """A bad chunk is found after the local cluster began to start, with distributed's
+    default HTTP port 8787 taken (as by another cluster): the process's stderr is the one
+    line still (distributed warned of the port there)."""
+    path = damaged_copies(tmp_path)["chunk"]
+    env = {**os.environ, "ALPHASCOOP_CACHE_DIR": str(tmp_path / "cache"),
+           "PYTHONPATH": str(ROOT)}
+    with socket.socket() as busy:
+        with contextlib.suppress(OSError):  # already taken: the case itself
+            busy.bind(("127.0.0.1", 8787))
+            busy.listen()
+        result = subprocess.run(
+            [sys.executable, "-m", "app", "info", str(path), "--alpha", "60", "--tiled",
+             "--tile-points", "100", "--scratch", str(tmp_path / "scratch")],
+            capture_output=True, text=True, env=env, cwd=tmp_path, timeout=120)
+    assert result.returncode == 1
+    assert result.stderr.startswith("alphascoop: error: ")
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr
+    assert list((tmp_path / "scratch").iterdir()) == []
 
 
 def test_damage_met_while_reading_tiles_leaves_no_tile_file(tmp_path):

@@ -13,8 +13,9 @@ the row laspy's chunked reader gives it.
 from __future__ import annotations
 
 import os
+from collections import OrderedDict
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -42,7 +43,7 @@ def is_copc(path: str | os.PathLike) -> bool:
 class Octree:
     """The nodes that hold points, in file order: `lo`, `hi` (k, 3) float64 boxes, `offset`,
     `size` (k,) int64 byte range of each LAZ chunk, `count` (k,) points, `first` (k,) row
-    of each node's first point in the file."""
+    of each node's first point in the file, `level` (k,) its depth in the octree."""
 
     lo: np.ndarray
     hi: np.ndarray
@@ -50,12 +51,15 @@ class Octree:
     size: np.ndarray
     count: np.ndarray
     first: np.ndarray
+    level: np.ndarray
 
 
 @dataclass(frozen=True)
 class CopcSource:
     """A COPC file: streamed node by node in file order (`chunks`, as core.tiled.sources),
-    or read by box through its octree (`box`). Open it with `CopcSource.open`."""
+    or read by box through its octree (`box`). Open it with `CopcSource.open`. `chunk`
+    bounds the points of a streamed chunk and of the nodes `box` keeps decoded between
+    calls (`kept`: the coarse nodes that neighbouring tiles read again)."""
 
     path: Path
     octree: Octree
@@ -68,6 +72,7 @@ class CopcSource:
     frame: None = None
     ambient_dim: int = 3
     dim: int = 3
+    kept: OrderedDict = field(default_factory=OrderedDict, compare=False, repr=False)
 
     @classmethod
     def open(cls, path: str | os.PathLike, chunk: int = CHUNK_POINTS) -> CopcSource:
@@ -122,10 +127,27 @@ class CopcSource:
         meets = np.all((tree.lo - slack <= np.asarray(hi)) & (np.asarray(lo) <= tree.hi + slack),
                        axis=1)
         nodes = np.flatnonzero(meets)
-        coords = self._decode(nodes)
+        coords = self._recalled(nodes)
         rows = np.repeat(tree.first[nodes] - np.cumsum(tree.count[nodes]) + tree.count[nodes],
                          tree.count[nodes]) + np.arange(len(coords))
         return rows, coords
+
+    def _recalled(self, nodes: np.ndarray) -> np.ndarray:
+        """(n, 3) coordinates of `nodes` (file order): the kept ones as kept, the others
+        decoded; then the coarsest are kept first, least recently used out beyond `chunk`
+        points."""
+        tree, kept = self.octree, self.kept
+        missing = np.asarray([n for n in nodes.tolist() if n not in kept], dtype=np.int64)
+        fresh = self._decode(missing)
+        parts = {} if len(missing) == 0 else dict(zip(
+            missing.tolist(), np.split(fresh, np.cumsum(tree.count[missing])[:-1]), strict=True))
+        out = [kept[n] if n in kept else parts[n] for n in nodes.tolist()]
+        for n in nodes[np.argsort(-tree.level[nodes], kind="stable")].tolist():
+            kept[n] = kept.pop(n) if n in kept else parts[n]
+        held = sum(len(c) for c in kept.values())
+        while held > self.chunk:
+            held -= len(kept.popitem(last=False)[1])
+        return np.concatenate(out) if out else np.empty((0, 3))
 
     @property
     def _slack(self) -> float:
@@ -231,7 +253,7 @@ def _octree(fh, header, info, file_size: int) -> Octree:
     side = 2.0 * halfsize / np.ldexp(1.0, level[order])[:, None]
     lo = centre - halfsize + cells[order] * side
     first = np.cumsum(count) - count
-    return Octree(lo, lo + side, offset, size, count, first)
+    return Octree(lo, lo + side, offset, size, count, first, level[order])
 
 
 def _entries(fh, root: int, root_size: int, file_size: int) -> np.ndarray:

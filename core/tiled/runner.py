@@ -167,7 +167,9 @@ def partition_boxes(source: CopcSource, plan: TilePlan, scratch: Path, options: 
 def client_for(options: RunOptions, workers: int, memory: int, scratch: Path):
     """A distributed Client: of the cluster at `options.scheduler`, or of a new local
     cluster of `workers` single-threaded processes with `memory` bytes each (on
-    127.0.0.1, no dashboard, their own files under `scratch`)."""
+    127.0.0.1, no dashboard, their own files under `scratch`). The scheduler's HTTP
+    server, which it starts even without a dashboard, takes a free port: on its default
+    8787, taken by another cluster, distributed warns on stderr."""
     from distributed import Client, LocalCluster
 
     if options.scheduler:
@@ -177,7 +179,8 @@ def client_for(options: RunOptions, workers: int, memory: int, scratch: Path):
     with dask.config.set({"temporary-directory": str(scratch / "workers")}):
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                memory_limit=memory, host="127.0.0.1",
-                               dashboard_address=None, local_directory=str(scratch / "workers"))
+                               dashboard_address=None, local_directory=str(scratch / "workers"),
+                               scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
     return Client(cluster)
 
 

@@ -1,7 +1,8 @@
 """Point sources read in chunks for tiled runs, and the first pass over them (bounds, count,
 largest weight, flatness).
 
-LAS/LAZ files are streamed with laspy's chunked reader, so no step holds all points; other
+LAS/LAZ files are streamed with laspy's chunked reader, so no step holds all points (COPC
+files node by node, and read by box through their octree: core.tiled.copc); other
 formats are read whole by core.io (as the window and `alphascoop` read them) and then
 handed on in chunks. Planar 3D input is projected on its plane once, as core.build does.
 """
