@@ -93,7 +93,8 @@ def las_source(path: Path):
     header checks core.io makes, so laspy never reads a corrupt VLR count)."""
     from core.errors import FileFormatError
     from core.io.las_checks import check_las_file
-    from core.tiled.copc import CopcSource, is_copc
+    from core.tiled.copc import CopcSource
+    from core.tiled.octree import is_copc
     from core.tiled.sources import LasSource
 
     if not path.is_file():

@@ -105,7 +105,7 @@ def test_tiles_read_by_box_are_the_streamed_tiles(tmp_path):
     copc, streamed = CopcSource.open(COPC[1]), LasSource(COPC[1], chunk=100)
     q, options = query(alpha=60.0), RunOptions(tile_points=120)
     seen, indexed = survey(streamed), survey(copc)
-    assert indexed.count == seen.count
+    assert indexed.count == seen.count and copc.index_holds
     np.testing.assert_array_equal(np.r_[indexed.lo, indexed.hi], np.r_[seen.lo, seen.hi])
     plan = plan_source(streamed, seen, q, options, 1, 1 << 30)
     report = RunReport()
@@ -133,6 +133,33 @@ def test_tiled_run_equals_in_memory(tmp_path):
     assert merged.n_tiles >= 8
     assert max(report.read.values()) < len(points)  # each tile read part of the file
     assert list(tmp_path.iterdir()) == []
+
+
+def test_points_outside_their_node_stream_as_plain_laz(tmp_path):
+    """A hierarchy that puts a node in another cell of its level (its points then lie
+    outside its box): the boxes would miss them, so the run streams the file as a plain
+    LAZ (no box read) and still equals the in-memory result."""
+    data = bytearray(COPC[0].read_bytes())
+    with laspy.open(str(COPC[0])) as reader:
+        info = next(v for v in reader.header.vlrs if isinstance(v, laspy.copc.CopcInfoVlr))
+    entry = np.dtype([("key", "<i4", 4), ("offset", "<u8"), ("size", "<i4"),
+                      ("count", "<i4")])  # COPC 1.0's hierarchy entry
+    start = info.hierarchy_root_offset
+    page = np.frombuffer(bytes(data[start:start + info.hierarchy_root_size]), entry).copy()
+    node = int(np.flatnonzero((page["key"][:, 0] == 3) & (page["count"] > 0))[0])
+    page["key"][node, 1:3] = 7 - page["key"][node, 1:3]
+    data[start:start + info.hierarchy_root_size] = page.tobytes()
+    path = tmp_path / "moved.copc.laz"
+    path.write_bytes(bytes(data))
+    points = file_points(path)
+    ac = AlphaComplex.from_points(points)
+    at = {"alpha": mid_gap_alpha(ac, 0.6)}
+    source, report = las_source(path), RunReport()
+    assert isinstance(source, CopcSource)
+    merged = tiled_run(source, query(**at), RunOptions(workers=1, memory_per_worker=1 << 30,
+                                                       tile_points=100), report)
+    assert differences(ac, merged, at) == []
+    assert not source.index_holds and report.read == {}
 
 
 def damaged_copies(tmp_path: Path) -> dict[str, Path]:

@@ -130,10 +130,10 @@ def plan_source(source, seen: Survey, q: Query, options: RunOptions, workers: in
 
 def partition_source(source, plan: TilePlan, scratch: Path, options: RunOptions,
                      count: int, report: RunReport | None = None) -> list[int]:
-    """The third pass: every chunk into the part files of its tiles (a COPC file: each
-    tile's box through the octree, `partition_boxes`); the tiles that have core points,
-    ascending."""
-    if isinstance(source, CopcSource):
+    """The third pass: every chunk into the part files of its tiles (a COPC file whose
+    points all lie in their octree nodes: each tile's box through the octree,
+    `partition_boxes`); the tiles that have core points, ascending."""
+    if isinstance(source, CopcSource) and source.index_holds:
         return partition_boxes(source, plan, scratch, options,
                                report if report is not None else RunReport())
     tiles: set[int] = set()
