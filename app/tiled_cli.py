@@ -35,7 +35,8 @@ def add_tiled_options(sub: argparse.ArgumentParser, count) -> None:
     group = sub.add_argument_group("tiled (exact shapes of point sets bigger than memory)")
     group.add_argument("--tiled", action="store_true",
                        help="compute the shape at --alpha/--alpha2 tile by tile (exact; "
-                            "LAS/LAZ streamed in chunks), on a local Dask cluster")
+                            "LAS/LAZ streamed in chunks, COPC read by its index), on a "
+                            "local Dask cluster")
     group.add_argument("--tile-points", type=count, metavar="N",
                        help="at most N points in a tile's core (default: from the memory)")
     group.add_argument("--memory-per-worker", type=memory_size, metavar="SIZE",
@@ -72,26 +73,44 @@ def point_source(path: str | Path, columns: str | None = None, subsample: int | 
                  weights: str | None = None, radius: str | None = None,
                  radius_add: float | None = None):
     """(chunked point source, georef, load report or None) of a file read with these
-    options: a plain LAS/LAZ is streamed (core.tiled.sources.LasSource), and so is a big
-    plain text or PLY file (core.io.streams); anything else is read whole by core.io."""
+    options: a plain LAS/LAZ is streamed (core.tiled.sources.LasSource), a COPC file (the
+    COPC VLR, whatever its name) read by its octree (core.tiled.copc.CopcSource), a big
+    plain text or PLY file streamed (core.io.streams); anything else is read whole by
+    core.io."""
     from core.io import read_points
     from core.io.streams import streamed_source
-    from core.tiled.sources import ArraySource, LasSource
+    from core.tiled.sources import ArraySource
 
     path = Path(path)
     plain = not (columns or subsample or weights or radius)
     if path.suffix.lower() in STREAMED and plain:
-        if not path.is_file():
-            from core.errors import FileFormatError
-
-            raise FileFormatError(f"{path}: no such file")
-        return LasSource(path), None, None
+        return las_source(path), None, None
     source = streamed_source(path) if plain else None
     if source is not None:
         return source, None, None
     ps = read_points(path, columns=columns, subsample=subsample, weights=weights,
                      radius=radius, radius_add=radius_add)
     return ArraySource.from_points(ps.points, ps.weights), ps.report.georef, ps.report
+
+
+def las_source(path: Path):
+    """The chunked source of a LAS/LAZ file: by its index if the file is COPC (after the
+    header checks core.io makes, so laspy never reads a corrupt VLR count)."""
+    from core.errors import FileFormatError
+    from core.io.las_checks import check_las_file
+    from core.tiled.copc import CopcSource
+    from core.tiled.octree import is_copc
+    from core.tiled.sources import LasSource
+
+    if not path.is_file():
+        raise FileFormatError(f"{path}: no such file")
+    check_las_file(path)
+    try:
+        copc = is_copc(path)
+    except Exception as exc:  # laspy on a header it cannot parse
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise FileFormatError(f"{path}: not a readable LAS/LAZ file ({reason})") from exc
+    return CopcSource.open(path) if copc else LasSource(path)
 
 
 def run_tiled(args, progress=None):

@@ -2,7 +2,8 @@
 
 In memory (`tile_groups`) for arrays, and streamed (`write_parts`) for inputs larger than
 memory: each chunk of points is split and appended to per-tile .npy files under a scratch
-folder, so no step holds more than one chunk (plus one tile, in the tile's task).
+folder, so no step holds more than one chunk (plus one tile, in the tile's task). A source
+read by box (COPC) writes each tile's points at once (`write_tile`).
 """
 
 from __future__ import annotations
@@ -58,11 +59,26 @@ def write_parts(plan: TilePlan, scratch: Path, chunk: int, first_row: int,
     table = np.column_stack(columns)
     starts = np.flatnonzero(np.r_[True, tiles[1:] != tiles[:-1]])
     for lo, hi in zip(starts, np.r_[starts[1:], len(tiles)], strict=True):
-        folder = tile_folder(scratch, int(tiles[lo]))
-        os.makedirs(folder, exist_ok=True)
-        with atomic_path(folder / f"c{chunk:06d}.npy") as tmp, open(tmp, "wb") as fh:
-            np.save(fh, table[lo:hi], allow_pickle=False)
+        _save_part(scratch, int(tiles[lo]), chunk, table[lo:hi])
     return {int(t) for t in np.unique(tiles[in_core])}
+
+
+def write_tile(scratch: Path, tile: int, rows: np.ndarray, in_core: np.ndarray,
+               coords: np.ndarray, weights: np.ndarray | None) -> None:
+    """One tile's points at once (input `rows` ascending), as the one part file
+    `write_parts` would have split them into (a source read by box: core.tiled.copc)."""
+    columns = [rows.astype(np.float64), in_core.astype(np.float64), *coords.T]
+    if weights is not None:
+        columns.append(weights)
+    _save_part(scratch, tile, 0, np.column_stack(columns))
+
+
+def _save_part(scratch: Path, tile: int, chunk: int, table: np.ndarray) -> None:
+    """Write one part file of a tile atomically."""
+    folder = tile_folder(scratch, tile)
+    os.makedirs(folder, exist_ok=True)
+    with atomic_path(folder / f"c{chunk:06d}.npy") as tmp, open(tmp, "wb") as fh:
+        np.save(fh, table, allow_pickle=False)
 
 
 def read_tile(folder: Path, dim: int, weighted: bool

@@ -72,6 +72,27 @@ class TilePlan:
             tiles.append(np.ravel_multi_index((lo[inside] + step).T, self.shape))
         return np.concatenate(rows), np.concatenate(tiles)
 
+    def members(self, points: np.ndarray, tile: int) -> tuple[np.ndarray, np.ndarray]:
+        """((n,) bool, (n,) bool): which `points` `touching` pairs with `tile` (its core
+        grown by the margin), and which lie in its core (the same arithmetic)."""
+        index = np.asarray(np.unravel_index(tile, self.shape), dtype=np.int64)
+        lo = self._grid(points, -self.margin)
+        hi = self._grid(points, self.margin)
+        in_tile = np.all((lo <= index) & (index <= hi), axis=1)
+        return in_tile, np.all(self._grid(points, 0.0) == index, axis=1)
+
+    def reach(self, tile: int) -> tuple[np.ndarray, np.ndarray]:
+        """(lo, hi) (d,) a box holding every point `members` pairs with `tile`: its core
+        grown by the margin and a rounding slack, unbounded beyond the grid's ends (points
+        there are clipped into the outer tiles)."""
+        lo, hi = self.box(tile)
+        index = np.asarray(np.unravel_index(tile, self.shape))
+        slack = self.margin + MARGIN_RTOL * self.side + 64.0 * np.spacing(
+            np.abs(np.r_[lo, hi]).max())
+        lo = np.where(index == 0, -np.inf, lo - slack)
+        hi = np.where(index == np.asarray(self.shape) - 1, np.inf, hi + slack)
+        return lo, hi
+
     def box(self, tile: int) -> tuple[np.ndarray, np.ndarray]:
         """(lo, hi) (d,) corners of a tile's nominal core (points beyond the grid's ends are
         clipped into its outer tiles)."""

@@ -24,9 +24,10 @@ import numpy as np
 from core.errors import AlphaScoopError
 from core.progress import Progress
 from core.storage.atomic import atomic_path
+from core.tiled.copc import CopcSource
 from core.tiled.memory import Query
 from core.tiled.merge import TiledShape, merge_tiles
-from core.tiled.partition import read_tile, tile_folder, write_parts
+from core.tiled.partition import read_tile, tile_folder, write_parts, write_tile
 from core.tiled.plan import (
     TilePlan,
     histogram,
@@ -69,11 +70,13 @@ class RunOptions:
 @dataclass
 class RunReport:
     """What a run did: tiles, the plan, seconds per stage, each tile's points, seconds and
-    its worker's peak memory (bytes)."""
+    its worker's peak memory (bytes); for a source read by box (COPC), the points each
+    tile's box query decoded (`read`, by tile)."""
 
     plan: TilePlan | None = None
     seconds: dict[str, float] = field(default_factory=dict)
     tiles: list[dict] = field(default_factory=list)
+    read: dict[int, int] = field(default_factory=dict)
 
     @property
     def peak_worker_bytes(self) -> int:
@@ -126,9 +129,13 @@ def plan_source(source, seen: Survey, q: Query, options: RunOptions, workers: in
 
 
 def partition_source(source, plan: TilePlan, scratch: Path, options: RunOptions,
-                     count: int) -> list[int]:
-    """The third pass: every chunk into the part files of its tiles; the tiles that have
-    core points, ascending."""
+                     count: int, report: RunReport | None = None) -> list[int]:
+    """The third pass: every chunk into the part files of its tiles (a COPC file whose
+    points all lie in their octree nodes: each tile's box through the octree,
+    `partition_boxes`); the tiles that have core points, ascending."""
+    if isinstance(source, CopcSource) and source.index_holds:
+        return partition_boxes(source, plan, scratch, options,
+                               report if report is not None else RunReport())
     tiles: set[int] = set()
     first = 0
     for chunk, (coords, weights) in enumerate(source.chunks()):
@@ -138,10 +145,31 @@ def partition_source(source, plan: TilePlan, scratch: Path, options: RunOptions,
     return sorted(tiles)
 
 
+def partition_boxes(source: CopcSource, plan: TilePlan, scratch: Path, options: RunOptions,
+                    report: RunReport) -> list[int]:
+    """Each tile's points read by its box (core and margin) through the source's index, only
+    the octree nodes meeting it decoded: the same rows and the same part of each point as
+    the streamed pass gives (`plan.members` is `plan.touching` for one tile); what each
+    box read goes to `report.read`."""
+    tiles = []
+    for tile in range(plan.n_tiles):
+        rows, coords = source.box(*plan.reach(tile))
+        report.read[tile] = len(rows)
+        in_tile, in_core = plan.members(coords, tile)
+        if in_core.any():
+            write_tile(scratch, tile, rows[in_tile], in_core[in_tile], coords[in_tile], None)
+            tiles.append(tile)
+        _step(options, 0.05 + 0.25 * (tile + 1) / plan.n_tiles,
+              "reading the tiles through the COPC index")
+    return tiles
+
+
 def client_for(options: RunOptions, workers: int, memory: int, scratch: Path):
     """A distributed Client: of the cluster at `options.scheduler`, or of a new local
     cluster of `workers` single-threaded processes with `memory` bytes each (on
-    127.0.0.1, no dashboard, their own files under `scratch`)."""
+    127.0.0.1, no dashboard, their own files under `scratch`). The scheduler's HTTP
+    server, which it starts even without a dashboard, takes a free port: on its default
+    8787, taken by another cluster, distributed warns on stderr."""
     from distributed import Client, LocalCluster
 
     if options.scheduler:
@@ -151,7 +179,8 @@ def client_for(options: RunOptions, workers: int, memory: int, scratch: Path):
     with dask.config.set({"temporary-directory": str(scratch / "workers")}):
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                memory_limit=memory, host="127.0.0.1",
-                               dashboard_address=None, local_directory=str(scratch / "workers"))
+                               dashboard_address=None, local_directory=str(scratch / "workers"),
+                               scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
     return Client(cluster)
 
 
@@ -230,7 +259,7 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         _step(options, 0.0, "reading the points")
         seen = survey(source)
         plan = report.plan = plan_source(source, seen, q, options, workers, memory)
-        tiles = partition_source(source, plan, scratch, options, seen.count)
+        tiles = partition_source(source, plan, scratch, options, seen.count, report)
         report.seconds["partition"] = time.perf_counter() - clock
         clock = time.perf_counter()
         _step(options, 0.3, "starting the workers")

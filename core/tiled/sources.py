@@ -1,10 +1,11 @@
 """Point sources read in chunks for tiled runs, and the first pass over them (bounds, count,
 largest weight, flatness).
 
-LAS/LAZ files are streamed with laspy's chunked reader, so no step holds all points (big
-text and PLY files: core.io.streams); other files are read whole by core.io (as the
-window and `alphascoop` read them) and then handed on in chunks. Planar 3D input is
-projected on its plane once, as core.build does.
+LAS/LAZ files are streamed with laspy's chunked reader, so no step holds all points (COPC
+files node by node, and read by box through their octree: core.tiled.copc; big text and
+PLY files: core.io.streams); other files are read whole by core.io (as the window and
+`alphascoop` read them) and then handed on in chunks. Planar 3D input is projected on its
+plane once, as core.build does.
 """
 
 from __future__ import annotations
