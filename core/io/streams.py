@@ -173,7 +173,7 @@ def _text_rows(fh, vertex: Element, skip: int, chunk: int) -> Iterator[np.ndarra
     types (a short file ends early)."""
     text = io.TextIOWrapper(fh, encoding="ascii", errors="replace")
     try:
-        lines = itertools.islice(text, skip, skip + vertex.n)
+        lines = itertools.islice(_data_lines(itertools.islice(text, skip, None)), vertex.n)
         while batch := list(itertools.islice(lines, chunk)):
             try:
                 values = np.loadtxt(batch, dtype=np.float64, ndmin=2,
@@ -187,6 +187,12 @@ def _text_rows(fh, vertex: Element, skip: int, chunk: int) -> Iterator[np.ndarra
             yield table
     finally:
         text.detach()
+
+
+def _data_lines(lines: Iterator[str]) -> Iterator[str]:
+    """The lines holding values: np.loadtxt, reading a whole vertex element, passes over
+    blank and '#' comment lines without counting them as rows."""
+    return (line for line in lines if line.split("#", 1)[0].strip())
 
 
 def streamed_source(path: Path, stream_from: int | None = None, chunk: int = CHUNK_ROWS
