@@ -203,3 +203,17 @@ def test_ascii_ply_blank_and_comment_lines_among_vertices(tmp_path):
     for chunk in (1, 2, 8):
         assert streamed(PlySource.open(path, chunk=chunk)).tobytes() == whole.tobytes()
 
+
+
+def test_ply_radius_property_is_not_streamed(tmp_path):
+    """A whole read squares a PLY 'radius' property into weights: such a file is read whole,
+    never streamed as plain points."""
+    from core.io import read_points
+
+    path = tmp_path / "balls.ply"
+    path.write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\n"
+                    "property double y\nproperty double radius\nend_header\n"
+                    "0 0 1\n1 0 2\n0 1 3\n")
+    assert read_points(path).weights.tolist() == [1.0, 4.0, 9.0]
+    assert streamed_source(path, stream_from=0) is None
+

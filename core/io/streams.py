@@ -100,10 +100,10 @@ class PlySource:
     @classmethod
     def open(cls, path: Path, chunk: int = CHUNK_ROWS) -> PlySource | None:
         """The source, or None when the vertex element cannot be streamed (list properties,
-        list elements before it in a binary file, a weight property)."""
+        list elements before it in a binary file, a weight or radius property)."""
         _, before, vertex = _layout(path)
         names = [p.name for p in vertex.properties]
-        if vertex.has_lists or any(n in WEIGHT_NAMES for n in names):
+        if vertex.has_lists or any(n in (*WEIGHT_NAMES, "radius") for n in names):
             return None
         if any(e.has_lists for e in before):
             return None
