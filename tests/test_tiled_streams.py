@@ -217,3 +217,25 @@ def test_ply_radius_property_is_not_streamed(tmp_path):
     assert read_points(path).weights.tolist() == [1.0, 4.0, 9.0]
     assert streamed_source(path, stream_from=0) is None
 
+
+
+@pytest.mark.parametrize("kind", ["xyz", "ply"])
+def test_too_large_coordinate_refused_as_the_whole_read_does(tmp_path, kind):
+    """A coordinate beyond what an alpha shape can measure is the whole read's one-line
+    error, naming the same point, not a later failure of the tiled run."""
+    from core.io import read_points
+
+    points = cloud(60)
+    points[10, 0], points[41, 1] = np.nan, 1e200
+    path = tmp_path / f"huge.{kind}"
+    if kind == "ply":
+        write_ply(path, points, "binary_little_endian")
+    else:
+        path.write_text("\n".join(" ".join(repr(v) for v in p) for p in points.tolist())
+                        + "\n")
+    with pytest.raises(FileFormatError) as whole:
+        read_points(path)
+    with pytest.raises(FileFormatError) as parts:
+        streamed(streamed_source(path, stream_from=0, chunk=8))
+    assert str(parts.value) == str(whole.value)
+    assert "point 42" in str(parts.value)

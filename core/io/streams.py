@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
+from core.build.points import first_too_large, too_large_message
 from core.errors import FileFormatError
 from core.io.geographic import geographic_axes
 from core.io.ply import WEIGHT_NAMES, check_size
@@ -43,8 +44,13 @@ def _readable(path: Path) -> Iterator[None]:
                               ) from exc
 
 
-def _finite(xyz: np.ndarray) -> np.ndarray:
-    """Rows with finite coordinates only (core.io drops the others too)."""
+def _finite(xyz: np.ndarray, path: Path, first: int) -> np.ndarray:
+    """Rows with finite coordinates only (core.io drops the others too); a coordinate too
+    large for an alpha shape is core.io's error, naming its point (rows from `first`)."""
+    extreme = first_too_large(xyz)
+    if extreme is not None:
+        row, value = extreme
+        raise FileFormatError(f"{path}: {too_large_message(xyz, first + row, value)}")
     return xyz[np.isfinite(xyz).all(axis=1)]
 
 
@@ -83,8 +89,10 @@ class TextSource:
     def chunks(self) -> Iterator[tuple[np.ndarray, None]]:
         """(coords, None) chunks in file order."""
         with _readable(self.path):
+            first = 0
             for table in row_chunks(self.path, self.layout, list(self.usecols), self.chunk):
-                yield _finite(table), None
+                yield _finite(table, self.path, first), None
+                first += len(table)
 
 
 @dataclass(frozen=True)
@@ -129,9 +137,9 @@ class PlySource:
                       if header.text else _binary_rows(fh, vertex, before, self.chunk))
             read = 0
             for table in tables:
-                read += len(table)
                 xyz = np.column_stack([table[a] for a in self.axes]).astype(np.float64)
-                yield _finite(xyz), None
+                yield _finite(xyz, self.path, read), None
+                read += len(table)
         if read < vertex.n:
             raise FileFormatError(f"{self.path}: truncated PLY ({read:,} of {vertex.n:,} "
                                   "vertices)")
