@@ -239,3 +239,24 @@ def test_too_large_coordinate_refused_as_the_whole_read_does(tmp_path, kind):
         streamed(streamed_source(path, stream_from=0, chunk=8))
     assert str(parts.value) == str(whole.value)
     assert "point 42" in str(parts.value)
+
+
+@pytest.mark.parametrize("kind", ["xyz", "ply"])
+def test_nul_bytes_refused_before_streaming(tmp_path, kind):
+    """A text file (or ASCII PLY) whose tail is NUL bytes (damaged, or sparse: its holes
+    would be one endless line) is refused with the whole read's error before any chunk."""
+    from core.io import read_points
+
+    path = tmp_path / f"holes.{kind}"
+    if kind == "ply":
+        write_ply(path, cloud(2000), "ascii")
+    else:
+        path.write_text(TEXTS["plain.xyz"](cloud(2000).tolist()) + "\n")
+    with open(path, "ab") as fh:
+        fh.write(bytes(1 << 20))
+    with pytest.raises(FileFormatError) as whole:
+        read_points(path)
+    with pytest.raises(FileFormatError) as parts:
+        streamed(streamed_source(path, stream_from=0, chunk=64))
+    assert str(parts.value) == str(whole.value)
+    assert "NUL" in str(parts.value)

@@ -23,6 +23,7 @@ from core.errors import FileFormatError
 from core.io.geographic import geographic_axes
 from core.io.ply import WEIGHT_NAMES, check_size
 from core.io.ply_header import Element, parse_header
+from core.io.precheck import precheck
 from core.io.text import choose_columns, sniff
 from core.io.text_rows import Layout, row_chunks
 
@@ -215,6 +216,7 @@ def streamed_source(path: Path, stream_from: int | None = None, chunk: int = CHU
         if not path.is_file() or path.stat().st_size < (
                 STREAM_FROM_BYTES if stream_from is None else stream_from):
             return None
+        precheck(path, suffix)  # NUL bytes: a damaged or sparse file, one endless line
         if suffix == ".ply":
             return PlySource.open(path, chunk)
         return TextSource.open(path, chunk)
