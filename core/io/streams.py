@@ -85,6 +85,7 @@ class TextSource:
 
     @property
     def ambient_dim(self) -> int:
+        """Dimension of the file's points (never projected: the same as `dim`)."""
         return self.dim
 
     def chunks(self) -> Iterator[tuple[np.ndarray, None]]:
@@ -120,10 +121,12 @@ class PlySource:
 
     @property
     def dim(self) -> int:
+        """Dimension of the points (x, y and z if the vertices have it)."""
         return len(self.axes)
 
     @property
     def ambient_dim(self) -> int:
+        """Dimension of the file's points (never projected: the same as `dim`)."""
         return self.dim
 
     def chunks(self) -> Iterator[tuple[np.ndarray, None]]:

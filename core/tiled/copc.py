@@ -172,9 +172,3 @@ def _damaged(path: Path, exc: BaseException) -> FileFormatError:
     """The one-line error of a COPC file laspy or lazrs could not read."""
     reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
     return FileFormatError(f"{path}: damaged COPC file ({reason})")
-
-
-def _damaged(path: Path, exc: BaseException) -> FileFormatError:
-    """The one-line error of a COPC file laspy or lazrs could not read."""
-    reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-    return FileFormatError(f"{path}: damaged COPC file ({reason})")
