@@ -260,3 +260,19 @@ def test_nul_bytes_refused_before_streaming(tmp_path, kind):
         streamed(streamed_source(path, stream_from=0, chunk=64))
     assert str(parts.value) == str(whole.value)
     assert "NUL" in str(parts.value)
+
+
+@pytest.mark.parametrize("head", [
+    "element point 1\nproperty float x\nproperty float y\n",
+    "element vertex 1\nproperty float u\nproperty float v\n",
+], ids=["no vertex", "no x/y"])
+def test_ply_without_vertex_axes_says_it_as_the_whole_read(tmp_path, head):
+    from core.io import read_points
+
+    path = tmp_path / "odd.ply"
+    path.write_text(f"ply\nformat ascii 1.0\n{head}end_header\n1 2\n")
+    with pytest.raises(FileFormatError) as whole:
+        read_points(path)
+    with pytest.raises(FileFormatError) as parts:
+        streamed(streamed_source(path, stream_from=0))
+    assert str(parts.value) == str(whole.value)

@@ -159,9 +159,10 @@ def _layout(path: Path) -> tuple[object, list[Element], Element]:
     if "vertex" not in names:
         raise FileFormatError(f"{path}: PLY has no 'vertex' element")
     vertex = header.elements[names.index("vertex")]
-    axes = [a for a in ("x", "y", "z") if a in [p.name for p in vertex.properties]]
-    if axes[:2] != ["x", "y"]:
-        raise FileFormatError(f"{path}: PLY vertices have no x/y properties")
+    properties = [p.name for p in vertex.properties if p.count is None]  # lists: skipped
+    if [a for a in ("x", "y", "z") if a in properties][:2] != ["x", "y"]:
+        raise FileFormatError(f"{path}: PLY vertices have no x/y properties "
+                              f"({', '.join(properties)})")
     return header, header.elements[: names.index("vertex")], vertex
 
 
