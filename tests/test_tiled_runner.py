@@ -85,6 +85,33 @@ def test_cancel_removes_scratch(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_file_changed_while_read_is_refused(tmp_path):
+    """A file that grows between the passes (its tiles planned from the first) is refused in
+    one line, with nothing left in the scratch folder."""
+    from core.errors import FileFormatError
+    from core.io.streams import TextSource
+
+    path = tmp_path / "growing.xyz"
+    path.write_text("\n".join(" ".join(repr(v) for v in p) for p in cloud(3000).tolist()))
+    source = TextSource.open(path, chunk=1000)
+    passes = []
+
+    class Growing(type(source)):
+        def chunks(self):
+            passes.append(1)
+            yield from super().chunks()
+            if len(passes) == 2:  # after the density pass, before the partition
+                with open(self.path, "a") as fh:
+                    fh.write("\n0.5 0.5 0.5\n")
+
+    scratch = tmp_path / "scratch"
+    options = RunOptions(workers=1, memory_per_worker=1 << 30, tile_points=500,
+                         scratch=scratch)
+    with pytest.raises(FileFormatError, match="changed while it was read"):
+        tiled_run(Growing(**vars(source)), query(alpha=0.05), options)
+    assert len(passes) == 3 and list(scratch.iterdir()) == []
+
+
 def _wait_for(path: Path, process: subprocess.Popen, seconds: float) -> None:
     """Wait until `path` exists (the process must stay alive); fail after `seconds`."""
     end = time.monotonic() + seconds

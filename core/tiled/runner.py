@@ -36,7 +36,7 @@ from core.tiled.plan import (
     plan_tiles,
 )
 from core.tiled.result import TileResult
-from core.tiled.sources import Survey, survey
+from core.tiled.sources import Survey, check_unchanged, file_stamp, survey
 from core.tiled.tile import compute_tile
 
 #: A worker's share of the machine's memory when no budget is given, and its cap.
@@ -257,9 +257,11 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
     try:
         clock = time.perf_counter()
         _step(options, 0.0, "reading the points")
+        stamp = file_stamp(source)
         seen = survey(source)
         plan = report.plan = plan_source(source, seen, q, options, workers, memory)
         tiles = partition_source(source, plan, scratch, options, seen.count, report)
+        check_unchanged(source, stamp)
         report.seconds["partition"] = time.perf_counter() - clock
         clock = time.perf_counter()
         _step(options, 0.3, "starting the workers")

@@ -10,6 +10,7 @@ plane once, as core.build does.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -138,3 +139,25 @@ def _spread(scatter: np.ndarray) -> bool:
     """The scatter's least eigenvalue is certainly above flatness (SPREAD_RATIO)."""
     eigen = np.linalg.eigvalsh(scatter)
     return bool(eigen[0] > SPREAD_RATIO * eigen[-1])
+
+
+def file_stamp(source) -> tuple[int, int] | None:
+    """(size, modification time in ns) of a file source's file; None for points in memory."""
+    path = getattr(source, "path", None)
+    if path is None:
+        return None
+    try:
+        status = os.stat(path)
+    except OSError as exc:
+        raise FileFormatError(f"{path}: cannot be read ({(exc.strerror or str(exc)).lower()})"
+                              ) from exc
+    return status.st_size, status.st_mtime_ns
+
+
+def check_unchanged(source, stamp: tuple[int, int] | None) -> None:
+    """FileFormatError if the source's file is not as `stamp` found it: its tiles were
+    planned from earlier passes over it, and would no longer hold its points."""
+    if stamp is not None and file_stamp(source) != stamp:
+        raise FileFormatError(f"{source.path}: the file changed while it was read (a tiled "
+                              "run reads it several times); run again once it is complete")
+
