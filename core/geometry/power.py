@@ -107,10 +107,12 @@ def _refine(power: np.ndarray, size: np.ndarray, points: np.ndarray, weights: np
             power[i] = value
 
 
-def _orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray):
+def _orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray,
+                  vec: np.ndarray | None = None):
     """One chunk: centre offsets, powers, determinants, degenerate flags and (d-simplices)
-    attach bits, with extended precision and least squares where needed."""
-    vec = edge_vectors(points, simplices)
+    attach bits, with extended precision and least squares where needed. `vec`: the
+    chunk's edge_vectors, when the caller has them already."""
+    vec = edge_vectors(points, simplices) if vec is None else vec
     rel = _relative(weights, simplices)
     rhs = np.einsum("nid,nid->ni", vec, vec) - rel[:, 1:]
     c0, det, bad, poor, duals = solve_centres(vec, DEGENERATE_RTOL, rhs)
@@ -174,8 +176,8 @@ def triangle_powers(points: np.ndarray, weights: np.ndarray, triangles: np.ndarr
     bits = np.empty(len(triangles), dtype=np.uint8)
     for lo in range(0, len(triangles), CACHE_CHUNK):
         sl = slice(lo, lo + CACHE_CHUNK)
-        c0, power[sl], _, bad, _ = _orthospheres(points, weights, triangles[sl])
         vec = edge_vectors(points, triangles[sl])
+        c0, power[sl], _, bad, _ = _orthospheres(points, weights, triangles[sl], vec)
         lam = _coordinates(vec, c0)
         chunk = ((1.0 - lam.sum(axis=1)) < -ON_SPHERE_RTOL).astype(np.uint8)
         chunk |= (lam[:, 0] < -ON_SPHERE_RTOL).astype(np.uint8) << 1
