@@ -176,7 +176,8 @@ def test_molecule_benchmark_small_run(tmp_path) -> None:
     assert bench_main(["--sizes", "2", "--results", str(tmp_path)]) == 0
     result = json.loads((tmp_path / "molecule.json").read_text())
     names = {f["name"]: f for f in result["figures"]}
-    assert {"end_to_end_1112", "everything_1112", "weighted_build_1112"} <= set(names)
+    assert {"end_to_end_1112", "everything_1112", "weighted_build_1112",
+            "end_to_end_1112_cpu", "weighted_build_1112_cpu"} <= set(names)
     assert all(f["anchor_value"] > 0 and f["ratio"] > 0 for f in names.values())
     row = result["tables"][0]["rows"][0]
     assert row[0] == 1112 and row[6] > 0 and row[7] > 0  # our and freesasa's areas

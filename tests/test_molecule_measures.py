@@ -42,6 +42,23 @@ def test_random_balls_area_matches_freesasa(seed):
     assert abs(m.volume - volume) < 5 * err
 
 
+def test_measures_do_not_depend_on_the_batch_size(monkeypatch):
+    """The simplices are measured in batches (cache-sized): area, volume and every atom's
+    area are the same, to the last bit, whatever the batch size."""
+    import core.molecule.measures as measures_module
+
+    rng = np.random.default_rng(7)
+    centres, radii = rng.uniform(0, 12, size=(400, 3)), rng.uniform(0.8, 2.2, size=400)
+    k = dual_at_zero(gudhi_dual(centres, radii))
+    results = []
+    for chunk in (7, 100, 1 << 13):
+        monkeypatch.setattr(measures_module, "CHUNK", chunk)
+        results.append(union_measures(centres, radii, k[1], k[2], k[3], vertices=k[0][:, 0]))
+    for other in results[1:]:
+        assert (other.area, other.volume) == (results[0].area, results[0].volume)
+        assert np.array_equal(other.atom_area, results[0].atom_area)
+
+
 def test_nested_ball_counts_nothing():
     """A ball inside another adds no area and no volume (it leaves the dual complex)."""
     centres = np.array([[0.0, 0, 0], [0.3, 0, 0], [2.5, 0, 0], [1.0, 1.8, 0.2]])

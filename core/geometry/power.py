@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from core.geometry.circumspheres import (
-    CHUNK,
+    CACHE_CHUNK,
     barycentric_signs,
     edge_vectors,
     extended,
@@ -107,10 +107,12 @@ def _refine(power: np.ndarray, size: np.ndarray, points: np.ndarray, weights: np
             power[i] = value
 
 
-def _orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray):
+def _orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray,
+                  vec: np.ndarray | None = None):
     """One chunk: centre offsets, powers, determinants, degenerate flags and (d-simplices)
-    attach bits, with extended precision and least squares where needed."""
-    vec = edge_vectors(points, simplices)
+    attach bits, with extended precision and least squares where needed. `vec`: the
+    chunk's edge_vectors, when the caller has them already."""
+    vec = edge_vectors(points, simplices) if vec is None else vec
     rel = _relative(weights, simplices)
     rhs = np.einsum("nid,nid->ni", vec, vec) - rel[:, 1:]
     c0, det, bad, poor, duals = solve_centres(vec, DEGENERATE_RTOL, rhs)
@@ -132,8 +134,8 @@ def _orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray
 def orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray):
     """Smallest orthogonal spheres of (n, k+1) simplices: centre offsets from the first vertex
     (n, d), powers (n,) (may be < 0), determinants (n,) and (n,) bool degenerate flags."""
-    parts = [_orthospheres(points, weights, simplices[lo:lo + CHUNK])[:4]
-             for lo in range(0, len(simplices), CHUNK)]
+    parts = [_orthospheres(points, weights, simplices[lo:lo + CACHE_CHUNK])[:4]
+             for lo in range(0, len(simplices), CACHE_CHUNK)]
     if not parts:
         return np.empty((0, points.shape[1])), np.empty(0), np.empty(0), np.empty(0, bool)
     return tuple(np.concatenate([p[i] for p in parts]) for i in range(4))
@@ -145,8 +147,8 @@ def cell_orthospheres(points: np.ndarray, weights: np.ndarray, cells: np.ndarray
     n = len(cells)
     power, dets = np.empty(n), np.empty(n)
     flat, bits = np.empty(n, dtype=bool), np.empty(n, dtype=np.uint8)
-    for lo in range(0, n, CHUNK):
-        sl = slice(lo, lo + CHUNK)
+    for lo in range(0, n, CACHE_CHUNK):
+        sl = slice(lo, lo + CACHE_CHUNK)
         _, power[sl], dets[sl], flat[sl], bits[sl] = _orthospheres(points, weights, cells[sl])
     return power, dets, flat, bits
 
@@ -172,10 +174,10 @@ def triangle_powers(points: np.ndarray, weights: np.ndarray, triangles: np.ndarr
     (bit j: vertex j has negative power to the opposite edge's orthogonal sphere)."""
     power = np.empty(len(triangles))
     bits = np.empty(len(triangles), dtype=np.uint8)
-    for lo in range(0, len(triangles), CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        c0, power[sl], _, bad, _ = _orthospheres(points, weights, triangles[sl])
+    for lo in range(0, len(triangles), CACHE_CHUNK):
+        sl = slice(lo, lo + CACHE_CHUNK)
         vec = edge_vectors(points, triangles[sl])
+        c0, power[sl], _, bad, _ = _orthospheres(points, weights, triangles[sl], vec)
         lam = _coordinates(vec, c0)
         chunk = ((1.0 - lam.sum(axis=1)) < -ON_SPHERE_RTOL).astype(np.uint8)
         chunk |= (lam[:, 0] < -ON_SPHERE_RTOL).astype(np.uint8) << 1

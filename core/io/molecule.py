@@ -110,11 +110,11 @@ def drop_other_conformers(model) -> int:
     for chain in model:
         for residue in chain:
             position = (chain.name, str(residue.seqid))
-            first = kept.get(position) or next(
-                (atom.altloc for atom in residue if atom.has_altloc()), "")
+            alts = [atom.altloc for atom in residue]  # "\0": none (gemmi's has_altloc)
+            first = kept.get(position) or next((a for a in alts if a != "\0"), "")
             kept[position] = first
-            for i in range(len(residue) - 1, -1, -1):
-                if residue[i].has_altloc() and residue[i].altloc != first:
+            for i in range(len(alts) - 1, -1, -1):
+                if alts[i] not in ("\0", first):
                     del residue[i]
                     removed += 1
         for i in range(len(chain) - 1, -1, -1):
@@ -169,30 +169,47 @@ def _from_table(path: Path, t: AtomTable) -> Molecule:
 
 
 def _molecule(path: Path, st, n_models: int, waters: int, altlocs: int) -> Molecule:
-    """Flatten the (cleaned) first model into arrays and the report."""
+    """Flatten the (cleaned) first model into arrays and the report: one pass over the atoms
+    (position, element, name); residue labels made once per residue, element numbers and
+    radii once per element."""
     model = st[0]
-    atoms = [(chain.name, res, atom) for chain in model for res in chain for atom in res]
-    if not atoms:
+    positions, elements, names, labels, sizes = [], [], [], [], []
+    for chain in model:
+        for res in chain:
+            labels.append(f"{chain.name}:{res.name}:{res.seqid.num}{res.seqid.icode.strip()}")
+            sizes.append(len(res))
+            for atom in res:
+                positions.append(atom.pos.tolist())
+                elements.append(atom.element.name)
+                names.append(atom.name)
+    if not positions:
         raise FileFormatError(f"{path}: no atoms (after skipping {waters:,} water atoms)")
-    centres = np.array([a.pos.tolist() for _, _, a in atoms], dtype=np.float64)
-    elements = np.array([a.element.name for _, _, a in atoms])
-    numbers = np.array([a.element.atomic_number for _, _, a in atoms], dtype=np.int16)
+    centres = np.array(positions, dtype=np.float64)
+    kinds, kind_of = np.unique(np.array(elements), return_inverse=True)
+    known = [_element(str(kind)) for kind in kinds]
+    numbers = np.array([number for number, _ in known], dtype=np.int16)[kind_of]
     # gemmi stores radii as float32: round back to the table's 2-3 decimals
-    radii = np.round(np.array([a.element.vdw_r for _, _, a in atoms], dtype=np.float64), 3)
+    radii = np.round(np.array([radius for _, radius in known], dtype=np.float64), 3)[kind_of]
     unknown = (numbers == 0) | ~(radii > 0)
     radii[unknown] = UNKNOWN_RADIUS
-    residues = np.array([f"{c}:{r.name}:{r.seqid.num}{r.seqid.icode.strip()}"
-                         for c, r, _ in atoms])
+    residues = np.repeat(np.array(labels), sizes)
     if not np.all(np.isfinite(centres)):
         raise FileFormatError(f"{path}: non-finite atom coordinates")
+    elements = kinds[kind_of]
     report = MoleculeReport(
-        path=str(path), models=n_models, chains=len(model),
-        residues=sum(len(chain) for chain in model), atoms=len(atoms),
-        hydrogens=int(np.isin(numbers, (1,)).sum()), waters_skipped=waters,
+        path=str(path), models=n_models, chains=len(model), residues=len(labels),
+        atoms=len(centres), hydrogens=int((numbers == 1).sum()), waters_skipped=waters,
         altlocs_skipped=altlocs,
         unknown_elements=tuple(sorted({str(e) for e in elements[unknown]})))
-    names = np.array([a.name for _, _, a in atoms])
-    return Molecule(centres, elements, numbers, radii, residues, report, names)
+    return Molecule(centres, elements, numbers, radii, residues, report, np.array(names))
+
+
+def _element(name: str) -> tuple[int, float]:
+    """(atomic number, van der Waals radius) of gemmi's element `name` (as float32)."""
+    import gemmi
+
+    element = gemmi.Element(name)
+    return element.atomic_number, element.vdw_r
 
 
 def atom_labels(mol: Molecule, points: np.ndarray) -> list[dict]:

@@ -93,11 +93,16 @@ def _exterior_angle(corner, ca, ra, ub, uc):
 
 def two_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Lens volume (m,) and the cap areas (m, 2) of each sphere inside the other ball."""
-    c, r = _split(c, r)
+    volume, areas = _two_planes(*_split(c, r))
+    return volume, areas.T
+
+
+def _two_planes(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """two_balls on (k, 3, m) centres and (k, m) radii; areas (k, m)."""
     d, _, s, rho2, _ = pair_geometry(c[0], r[0], c[1], r[1])
     caps = TWO_PI * r * (r - np.stack((s, d - s)))
     volume = (r[0] * caps[0] + r[1] * caps[1] - d * np.pi * rho2) / 3.0
-    return volume, caps.T
+    return volume, caps
 
 
 TRIANGLE_PAIRS = ((0, 1, 2), (1, 2, 0), (0, 2, 1))  # (a, b, third)
@@ -105,7 +110,12 @@ TRIANGLE_PAIRS = ((0, 1, 2), (1, 2, 0), (0, 2, 1))  # (a, b, third)
 
 def three_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Volume (m,) of three balls' intersection and each sphere's area inside the other two."""
-    c, r = _split(c, r)
+    volume, areas = _three_planes(*_split(c, r))
+    return volume, areas.T
+
+
+def _three_planes(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """three_balls on (k, 3, m) centres and (k, m) radii; areas (k, m)."""
     z, t = _radical(c, r)
     corner = z + t * _unit(_cross(c[1] - c[0], c[2] - c[0]))
     arc, s_from, units = {}, {}, {}
@@ -126,7 +136,7 @@ def three_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         geodesic = s_from[a, b] * arc[a, b] + s_from[a, o] * arc[a, o]
         areas[a] = r[a] ** 2 * (TWO_PI - 2.0 * ext) - r[a] * geodesic
         volume += r[a] * areas[a]
-    return volume / 3.0, areas.T
+    return volume / 3.0, areas
 
 
 TETRA_FACES = ((1, 2, 3, 0), (0, 2, 3, 1), (0, 1, 3, 2), (0, 1, 2, 3))  # (x, y, z, opposite)
@@ -149,7 +159,12 @@ def _face_corners(c: np.ndarray, r: np.ndarray) -> dict:
 
 def four_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Volume (m,) of four balls' intersection and each sphere's area inside the other three."""
-    c, r = _split(c, r)
+    volume, areas = _four_planes(*_split(c, r))
+    return volume, areas.T
+
+
+def _four_planes(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """four_balls on (k, 3, m) centres and (k, m) radii; areas (k, m)."""
     z, _ = _radical(c, r)
     corners = _face_corners(c, r)
     arc, s_from, units = {}, {}, {}
@@ -176,4 +191,13 @@ def four_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         geodesic = sum(s_from[a, b] * arc[a, b] for b in o)
         areas[a] = r[a] ** 2 * (TWO_PI - ext) - r[a] * geodesic
         volume += r[a] * areas[a]
-    return volume / 3.0, areas.T
+    return volume / 3.0, areas
+
+
+PLANES = {2: _two_planes, 3: _three_planes, 4: _four_planes}
+
+
+def ball_terms(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """two_balls, three_balls or four_balls (by k) on centres already component-major,
+    (k, 3, m), and (k, m) radii: volumes (m,) and areas (k, m), no transposed copies."""
+    return PLANES[len(r)](c, r)
