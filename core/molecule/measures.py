@@ -15,6 +15,7 @@ import numpy as np
 from core.arrays import readonly
 from core.molecule.intersections import four_balls, three_balls, two_balls
 from core.parallel import together
+from core.tolerances import EXPOSED_AREA_RTOL
 
 CHUNK = 100_000  # simplices per vectorized batch (bounds the temporary arrays)
 TERMS = {2: two_balls, 3: three_balls, 4: four_balls}
@@ -71,3 +72,11 @@ def union_measures(centres: np.ndarray, radii: np.ndarray, edges: np.ndarray,
     atom_area -= areas
     atom_area = readonly(np.maximum(atom_area, 0.0))
     return UnionMeasures(float(atom_area.sum()), volume, atom_area)
+
+
+def exposed_balls(atom_area: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """(n,) bool: the balls of (n,) radii whose (n,) exposed areas (UnionMeasures.atom_area)
+    are more than the rounding of their sum (EXPOSED_AREA_RTOL of the sphere's area); the
+    others lie inside the union of the rest."""
+    sphere = 4.0 * np.pi * np.asarray(radii, dtype=np.float64) ** 2
+    return np.asarray(atom_area, dtype=np.float64) > EXPOSED_AREA_RTOL * sphere
