@@ -71,15 +71,17 @@ def protein(copies: int, probe: float = PROBE) -> dict:
     from core.complex import AlphaComplex
     from core.io.molecule import read_molecule
     from core.molecule.analysis import measure_molecule
+    from core.molecule.measures import exposed_balls
 
     with tempfile.TemporaryDirectory(prefix="alphascoop-balls-") as folder:
         path = Path(folder) / "copies.pdb"
         write_copies(copies, path)
         molecule = read_molecule(path)
     ac = AlphaComplex.from_points(molecule.centres, weights=molecule.weights(probe))
+    radii = np.sqrt(ac.weights)
     measures = measure_molecule(ac, probe)
     return {"centres": molecule.centres, "vdw": molecule.vdw_radii, "points": ac.points,
-            "radii": np.sqrt(ac.weights), "exposed": measures.point_area > 0}
+            "radii": radii, "exposed": exposed_balls(measures.point_area, radii)}
 
 
 def run(copies: int, size: tuple[int, int]) -> dict:
