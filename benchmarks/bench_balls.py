@@ -7,7 +7,8 @@ The balls: a synthetic protein (bench_molecule.write_copies: rotated copies of t
 1A8O, 556 atoms each; 36 copies = 20,016 atoms) at the radii a molecule opens with in the
 window (van der Waals + the 1.4 Å probe: the balls its measures are of), fitted in a view
 the size of the window's 3D view. Each way is one actor in an off-screen plotter, timed as
-the median of full renders (`render_window.Render()` after `Modified()`), software GL here:
+the median of full renders (`render_window.Render()` after `Modified()`), one of each way
+in turn (a change of the machine's load falls on all alike), software GL here:
 - balls: app.scene.layers as the window draws an opaque, uncut molecule: sphere impostors
   lit from the eye (BALL_LIGHT), only the balls with exposed area (outer_balls: exact
   per-atom areas of measure_molecule at the drawn radii);
@@ -39,17 +40,22 @@ PROBE = 1.4  # Å: the window's molecule balls are van der Waals + probe
 COLOUR = "#8fb8de"
 
 
-def render_ms(plotter) -> float:
-    """Median milliseconds of RENDERS full renders of plotter (after one untimed)."""
+def render_ms(plotter, actors: dict) -> dict[str, float]:
+    """Median milliseconds of RENDERS full renders of plotter with each of actors alone,
+    taken in turns (one render of each a round, after one untimed each), so a change in the
+    machine's load falls on every way alike."""
     window = plotter.render_window
-    window.Render()
-    times = []
-    for _ in range(RENDERS):
-        plotter.renderer.Modified()
-        start = time.perf_counter()
-        window.Render()
-        times.append(time.perf_counter() - start)
-    return 1000 * statistics.median(times)
+    times: dict[str, list[float]] = {name: [] for name in actors}
+    for timed in [False] + [True] * RENDERS:
+        for name, actor in actors.items():
+            for other in actors.values():
+                other.SetVisibility(other is actor)
+            plotter.renderer.Modified()
+            start = time.perf_counter()
+            window.Render()
+            if timed:
+                times[name].append(time.perf_counter() - start)
+    return {name: 1000 * statistics.median(spent) for name, spent in times.items()}
 
 
 def ball_pixels(plotter, radii: np.ndarray) -> float:
@@ -117,11 +123,7 @@ def run(copies: int, size: tuple[int, int]) -> dict:
               "plain_points": plain, "same_pixel_points": wide, "glyphs": glyphs}
     result = {"balls_n": len(points), "drawn": int(mol["exposed"].sum()), "size": size,
               "ball_pixels": pixels, "probe": PROBE}
-    for name, actor in actors.items():
-        for other in actors.values():
-            other.SetVisibility(other is actor)
-        result[name] = render_ms(plotter)
-    plotter.screenshot(None)  # the glyphs drawn last: nothing to keep
+    result.update(render_ms(plotter, actors))
     plotter.close()
     return result
 
@@ -171,7 +173,7 @@ def main(argv: list[str] | None = None) -> None:
             f"A synthetic protein of {result['balls_n']:,} atoms (rotated copies of 1A8O) at "
             f"van der Waals radii + the {PROBE:g} Å probe (the window's balls), fitted in a "
             f"{size[0]} x {size[1]} view, software GL (llvmpipe, no multisampling in an "
-            f"off-screen plotter); median of {RENDERS} full renders each.",
+            f"off-screen plotter); median of {RENDERS} full renders each, taken in turns.",
             "On a software renderer the fill is the cost: every covered fragment of every "
             "overlapping ball is shaded (the depth of an impostor is its own, so no early "
             "depth test skips it). The window shades balls with one light at the eye instead "
