@@ -121,7 +121,8 @@ def run(copies: int, size: tuple[int, int]) -> dict:
                               color=COLOUR, render=False, reset_camera=False)
     actors = {"balls": outer, "every_ball": every, "before": before, "vdw": vdw,
               "plain_points": plain, "same_pixel_points": wide, "glyphs": glyphs}
-    result = {"balls_n": len(points), "drawn": int(mol["exposed"].sum()), "size": size,
+    result = {"atoms": len(mol["centres"]), "balls_n": len(points),
+              "drawn": int(mol["exposed"].sum()), "size": size,
               "ball_pixels": pixels, "probe": PROBE}
     result.update(render_ms(plotter, actors))
     plotter.close()
@@ -170,8 +171,10 @@ def main(argv: list[str] | None = None) -> None:
           f"{result['ball_pixels']:.1f} px wide on screen")
     if not args.no_save:
         save("balls", figures(result), notes=[
-            f"A synthetic protein of {result['balls_n']:,} atoms (rotated copies of 1A8O) at "
-            f"van der Waals radii + the {PROBE:g} Å probe (the window's balls), fitted in a "
+            f"A synthetic protein of {result['atoms']:,} atoms (rotated copies of 1A8O; "
+            f"{result['balls_n']:,} balls in its complex, atoms at the same place drawn "
+            f"once) at van der Waals radii + the {PROBE:g} Å probe (the window's balls), "
+            "fitted in a "
             f"{size[0]} x {size[1]} view, software GL (llvmpipe, no multisampling in an "
             f"off-screen plotter); median of {RENDERS} full renders each, taken in turns.",
             "On a software renderer the fill is the cost: every covered fragment of every "
