@@ -172,8 +172,8 @@ def main(argv: list[str] | None = None) -> None:
     if not args.no_save:
         save("balls", figures(result), notes=[
             f"A synthetic protein of {result['atoms']:,} atoms (rotated copies of 1A8O; "
-            f"{result['balls_n']:,} balls in its complex, atoms at the same place drawn "
-            f"once) at van der Waals radii + the {PROBE:g} Å probe (the window's balls), "
+            f"{result['balls_n']:,} balls in its complex, the others inside their "
+            f"neighbours') at van der Waals radii + the {PROBE:g} Å probe (the window's balls), "
             "fitted in a "
             f"{size[0]} x {size[1]} view, software GL (llvmpipe, no multisampling in an "
             f"off-screen plotter); median of {RENDERS} full renders each, taken in turns.",
