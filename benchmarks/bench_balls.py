@@ -1,17 +1,25 @@
-"""Drawing 20,000 balls (atoms, weighted points): sphere impostors against plain points and
-against the tessellated sphere glyphs they replace, in one run.
+"""Drawing 20,000 balls (atoms, weighted points): what the window draws against plain points,
+against the balls drawn before and against tessellated sphere glyphs, in one run.
 
     xvfb-run -a python benchmarks/bench_balls.py [--copies 36] [--size 685x454] [--no-save]
 
 The balls: a synthetic protein (bench_molecule.write_copies: rotated copies of the shared
-1A8O, 556 atoms each; 36 copies = 20,016 atoms) at van der Waals radii, fitted in a view the
-size of the window's 3D view. Each way is one actor in an off-screen plotter, timed as the
-median of full renders (`render_window.Render()` after `Modified()`), software GL here:
-- impostors: app.scene.layers.ball_mesh + ball_actor (what the window draws);
+1A8O, 556 atoms each; 36 copies = 20,016 atoms) at the radii a molecule opens with in the
+window (van der Waals + the 1.4 Å probe: the balls its measures are of), fitted in a view
+the size of the window's 3D view. Each way is one actor in an off-screen plotter, timed as
+the median of full renders (`render_window.Render()` after `Modified()`), one of each way
+in turn (a change of the machine's load falls on all alike), software GL here:
+- balls: app.scene.layers as the window draws an opaque, uncut molecule: sphere impostors
+  lit from the eye (BALL_LIGHT), only the balls with exposed area (outer_balls: exact
+  per-atom areas of measure_molecule at the drawn radii);
+- every ball, lit from the eye (what clipping or translucency draws);
+- before: every ball under the renderer's light kit (the impostors as drawn before);
+- van der Waals: every ball at van der Waals radii, lit from the eye (almost every atom has
+  some exposed area there: nothing to leave out);
 - plain points: the same centres as the points layer draws them (3 px);
-- same-pixel points: square points as wide as the balls' mean diameter on screen (the
-  impostors' own fill, without their sphere shading and depth);
-- glyphs: the sphere glyphs drawn before (10 x 10 facets a ball).
+- same-pixel points: square points as wide as the balls' mean diameter on screen (the fill
+  of every ball, without sphere shading and depth);
+- glyphs: the sphere glyphs drawn before the impostors (10 x 10 facets a ball).
 """
 
 from __future__ import annotations
@@ -28,19 +36,26 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 import numpy as np
 
 RENDERS = 5
+PROBE = 1.4  # Å: the window's molecule balls are van der Waals + probe
+COLOUR = "#8fb8de"
 
 
-def render_ms(plotter) -> float:
-    """Median milliseconds of RENDERS full renders of plotter (after one untimed)."""
+def render_ms(plotter, actors: dict) -> dict[str, float]:
+    """Median milliseconds of RENDERS full renders of plotter with each of actors alone,
+    taken in turns (one render of each a round, after one untimed each), so a change in the
+    machine's load falls on every way alike."""
     window = plotter.render_window
-    window.Render()
-    times = []
-    for _ in range(RENDERS):
-        plotter.renderer.Modified()
-        start = time.perf_counter()
-        window.Render()
-        times.append(time.perf_counter() - start)
-    return 1000 * statistics.median(times)
+    times: dict[str, list[float]] = {name: [] for name in actors}
+    for timed in [False] + [True] * RENDERS:
+        for name, actor in actors.items():
+            for other in actors.values():
+                other.SetVisibility(other is actor)
+            plotter.renderer.Modified()
+            start = time.perf_counter()
+            window.Render()
+            if timed:
+                times[name].append(time.perf_counter() - start)
+    return {name: 1000 * statistics.median(spent) for name, spent in times.items()}
 
 
 def ball_pixels(plotter, radii: np.ndarray) -> float:
@@ -52,32 +67,49 @@ def ball_pixels(plotter, radii: np.ndarray) -> float:
     return float(2 * radii.mean() * height / view_height)
 
 
-def protein(copies: int) -> tuple[np.ndarray, np.ndarray]:
-    """(centres (n, 3), van der Waals radii (n,)) of bench_molecule's rotated copies of 1A8O."""
+def protein(copies: int, probe: float = PROBE) -> dict:
+    """bench_molecule's rotated copies of 1A8O: centres (n, 3), van der Waals radii (n,),
+    and the window's balls (radii vdW + probe) with their exposed flags (n,) bool."""
     import tempfile
 
     from bench_molecule import write_copies
 
+    from core.complex import AlphaComplex
     from core.io.molecule import read_molecule
+    from core.molecule.analysis import measure_molecule
+    from core.molecule.measures import exposed_balls
 
     with tempfile.TemporaryDirectory(prefix="alphascoop-balls-") as folder:
         path = Path(folder) / "copies.pdb"
         write_copies(copies, path)
         molecule = read_molecule(path)
-    return molecule.centres, molecule.vdw_radii
+    ac = AlphaComplex.from_points(molecule.centres, weights=molecule.weights(probe))
+    radii = np.sqrt(ac.weights)
+    measures = measure_molecule(ac, probe)
+    return {"centres": molecule.centres, "vdw": molecule.vdw_radii, "points": ac.points,
+            "radii": radii, "exposed": exposed_balls(measures.point_area, radii)}
 
 
 def run(copies: int, size: tuple[int, int]) -> dict:
     """Milliseconds per render of each way on the same balls."""
     import pyvista as pv
 
-    from app.scene.layers import ball_actor, ball_mesh
+    from app.scene.layers import ball_actor, ball_mesh, outer_balls
 
-    centres, radii = protein(copies)
+    mol = protein(copies)
+    points, radii = mol["points"], mol["radii"]
     plotter = pv.Plotter(off_screen=True, window_size=list(size))
-    impostors = ball_actor(ball_mesh(centres, radii, limit=len(centres)), "#8fb8de", 1.0)
-    plotter.add_actor(impostors, reset_camera=True, render=False)
-    cloud = pv.PolyData(centres)
+    mesh = ball_mesh(points, radii, limit=len(points), exposed=mol["exposed"])
+    every = ball_actor(mesh, COLOUR, 1.0)
+    plotter.add_actor(every, reset_camera=True, render=False)
+    outer = ball_actor(mesh, COLOUR, 1.0)
+    outer.GetMapper().SetInputData(outer_balls(mesh))
+    before = ball_actor(mesh, COLOUR, 1.0)
+    before.GetShaderProperty().ClearAllShaderReplacements()
+    vdw = ball_actor(ball_mesh(mol["centres"], mol["vdw"], limit=len(points)), COLOUR, 1.0)
+    for actor in (outer, before, vdw):
+        plotter.add_actor(actor, reset_camera=False, render=False)
+    cloud = pv.PolyData(points)
     plain = plotter.add_mesh(cloud, color="#c9d1d9", point_size=3.0, style="points",
                              render=False, reset_camera=False)
     pixels = ball_pixels(plotter, radii)
@@ -86,34 +118,38 @@ def run(copies: int, size: tuple[int, int]) -> dict:
     cloud["radius"] = radii
     sphere = pv.Sphere(radius=1.0, theta_resolution=10, phi_resolution=10)
     glyphs = plotter.add_mesh(cloud.glyph(scale="radius", geom=sphere, orient=False),
-                              color="#8fb8de", render=False, reset_camera=False)
-    actors = {"impostors": impostors, "plain_points": plain, "same_pixel_points": wide,
-              "glyphs": glyphs}
-    result = {"balls": len(centres), "size": size, "ball_pixels": pixels}
-    for name, actor in actors.items():
-        for other in actors.values():
-            other.SetVisibility(other is actor)
-        result[name] = render_ms(plotter)
-    plotter.screenshot(None)  # the glyphs drawn last: nothing to keep
+                              color=COLOUR, render=False, reset_camera=False)
+    actors = {"balls": outer, "every_ball": every, "before": before, "vdw": vdw,
+              "plain_points": plain, "same_pixel_points": wide, "glyphs": glyphs}
+    result = {"atoms": len(mol["centres"]), "balls_n": len(points),
+              "drawn": int(mol["exposed"].sum()), "size": size,
+              "ball_pixels": pixels, "probe": PROBE}
+    result.update(render_ms(plotter, actors))
     plotter.close()
     return result
 
 
 def figures(result: dict) -> list:
-    """Impostors against plain points (the goal), same-pixel points and the old glyphs."""
+    """The balls against plain points (the goal), against what was drawn before, and the
+    parts of the gain."""
     from results import Figure
 
-    n = f"{result['balls']:,}"
+    n = f"{result['balls_n']:,}"
+    label = f"{n} balls as the window draws them ({result['drawn']:,} seen from outside)"
     return [
-        Figure("balls.impostors_vs_points", f"{n} balls (sphere impostors), one render",
-               result["impostors"], "ms", f"{n} plain points (3 px)", result["plain_points"],
-               "<= 2"),
-        Figure("balls.impostors_vs_same_pixels", f"{n} balls (sphere impostors), one render",
-               result["impostors"], "ms",
-               f"{n} square points {result['ball_pixels']:.0f} px wide (the balls' fill)",
+        Figure("balls.impostors_vs_points", label + ", one render", result["balls"], "ms",
+               f"{n} plain points (3 px)", result["plain_points"], "<= 2"),
+        Figure("balls.before_vs_impostors", f"{n} balls as drawn before (all, light kit)",
+               result["before"], "ms", "as the window draws them", result["balls"]),
+        Figure("balls.every_ball_vs_points", f"{n} balls, all drawn (clipped or translucent)",
+               result["every_ball"], "ms", f"{n} plain points (3 px)", result["plain_points"]),
+        Figure("balls.vdw_vs_points", f"{n} balls at van der Waals radii, all drawn",
+               result["vdw"], "ms", f"{n} plain points (3 px)", result["plain_points"]),
+        Figure("balls.impostors_vs_same_pixels", label + ", one render", result["balls"], "ms",
+               f"{n} square points {result['ball_pixels']:.0f} px wide (every ball's fill)",
                result["same_pixel_points"]),
         Figure("balls.glyphs_vs_impostors", f"{n} tessellated sphere glyphs, one render",
-               result["glyphs"], "ms", f"{n} sphere impostors", result["impostors"]),
+               result["glyphs"], "ms", "as the window draws them", result["balls"]),
     ]
 
 
@@ -128,18 +164,25 @@ def main(argv: list[str] | None = None) -> None:
     args = parser.parse_args(argv)
     size = tuple(int(v) for v in args.size.split("x"))
     result = run(args.copies, size)
-    for name in ("impostors", "plain_points", "same_pixel_points", "glyphs"):
+    for name in ("balls", "every_ball", "before", "vdw", "plain_points", "same_pixel_points",
+                 "glyphs"):
         print(f"{name:18s} {result[name]:9.1f} ms")
-    print(f"balls {result['balls']:,}, {result['ball_pixels']:.1f} px wide on screen")
+    print(f"balls {result['balls_n']:,} ({result['drawn']:,} exposed), "
+          f"{result['ball_pixels']:.1f} px wide on screen")
     if not args.no_save:
         save("balls", figures(result), notes=[
-            f"A synthetic protein of {result['balls']:,} atoms (rotated copies of 1A8O) at "
-            f"van der Waals radii, fitted in a {size[0]} x {size[1]} view, software GL "
-            f"(llvmpipe, no multisampling in an off-screen plotter); median of {RENDERS} "
-            "full renders each.",
-            "Balls cover far more pixels than 3-pixel points: on a software renderer the "
-            "fill (overdraw of overlapping atoms) is the cost, as the same-pixel square "
-            "points show."])
+            f"A synthetic protein of {result['atoms']:,} atoms (rotated copies of 1A8O; "
+            f"{result['balls_n']:,} balls in its complex, the others inside their "
+            f"neighbours') at van der Waals radii + the {PROBE:g} Å probe (the window's balls), "
+            "fitted in a "
+            f"{size[0]} x {size[1]} view, software GL (llvmpipe, no multisampling in an "
+            f"off-screen plotter); median of {RENDERS} full renders each, taken in turns.",
+            "On a software renderer the fill is the cost: every covered fragment of every "
+            "overlapping ball is shaded (the depth of an impostor is its own, so no early "
+            "depth test skips it). The window shades balls with one light at the eye instead "
+            "of the renderer's five-light kit, and leaves out balls inside the union of the "
+            "others (exact per-atom areas at the drawn radii) while they are opaque and uncut: "
+            "the same picture."])
 
 
 if __name__ == "__main__":

@@ -66,3 +66,7 @@ BACKEND_CERTAIN_RTOL = 1e-12
 #: where the other half's nearest point has a power (squared distance) to its circumsphere
 #: (orthosphere) larger than the sphere's by more than this share of the terms.
 SPLIT_EMPTY_RTOL = 1e-9
+#: A ball's exposed area (core.molecule.measures) below this share of its sphere's area is the
+#: rounding of the inclusion-exclusion sum, whose terms are up to that area each (buried balls
+#: of real molecules come out at 1e-16 to 1e-14 of it): the ball has no exposed area.
+EXPOSED_AREA_RTOL = 1e-9

@@ -10,7 +10,7 @@ import pytest
 
 from core.complex import AlphaComplex
 from core.molecule.cavities import void_cells
-from core.molecule.measures import union_measures
+from core.molecule.measures import exposed_balls, union_measures
 from core.molecule.regions import dual_facts, region_measures
 from tests.molecule_reference import (
     dual_at_zero,
@@ -57,6 +57,39 @@ def test_measures_do_not_depend_on_the_batch_size(monkeypatch):
     for other in results[1:]:
         assert (other.area, other.volume) == (results[0].area, results[0].volume)
         assert np.array_equal(other.atom_area, results[0].atom_area)
+
+
+def sphere_samples(n: int) -> np.ndarray:
+    """(n, 3) unit vectors spread evenly over the sphere (a Fibonacci lattice)."""
+    k = np.arange(n) + 0.5
+    z = 1 - 2 * k / n
+    phi = np.pi * (1 + 5 ** 0.5) * k
+    rho = np.sqrt(1 - z ** 2)
+    return np.column_stack([rho * np.cos(phi), rho * np.sin(phi), z])
+
+
+def test_exposed_balls_against_samples_of_each_sphere():
+    """A ball is exposed when a point of its sphere lies outside every other ball: each
+    sphere sampled at 2,000 points. No sampled exposure is missed; every ball left out has no
+    exposed sample, and every ball kept with more than 1% of its sphere exposed has some."""
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(0)
+    n = 400
+    centres, radii = rng.uniform(0, 8, size=(n, 3)), rng.uniform(0.8, 2.2, size=n)
+    exposed = exposed_balls(measures(centres, radii).atom_area, radii)
+    unit = sphere_samples(2000)
+    tree = cKDTree(centres)
+    sampled = np.zeros(n, bool)
+    for i in range(n):
+        x = centres[i] + radii[i] * unit
+        near = [j for j in tree.query_ball_point(centres[i], radii[i] + radii.max()) if j != i]
+        d = np.linalg.norm(x[:, None, :] - centres[near][None], axis=2)
+        sampled[i] = bool((d > radii[near][None] * (1 + 1e-9)).all(axis=1).any())
+    assert 0 < (~exposed).sum() < n  # buried balls and exposed ones
+    assert (exposed | ~sampled).all()  # never left out where a sample is exposed
+    big = measures(centres, radii).atom_area > 0.01 * 4 * np.pi * radii ** 2
+    assert (sampled | ~big).all()
 
 
 def test_nested_ball_counts_nothing():

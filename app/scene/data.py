@@ -11,6 +11,7 @@ from app.camera import Z_UP, ViewFrame
 from app.dataset import Dataset
 from app.palette import LayerStyle
 from app.pockets_layer import PocketArrays, pocket_arrays
+from core.molecule.measures import exposed_balls
 
 
 def as_xyz(points: np.ndarray) -> np.ndarray:
@@ -26,9 +27,11 @@ class SceneData:
     """A dataset as the scene takes it: (m, 3) float64 points `xyz`, the complex dimension,
     (e, 2) Delaunay `edges`, the layer `styles`, for weighted points their (m,) `radii` (the
     balls layer, when styles has it) and (m, 3) uint8 `rgb` ball colours (atoms by element;
-    else None), the view `frame` (which way is up, app.camera) and the length `unit` the file
-    declares (or None). A "cavities" style adds a layer of cells set by Scene.set_cells;
-    `pockets` (a molecule's, app.pockets_layer) the "pockets" and "mouths" layers."""
+    else None), (m,) bool `exposed`: the balls with area on the boundary of their union (a
+    molecule's exact per-atom areas at the drawn radii; None: unknown, all drawn), the view
+    `frame` (which way is up, app.camera) and the length `unit` the file declares (or None).
+    A "cavities" style adds a layer of cells set by Scene.set_cells; `pockets` (a
+    molecule's, app.pockets_layer) the "pockets" and "mouths" layers."""
 
     xyz: np.ndarray
     dim: int
@@ -39,6 +42,7 @@ class SceneData:
     frame: ViewFrame = Z_UP
     unit: str | None = None
     pockets: PocketArrays | None = None
+    exposed: np.ndarray | None = None
 
 
 def scene_data(dataset: Dataset, styles: dict[str, LayerStyle],
@@ -46,6 +50,10 @@ def scene_data(dataset: Dataset, styles: dict[str, LayerStyle],
     """The arrays the scene draws of dataset, with these layer styles (and ball colours)."""
     ac = dataset.ac
     radii = None if ac.weights is None else np.sqrt(np.maximum(ac.weights, 0.0))
-    pockets = None if dataset.molecule is None else pocket_arrays(ac, dataset.molecule.pockets)
+    molecule = dataset.molecule
+    pockets = None if molecule is None else pocket_arrays(ac, molecule.pockets)
+    # the measures at alpha² 0 are of the balls of radii sqrt(weights): the ones drawn
+    exposed = (None if molecule is None or molecule.alpha2 != 0
+               else exposed_balls(molecule.point_area, radii))
     return SceneData(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                     radii, rgb, dataset.frame, dataset.unit, pockets)
+                     radii, rgb, dataset.frame, dataset.unit, pockets, exposed)

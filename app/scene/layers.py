@@ -24,6 +24,15 @@ KINDS_2D = {
 }
 STATIC_LAYERS = ("points", "delaunay", "balls", "cavities", "pockets", "mouths")
 BALL_ORIGIN = "origin"  # field data of a ball mesh: where its float32 centres are measured from
+EXPOSED = "exposed"  # point data of a ball mesh: 1 where the ball has area on the union's boundary
+#: The balls' shading in the impostor's fragment shader, in place of VTK's lights: one light
+#: at the eye (a sphere's normal faces it at its centre) over a dim floor, so rims stay apart.
+#: A software renderer shades every covered fragment of every overlapping ball; the
+#: renderer's five-light kit cost about half of that.
+BALL_LIGHT = """
+  float facing = max(0.0, normalVCVSOutput.z);
+  gl_FragData[0] = vec4(ambientColor + diffuseColor * (0.15 + 0.85 * facing), opacity);
+"""
 DRAW_OPTIONS = {
     "points": {"point_size": 3.0},
     "singular_points": {"point_size": 5.0, "render_points_as_spheres": True},
@@ -64,6 +73,7 @@ class Layer:
     actor: pv.Actor | None = None
     dirty: bool = False
     cells: np.ndarray = field(default_factory=lambda: np.zeros((0, 1), dtype=np.int32))
+    outer: pv.PolyData | None = None  # balls: those seen from outside (outer_balls), if fewer
 
     def set_cells(self, cells: np.ndarray) -> None:
         """Replace the layer's (k, s) connectivity in place (points stay)."""
@@ -82,10 +92,12 @@ class Layer:
 
 
 def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS,
-              rgb: np.ndarray | None = None) -> pv.PolyData:
+              rgb: np.ndarray | None = None, exposed: np.ndarray | None = None) -> pv.PolyData:
     """The centres of balls of the given (m,) radii around at most `limit` of the (m, 3)
     points (evenly picked, so a big set still shows its spread), one vertex each, with a
-    float32 "radius" array; `rgb` (m, 3) uint8 colours them (point data "rgb").
+    float32 "radius" array; `rgb` (m, 3) uint8 colours them (point data "rgb"); `exposed`
+    (m,) bool marks the balls with some area on the union's boundary (point data
+    "exposed", all True when not given: outer_balls draws only these).
 
     The balls are drawn as sphere impostors (ball_mapper): one point each, not a mesh. The
     centres are float32 (what the impostor mapper reads) measured from the field data's
@@ -105,8 +117,23 @@ def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS,
     if rgb is not None:
         colours = np.asarray(rgb, dtype=np.uint8)[pick]
         mesh["rgb"] = np.concatenate([colours, np.zeros((len(corners), 3), np.uint8)])
+    shown = np.ones(len(pick), bool) if exposed is None else np.asarray(exposed, bool)[pick]
+    mesh[EXPOSED] = np.concatenate([shown, np.ones(len(corners), bool)]).astype(np.uint8)
     mesh.field_data[BALL_ORIGIN] = origin
     return mesh
+
+
+def outer_balls(mesh: pv.PolyData) -> pv.PolyData:
+    """The balls of a ball_mesh that show from outside when all are drawn opaque and uncut:
+    those with exposed area (a ball inside the union of the others is covered wherever it
+    is seen from), with the box corners, in the same order and float32 values (the same
+    picture, fewer fragments to shade)."""
+    keep = np.asarray(mesh[EXPOSED], dtype=bool)
+    outer = pv.PolyData(np.asarray(mesh.points)[keep])
+    for name in mesh.point_data.keys():
+        outer[name] = np.asarray(mesh.point_data[name])[keep]
+    outer.field_data[BALL_ORIGIN] = mesh.field_data[BALL_ORIGIN]
+    return outer
 
 
 def ball_mapper(mesh: pv.PolyData) -> vtkOpenGLSphereMapper:
@@ -120,6 +147,12 @@ def ball_mapper(mesh: pv.PolyData) -> vtkOpenGLSphereMapper:
     return mapper
 
 
+def shade_balls(actor: pv.Actor) -> None:
+    """Light the balls with BALL_LIGHT (a replacement of the impostor shader's lighting)."""
+    actor.GetShaderProperty().AddFragmentShaderReplacement("//VTK::Light::Impl", True,
+                                                           BALL_LIGHT, False)
+
+
 def ball_actor(mesh: pv.PolyData, colour: str, opacity: float) -> pv.Actor:
     """The balls' actor: ball_mapper at the mesh's origin, in its own "rgb" colours when it
     has them (atoms by element), else in colour."""
@@ -130,6 +163,7 @@ def ball_actor(mesh: pv.PolyData, colour: str, opacity: float) -> pv.Actor:
         mapper.SetColorModeToDirectScalars()
         mapper.SetScalarVisibility(True)
     actor = pv.Actor(mapper=mapper)
+    shade_balls(actor)
     actor.SetPosition(*np.asarray(mesh.field_data[BALL_ORIGIN], dtype=np.float64))
     actor.prop.color = colour
     actor.prop.opacity = opacity

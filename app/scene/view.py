@@ -30,6 +30,7 @@ from app.scene.layers import (
     ball_mesh,
     coloured_cells,
     new_mesh,
+    outer_balls,
     shape_cells,
 )
 from app.scene.overlay import Overlay
@@ -110,8 +111,8 @@ class Scene:
         for name, kind in (KINDS_2D if data.dim == 2 else KINDS_3D).items():
             self._add_layer(name, Layer(kind, new_mesh(kind, data.xyz)), styles[name])
         if data.radii is not None and "balls" in styles:
-            self._add_layer("balls", Layer("balls", ball_mesh(data.xyz, data.radii, rgb=data.rgb)),
-                            styles["balls"])
+            mesh = ball_mesh(data.xyz, data.radii, rgb=data.rgb, exposed=data.exposed)
+            self._add_layer("balls", Layer("balls", mesh), styles["balls"])
         if "cavities" in styles and data.dim == 3:
             self._add_layer("cavities", Layer("tets", new_mesh("tets", data.xyz)),
                             styles["cavities"])
@@ -134,12 +135,16 @@ class Scene:
         self.layers[name] = layer
         self.styles[name] = style
         layer.actor = self._add_actor(name, style)
+        if layer.kind == "balls":
+            self._draw_balls(layer, style, self.clipper.enabled)
 
     def _add_actor(self, name: str, style: LayerStyle) -> pv.Actor:
         """Add the layer's one actor."""
         layer = self.layers[name]
         if layer.kind == "balls":  # sphere impostors: a mapper pyvista's add_mesh cannot make
             actor = ball_actor(layer.mesh, style.colour, style.opacity)
+            outer = outer_balls(layer.mesh)
+            layer.outer = outer if outer.n_points < layer.mesh.n_points else None
             self.plotter.add_actor(actor, name=name, reset_camera=False, render=False)
             actor.SetVisibility(style.visible)
             return actor
@@ -160,6 +165,16 @@ class Scene:
             actor.mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(-2.0, -2.0)
         actor.SetVisibility(style.visible)
         return actor
+
+    @staticmethod
+    def _draw_balls(layer: Layer, style: LayerStyle, clipped: bool) -> None:
+        """Draw only the balls seen from outside (layer.outer) while they are opaque and
+        uncut; all of them when translucent or clipped (inner balls show then)."""
+        whole = clipped or style.opacity < 1.0 or layer.outer is None
+        source = layer.mesh if whole else layer.outer
+        mapper = layer.actor.GetMapper()
+        if mapper.GetInput() is not source:
+            mapper.SetInputData(source)
 
     def clear(self) -> None:
         """Remove every layer's actor and forget the shape (only when the dataset changes or
@@ -228,10 +243,14 @@ class Scene:
         prop.color = style.colour
         prop.opacity = style.opacity
         layer.actor.SetVisibility(style.visible)
+        if layer.kind == "balls":
+            self._draw_balls(layer, style, self.clipper.enabled)
         self.overlay.set_layers(self.styles)
 
     def set_clipping(self, on: bool) -> None:
         """Cut the layers open with the clipping plane (kept for the next dataset)."""
+        if "balls" in self.layers:
+            self._draw_balls(self.layers["balls"], self.styles["balls"], bool(on))
         self.clipper.set_enabled(on)
 
     def add_picker(self, on_pick: Callable[[np.ndarray], None],

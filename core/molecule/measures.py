@@ -15,6 +15,7 @@ import numpy as np
 from core.arrays import readonly
 from core.molecule.intersections import ball_terms
 from core.parallel import together
+from core.tolerances import EXPOSED_AREA_RTOL
 
 #: Simplices per vectorized batch: each batch's many (3, m) temporaries stay in the caches
 #: (about 1.8x faster than batches of 100,000; rowwise, so a batch's size never changes a value).
@@ -78,3 +79,11 @@ def union_measures(centres: np.ndarray, radii: np.ndarray, edges: np.ndarray,
     atom_area -= areas
     atom_area = readonly(np.maximum(atom_area, 0.0))
     return UnionMeasures(float(atom_area.sum()), volume, atom_area)
+
+
+def exposed_balls(atom_area: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """(n,) bool: the balls of (n,) radii whose (n,) exposed areas (UnionMeasures.atom_area)
+    are more than the rounding of their sum (EXPOSED_AREA_RTOL of the sphere's area); the
+    others lie inside the union of the rest."""
+    sphere = 4.0 * np.pi * np.asarray(radii, dtype=np.float64) ** 2
+    return np.asarray(atom_area, dtype=np.float64) > EXPOSED_AREA_RTOL * sphere
