@@ -123,3 +123,20 @@ def test_a_ball_is_lit_from_the_eye_at_its_radius(scene) -> None:
     assert np.hypot(*(np.array(brightest) - centre)) < 2.0
     ring = ball & (np.hypot(*(np.indices(image.shape) - centre[:, None, None])) > 0.8 * expected)
     assert image[ring].mean() < 0.7 * image[brightest]
+
+
+@molecule_data
+def test_exposed_balls_known_after_the_first_frame(scene, molecule) -> None:
+    """A molecule drawn before its measures arrive shows every ball; told its exposed balls
+    later, the scene draws only those, and the picture stays the same."""
+    from dataclasses import replace
+
+    molecule_scene(scene, replace(molecule, molecule=None))
+    layer = scene.layers["balls"]
+    assert drawn(scene) is layer.mesh and layer.outer is None
+    every = scene.plotter.screenshot(None).copy()
+    exposed = scene_data(molecule, {**default_styles(3), "balls": ATOM_STYLE}).exposed
+    scene.set_exposed(exposed)
+    assert drawn(scene) is layer.outer
+    assert drawn(scene).GetNumberOfPoints() == exposed.sum() + 2
+    np.testing.assert_array_equal(scene.plotter.screenshot(None), every)

@@ -25,6 +25,7 @@ KINDS_2D = {
 STATIC_LAYERS = ("points", "delaunay", "balls", "cavities", "pockets", "mouths")
 BALL_ORIGIN = "origin"  # field data of a ball mesh: where its float32 centres are measured from
 EXPOSED = "exposed"  # point data of a ball mesh: 1 where the ball has area on the union's boundary
+BALL_ROWS = "rows"  # field data of a ball mesh: the rows of the points its balls are drawn at
 #: The balls' shading in the impostor's fragment shader, in place of VTK's lights: one light
 #: at the eye (a sphere's normal faces it at its centre) over a dim floor, so rims stay apart.
 #: A software renderer shades every covered fragment of every overlapping ball; the
@@ -117,10 +118,19 @@ def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS,
     if rgb is not None:
         colours = np.asarray(rgb, dtype=np.uint8)[pick]
         mesh["rgb"] = np.concatenate([colours, np.zeros((len(corners), 3), np.uint8)])
-    shown = np.ones(len(pick), bool) if exposed is None else np.asarray(exposed, bool)[pick]
-    mesh[EXPOSED] = np.concatenate([shown, np.ones(len(corners), bool)]).astype(np.uint8)
     mesh.field_data[BALL_ORIGIN] = origin
+    mesh.field_data[BALL_ROWS] = pick
+    mark_exposed(mesh, exposed)
     return mesh
+
+
+def mark_exposed(mesh: pv.PolyData, exposed: np.ndarray | None) -> None:
+    """Set a ball_mesh's "exposed" marks from (m,) bool `exposed` over all the points (None:
+    every ball; the box corners always)."""
+    pick = np.asarray(mesh.field_data[BALL_ROWS], dtype=np.int64)
+    shown = np.ones(len(pick), bool) if exposed is None else np.asarray(exposed, bool)[pick]
+    corners = mesh.n_points - len(pick)
+    mesh[EXPOSED] = np.concatenate([shown, np.ones(corners, bool)]).astype(np.uint8)
 
 
 def outer_balls(mesh: pv.PolyData) -> pv.PolyData:

@@ -29,6 +29,7 @@ from app.scene.layers import (
     ball_actor,
     ball_mesh,
     coloured_cells,
+    mark_exposed,
     new_mesh,
     outer_balls,
     shape_cells,
@@ -165,6 +166,17 @@ class Scene:
             actor.mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(-2.0, -2.0)
         actor.SetVisibility(style.visible)
         return actor
+
+    def set_exposed(self, exposed: np.ndarray) -> None:
+        """The balls with area on their union's boundary ((m,) bool), known once a molecule's
+        measures arrive after its first frame: only those are drawn while opaque and uncut."""
+        layer = self.layers.get("balls")
+        if layer is None or layer.actor is None:
+            return
+        mark_exposed(layer.mesh, exposed)
+        outer = outer_balls(layer.mesh)
+        layer.outer = outer if outer.n_points < layer.mesh.n_points else None
+        self._draw_balls(layer, self.styles["balls"], self.clipper.enabled)
 
     @staticmethod
     def _draw_balls(layer: Layer, style: LayerStyle, clipped: bool) -> None:
