@@ -66,3 +66,8 @@ BACKEND_CERTAIN_RTOL = 1e-12
 #: where the other half's nearest point has a power (squared distance) to its circumsphere
 #: (orthosphere) larger than the sphere's by more than this share of the terms.
 SPLIT_EMPTY_RTOL = 1e-9
+
+#: A power plane is left out of a ball's piece when its cap (the ball beyond it) lies beyond
+#: another plane of the piece by more than this fraction of the ball's radius (a sure margin:
+#: a plane left in changes nothing, one left out wrongly would).
+CAP_BEYOND_RTOL = 1e-9

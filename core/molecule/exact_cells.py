@@ -18,6 +18,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from core.molecule.clipped import ball_in_polyhedron
+from core.tolerances import CAP_BEYOND_RTOL
 
 CHUNK = 1024  # ball pieces per vectorized batch (each holds P(P-1) x P plane tests)
 BLOCK = 20_000  # (ball, cell) pairs whose power planes are sorted out at once
@@ -143,13 +144,31 @@ def _some(flags: np.ndarray) -> np.ndarray:
     return flags[:, 0] | flags[:, 1] | flags[:, 2] | flags[:, 3]
 
 
+def _cap_low(bound: np.ndarray, radius: np.ndarray, cos: np.ndarray) -> np.ndarray:
+    """The least of n'·x over the cap {|x| <= radius, n·x >= bound} of a ball about the
+    origin, for unit n' at cosine `cos` to n: -radius when the ball's point -radius·n' is in
+    the cap, else the least over the cap's disk (centre bound·n, radius sqrt(r² - bound²))."""
+    rho = np.sqrt(np.maximum(radius * radius - bound * bound, 0.0))
+    low = bound * cos - rho * np.sqrt(np.maximum(1.0 - cos * cos, 0.0))
+    return np.where(-radius * cos >= bound, -radius, low)
+
+
+def _cap_beyond(normal, bound, radius, facet_normals, facet_offsets) -> np.ndarray:
+    """(r,) bool: power planes (unit normal, bound about the ball's centre, its radius) whose
+    cap lies wholly beyond a facet of the cell (facet_normals (r, 4, 3), facet_offsets (r, 4)
+    about the centre), by the margin CAP_BEYOND_RTOL: they cut nothing of the ball inside
+    the cell, so they are left out (each plane costs a piece's clipping about P² lines)."""
+    cos = np.einsum("mvc,mc->mv", facet_normals, normal)
+    return _some(_cap_low(bound[:, None], radius[:, None], cos)
+                 > facet_offsets + (CAP_BEYOND_RTOL * radius)[:, None])
+
+
 def _power_planes(facts, pair_i, pair_j, corners, planes, starts, others):
     """(piece (r,), normals (r, 3), offsets (r,) about the piece's centre) of the power
     planes that may cut a piece's ball inside its cell, and (pieces,) bool: the piece is
     empty (its ball or its cell wholly beyond one power plane). A plane is left out when
-    the ball or the cell lies on its inner side, or when the cap it cuts off the ball
-    (inside the ball about its foot of radius sqrt(r² - offset²)) is beyond a facet plane
-    of the cell; planes: `cell_planes(corners)`."""
+    the ball or the cell lies on its inner side, or when the cap it cuts off the ball is
+    beyond a facet plane of the cell (`_cap_beyond`); planes: `cell_planes(corners)`."""
     count = starts[pair_j + 1] - starts[pair_j]
     piece = np.repeat(np.arange(len(pair_i)), count)
     offset = np.arange(len(piece)) - np.repeat(np.cumsum(count) - count, count)
@@ -166,11 +185,12 @@ def _power_planes(facts, pair_i, pair_j, corners, planes, starts, others):
     empty = np.zeros(len(pair_i), bool)
     empty[piece[(bound <= -ra) | _every(side >= 0)]] = True
     keep = (bound < ra) & _some(side > 0) & ~empty[piece]
-    cap = np.flatnonzero(keep & (bound > 0))
-    foot = facts.centres[ball[cap]] + bound[cap, None] * normal[cap]
-    beyond = _some(np.einsum("mvc,mc->mv", planes[0][cell[cap]], foot) - planes[1][cell[cap]]
-                   > np.sqrt(ra[cap] ** 2 - bound[cap] ** 2)[:, None])
-    keep[cap[beyond]] = False
+    rest = np.flatnonzero(keep)
+    facet_normals = planes[0][cell[rest]]
+    facet_offsets = planes[1][cell[rest]] - np.einsum("mvc,mc->mv", facet_normals,
+                                                      facts.centres[ball[rest]])
+    keep[rest[_cap_beyond(normal[rest], bound[rest], ra[rest], facet_normals,
+                          facet_offsets)]] = False
     return piece[keep], normal[keep], bound[keep], empty
 
 
