@@ -71,29 +71,27 @@ def _edge_terms(a, b, normal, offset, rr):
 
 
 def _clip_lines(normals, offsets, direction, x0, f, g):
-    """((m, E) lower, upper, blocked) the part of each line x0 + s·direction (m, E, 3)
-    inside every halfspace but its own two (planes f, g (E,)): lower <= s <= upper; blocked
-    where a plane parallel to the line leaves it outside. One plane at a time: (m, E)
-    arrays stay in cache, where (m, P, E) ones did not (and numpy reduces a short axis
-    slowly)."""
+    """((m, E) lower, upper) the part of each line x0 + s·direction (m, E, 3) inside every
+    halfspace but its own two (planes f, g (E,)): lower <= s <= upper; upper is -inf where
+    a plane parallel to the line leaves it outside. One plane at a time: (m, E) arrays stay
+    in cache, where (m, P, E) ones did not (and numpy reduces a short axis slowly)."""
     m, edges = direction.shape[:2]
     lower, upper = np.full((m, edges), -np.inf), np.full((m, edges), np.inf)
-    blocked = np.zeros((m, edges), bool)
     d = [np.ascontiguousarray(direction[..., c]) for c in range(3)]
     x = [np.ascontiguousarray(x0[..., c]) for c in range(3)]
     for p in range(offsets.shape[1]):
         n = [normals[:, p, c, None] for c in range(3)]
         slope = d[0] * n[0] + d[1] * n[1] + d[2] * n[2]
         room = offsets[:, p, None] - (x[0] * n[0] + x[1] * n[1] + x[2] * n[2])
-        own = (f == p) | (g == p)  # the line's own planes bound nothing
-        slope[:, own] = 0.0
-        room[:, own] = 0.0
+        slope[:, (f == p) | (g == p)] = np.nan  # the line's own planes bound nothing
         with np.errstate(divide="ignore", invalid="ignore"):
             bound = room / slope
         np.minimum(upper, bound, out=upper, where=slope > 0)
         np.maximum(lower, bound, out=lower, where=slope < 0)
-        blocked |= (slope == 0) & (room < 0)
-    return lower, upper, blocked
+        parallel = slope == 0
+        if parallel.any():
+            upper[parallel & (room < 0)] = -np.inf
+    return lower, upper
 
 
 def ball_in_polyhedron(normals: np.ndarray, offsets: np.ndarray, r: np.ndarray
@@ -111,8 +109,8 @@ def ball_in_polyhedron(normals: np.ndarray, offsets: np.ndarray, r: np.ndarray
     ok = sin2 > 1e-20
     safe = np.where(ok, sin2, 1.0)
     x0 = (((bf - bg * cos) / safe)[..., None] * nf + ((bg - bf * cos) / safe)[..., None] * ng)
-    lower, upper, blocked = _clip_lines(normals, offsets, direction, x0, f, g)
-    ok &= ~blocked & (upper > lower) & np.isfinite(upper) & np.isfinite(lower)
+    lower, upper = _clip_lines(normals, offsets, direction, x0, f, g)
+    ok &= (upper > lower) & np.isfinite(upper) & np.isfinite(lower)
     row, pair = np.nonzero(ok)  # the polyhedra's edges only
     direction, x0 = direction[row, pair], x0[row, pair]
     a = x0 + lower[row, pair, None] * direction
