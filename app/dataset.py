@@ -1,5 +1,6 @@
 """Loading a dataset (no Qt): read points, obtain the complex (core.obtain: cache or build),
-pick a start alpha; `with_topology` completes its topology afterwards."""
+pick a start alpha; `with_topology` completes its topology afterwards, `with_measures` a
+molecule's measures."""
 
 from __future__ import annotations
 
@@ -65,10 +66,12 @@ class Dataset:
     topology_seconds: float | None = None  # the topology pass (0 when it came with the table)
     attributes: dict = field(default_factory=dict)  # name -> per-point values, rows of ac.points
     frame: ViewFrame = Z_UP  # which way is up, and the view it opens with (app.camera)
-    #: Molecules: the measures of the atoms' union at alpha² = 0, and (m,) int16 atomic
-    #: numbers aligned with ac.points (None for other point sets).
+    #: Molecules: the measures of the atoms' union at alpha² = 0 (None for other point sets,
+    #: and for a molecule until with_measures: they may come after the table), and (m,)
+    #: int16 atomic numbers aligned with ac.points (None for other point sets).
     molecule: MoleculeMeasures | None = None
     atomic_numbers: np.ndarray | None = None
+    probe: float | None = None  # a molecule's probe radius in Å (None: not a molecule)
     #: Molecules: (m,) str 'chain:residue:number:atom' of each of ac.points (else None).
     atom_labels: np.ndarray | None = None
     persistence: Persistence | None = None  # known with the topology (None before)
@@ -91,10 +94,20 @@ class Dataset:
         return self.signatures is not None
 
     @property
+    def is_molecule(self) -> bool:
+        """True for a molecule's atoms (weighted balls with atomic numbers), measured or not."""
+        return self.probe is not None
+
+    @property
+    def needs_measures(self) -> bool:
+        """True for a molecule whose measures are not known yet (with_measures gives them)."""
+        return self.is_molecule and self.molecule is None
+
+    @property
     def unit(self) -> str | None:
         """The length unit the file declares ('m' for geographic data projected to metres, 'Å'
         for a molecule), None when unknown."""
-        if self.molecule is not None:
+        if self.is_molecule:
             return "Å"
         return "m" if self.report is not None and self.report.georef is not None else None
 
@@ -139,7 +152,7 @@ class ImportOptions:
 
 def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here,
                  mode: Mode | None = None, options: ImportOptions | None = None,
-                 topology: bool = True) -> Dataset:
+                 topology: bool = True, measures: bool = True) -> Dataset:
     """Read (with `options`: columns, subsampling) and build path in the alpha `mode`
     (default classic), reporting progress(fraction, stage); Cancelled stops it.
 
@@ -147,9 +160,11 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     app.build_process.ChildRunner, which Cancel kills mid-triangulation). Without `topology`
     the dataset is returned as soon as the slider can use it (the table and its cursor); the
     window then completes it with with_topology in the background. A cached table that holds
-    its topology is always returned complete. The stage POINTS_READ is reported once the
-    file was read and checked for the mode, before the table is built or loaded. The
-    triangulation backend is chosen automatically unless $ALPHASCOOP_BACKEND forces one.
+    its topology is always returned complete. Without `measures` a molecule comes without its
+    measures (pockets, cavities, exact area: the costly part), completed by with_measures.
+    The stage POINTS_READ is reported once the file was read and checked for the mode, before
+    the table is built or loaded. The triangulation backend is chosen automatically unless
+    $ALPHASCOOP_BACKEND forces one.
     """
     mode = mode or Mode()
     path = Path(path)
@@ -176,25 +191,26 @@ def load_dataset(path: str | Path, progress: Progress, runner: Runner = run_here
     ac = obtained.complex
     built = time.perf_counter()
     progress(READ_SHARE + BUILD_SHARE, "choosing alpha")
-    molecule, numbers = _molecule(ac, pointset)
-    labels = None if molecule is None else _atom_labels(ac, pointset)
+    probe, numbers = _molecule(ac, pointset)
+    molecule = measure_molecule(ac, probe) if probe is not None and measures else None
+    labels = None if probe is None else _atom_labels(ac, pointset)
     complete = ac.has_signatures
     # a molecule opens at alpha² = 0: the dual of the union of its balls, what it measures
     handed = runner.handed_over(ac)  # what a build process found beside the table
     known = handed.opening_alpha
-    alpha = 0.0 if molecule is not None else (
+    alpha = 0.0 if probe is not None else (
         float(ac.default_alpha()) if complete else quick_alpha(ac) if known is None else known)
     progress(INDEX_START, "indexing for the slider")
     cursor = handed.cursor or ac.cursor()
     cursor.move(**at_value(alpha))  # the table value itself, negative ones included
     dataset = Dataset(
-        path=path, ac=ac, spectrum=spectrum_of(ac, molecule is not None),
+        path=path, ac=ac, spectrum=spectrum_of(ac, probe is not None),
         optimal_alpha=None, default_alpha=alpha,
         signatures=None, n_input=len(pointset.points), report=pointset.report,
         load_seconds=read_done - started, build_seconds=built - read_done, cursor=cursor,
         source=obtained.source, entry=obtained.entry, damage=obtained.damage,
         frame=frame_for(path, pointset.report, pointset.points),
-        molecule=molecule, atomic_numbers=numbers, atom_labels=labels,
+        molecule=molecule, atomic_numbers=numbers, atom_labels=labels, probe=probe,
         attributes=aligned_attributes(pointset.attributes, ac.input_index, len(ac.points)),
         options=options,
     )
@@ -262,6 +278,15 @@ def with_topology(dataset: Dataset, check: Callable[[], None] | None = None) -> 
                       seconds=0.0 if came else time.perf_counter() - started)
 
 
+def with_measures(dataset: Dataset, check: Callable[[], None] | None = None) -> Dataset:
+    """A molecule's dataset with its measures (core.molecule.analysis.measure_molecule at
+    alpha² = 0: exact area and volume, per-atom areas, cavities, pockets); `check()` is called
+    between their stages and may raise core.errors.Cancelled to stop."""
+    if not dataset.needs_measures:
+        return dataset
+    return replace(dataset, molecule=measure_molecule(dataset.ac, dataset.probe, check=check))
+
+
 def with_parts(dataset: Dataset, parts: TopologyParts, seconds: float) -> Dataset:
     """The dataset completed with the topology a topology process computed for its table
     (app.topology_process): its complex is the same table with that topology attached."""
@@ -275,7 +300,7 @@ def _completed(dataset: Dataset, ac: AlphaComplex, optimal: float, default: floa
     """The dataset with ac (its table with the topology), the optimal and opening alphas (a
     molecule keeps its own, alpha² = 0), persistence and suggestions: the tail with_topology
     and with_parts share."""
-    default = dataset.default_alpha if dataset.molecule is not None else default
+    default = dataset.default_alpha if dataset.is_molecule else default
     ac.signatures().counts_at(default)  # sorts its class thresholds here, not in the info dock
     return replace(dataset, ac=ac, signatures=ac.signatures(), optimal_alpha=float(optimal),
                    default_alpha=float(default), persistence=persistence,
@@ -321,9 +346,9 @@ def _atom_labels(ac: AlphaComplex, pointset) -> np.ndarray | None:
                      for a in atom_labels(read_molecule(path), ac.points)])
 
 
-def _molecule(ac: AlphaComplex, pointset) -> tuple[MoleculeMeasures | None, np.ndarray | None]:
-    """For a molecule (atoms with atomic numbers, weighted): its measures at alpha² = 0 and
-    the atomic numbers of ac's points; (None, None) otherwise."""
+def _molecule(ac: AlphaComplex, pointset) -> tuple[float | None, np.ndarray | None]:
+    """For a molecule (atoms with atomic numbers, weighted): its probe radius in Å and the
+    atomic numbers of ac's points; (None, None) otherwise."""
     numbers = pointset.attributes.get("atomic_number")
     if numbers is None or ac.weights is None or ac.dim != 3:
         return None, None
@@ -332,4 +357,4 @@ def _molecule(ac: AlphaComplex, pointset) -> tuple[MoleculeMeasures | None, np.n
     rows[ac.input_index[shown]] = np.asarray(numbers)[shown]
     probe = float(np.sqrt(pointset.attributes["weights"][0])
                   - pointset.attributes["vdw_radius"][0])
-    return measure_molecule(ac, round(probe, 6)), rows
+    return round(probe, 6), rows

@@ -63,7 +63,7 @@ def refusal(dataset: Dataset) -> str | None:
     """Why this dataset cannot be exported at full resolution (None: it can)."""
     if importlib.util.find_spec("distributed") is None:
         return "it runs on Dask, which is not installed (pip install 'alphascoop[tiled]')"
-    if dataset.molecule is not None:
+    if dataset.is_molecule:
         return "a molecule is never subsampled: use Export shape"
     if dataset.ac.mode.active:
         return (f"alpha modes ({dataset.ac.mode.name}) are not tiled: switch to classic "

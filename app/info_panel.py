@@ -20,6 +20,8 @@ from core.query.classes import INTERIOR, REGULAR, SINGULAR
 
 BETTI_NAMES = {2: ("component", "hole"), 3: ("component", "tunnel", "void")}
 WIDTH_CHARACTERS = 34  # the dock's width, in average character widths
+#: a molecule's line while its measures are computed (app.worker.measures_job)
+MEASURING = "exact area, volume, cavities and pockets: computing…"
 
 
 def data_lines(model: ExplorerModel) -> list[str]:
@@ -55,8 +57,8 @@ def data_lines(model: ExplorerModel) -> list[str]:
 def weights_line(ds) -> str:
     """What the balls' radii are: a molecule's atoms (Bondi van der Waals radii + the probe),
     else where the weights came from; and how many balls are hidden (none: not said)."""
-    if ds.molecule is not None:
-        text = (f"atoms as balls: van der Waals radii (Bondi) + probe {ds.molecule.probe:g} Å")
+    if ds.is_molecule:
+        text = f"atoms as balls: van der Waals radii (Bondi) + probe {ds.probe:g} Å"
     else:
         text = f"weighted: {getattr(ds.report, 'weights_from', None) or 'given weights'}"
     hidden = int((np.asarray(ds.ac.input_index) < 0).sum())
@@ -69,7 +71,7 @@ def opening_line(ds) -> str:
     """Where the view opened and the pieces there: 'opens at 1.81 spacings: 5 pieces of 41+
     points hold 99 % of the points; the largest 88 %, 7.9 %, 2.2 %'."""
     pieces = ds.opening_pieces
-    if ds.molecule is not None:
+    if ds.is_molecule:
         where = "opens at alpha² 0 (the union of the balls)"
     elif pieces.spacings is not None:
         where = f"opens at {pieces.spacings:.3g} spacings"
@@ -90,10 +92,14 @@ def breakable(text: str) -> str:
 
 
 def molecule_lines(model: ExplorerModel) -> list[str]:
-    """A molecule's measures (union of its balls at alpha² = 0), or nothing."""
-    m = model.dataset.molecule
-    if m is None:
+    """A molecule's measures (union of its balls at alpha² = 0), MEASURING while they are
+    computed, or nothing."""
+    ds = model.dataset
+    if not ds.is_molecule:
         return []
+    m = ds.molecule
+    if m is None:
+        return [f"<b>molecule</b>, probe {ds.probe:g} Å (at alpha² 0)", MEASURING]
     cavities = ", ".join(f"{v:.3g}" for v in m.cavities[:5]) + (" ..." if len(m.cavities) > 5
                                                                 else "")
     return [f"<b>molecule</b>, probe {m.probe:g} Å (at alpha² 0)",
@@ -159,7 +165,8 @@ def shape_lines(model: ExplorerModel) -> list[str]:
     lines.append(", ".join(plural(int(b), n) for b, n in zip(betti, BETTI_NAMES[dim],
                                                               strict=True)))
     boundary, measure = (float(v[row]) for v in (sig.boundary_measure, sig.measure))
-    cells = " of the cells (the balls' exact figures: above)" if model.dataset.molecule else ""
+    exact = " of the cells (the balls' exact figures: above)"
+    cells = exact if model.dataset.is_molecule else ""
     lines.append(f"{'perimeter' if dim == 2 else 'area'} "
                  f"{with_unit(quantity(boundary, 6), unit, dim - 1)}{cells}")
     lines.append(f"{'area' if dim == 2 else 'volume'} "
@@ -201,6 +208,7 @@ class InfoPanel(QWidget):
         model.alphaChanged.connect(self.show_shape)
         model.topologyChanged.connect(self.show_data)
         model.topologyChanged.connect(self.show_shape)
+        model.measuresChanged.connect(self.show_data)
         model.datasetReleased.connect(self.data.clear)
         model.datasetReleased.connect(self.shape.clear)
 

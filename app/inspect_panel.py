@@ -72,6 +72,7 @@ class InspectPanel(QWidget):
         model.alphaChanged.connect(self.refresh)
         model.datasetChanged.connect(self.clear)
         model.datasetReleased.connect(self.clear)
+        model.measuresChanged.connect(self._show_pocket)  # a molecule's pockets came later
         self.clear()
 
     def show_item(self, item: Inspection) -> None:
@@ -87,6 +88,11 @@ class InspectPanel(QWidget):
         self.fields["pocket"].setText(self._pocket(item))
         self.clear_button.setEnabled(True)
         self.refresh()
+
+    def _show_pocket(self) -> None:
+        """The shown item's pocket field again (its pockets were measured since)."""
+        if self.item is not None:
+            self.fields["pocket"].setText(self._pocket(self.item))
 
     def _pocket(self, item: Inspection) -> str:
         """A molecule's pocket the simplex belongs to (a pocket cell or mouth), with its

@@ -1,8 +1,9 @@
 """The explorer's main window: composes the view, docks, menus and the runners (no logic of
 its own).
 
-State lives in ExplorerModel, every VTK object in the Scene, background work in two
-app.jobs.Runner (loads, exports); this class only wires them.
+State lives in ExplorerModel, every VTK object in the Scene, background work in
+app.jobs.Runner (loads, topology, a molecule's measures, exports); this class only wires
+them.
 """
 
 from __future__ import annotations
@@ -35,14 +36,15 @@ from app.menus import MenuTools, build_menus
 from app.mode_panel import ModePanel
 from app.model import ExplorerModel
 from app.palette import ATOM_STYLE, CAVITY_STYLE, MOUTH_STYLE, POCKET_STYLE, cpk_rgb
+from app.pockets_layer import pocket_arrays
 from app.progress_widget import ProgressWidget
 from app.reopen import ReopenFallback
 from app.resources import ICON_PATH
-from app.scene import scene_data
+from app.scene import exposed_of, scene_data
 from app.scene.interactive import interactive_scene
 from app.settings import Preferences
 from app.signatures_dock import SignaturesPanel
-from app.worker import load_job, topology_job
+from app.worker import load_job, measures_job, topology_job
 from core.modes.alpha_modes import Mode
 
 LAYOUT_DEPTH = 5  # rounds of layout requests a text change sends up (label, panel, dock, window)
@@ -69,6 +71,7 @@ class MainWindow(QMainWindow):
         self.model = ExplorerModel()
         self.loader = Runner(self)  # loads and rebuilds: a newer one supersedes the older
         self.topology = Runner(self)  # the topology after a load (a newer one supersedes it)
+        self.measures = Runner(self)  # a molecule's measures after a load (likewise)
         self.jobs = Runner(self, exclusive=True)  # exports: one at a time
         self.scene, view = interactive_scene(self)
         self.banner = subsample_banner_label()
@@ -122,6 +125,8 @@ class MainWindow(QMainWindow):
         self.loader.cancelled.connect(self._on_cancelled)
         self.topology.finished.connect(self._on_topology)
         self.topology.failed.connect(self._on_topology_failed)
+        self.measures.finished.connect(lambda _request, ds: self.model.set_measures(ds))
+        self.measures.failed.connect(self._on_measures_failed)
         for outcome in (self.loader.finished, self.loader.failed, self.loader.cancelled,
                         self.loader.dropped):  # a superseded load's arrays are freed too
             outcome.connect(self._give_back_memory)  # after the slots above dropped the old
@@ -134,6 +139,7 @@ class MainWindow(QMainWindow):
         self.job_progress.cancelRequested.connect(self.jobs.cancel)
         self.model.datasetChanged.connect(self._show_dataset)
         self.model.alphaChanged.connect(self._show_shape)
+        self.model.measuresChanged.connect(self._show_measures)
         slider = self.alpha_panel.slider  # a drag draws a lighter frame; its release the full
         slider.sliderMoved.connect(lambda _position: self.scene.set_level_of_detail(True))
         slider.sliderReleased.connect(self._end_drag)
@@ -185,6 +191,7 @@ class MainWindow(QMainWindow):
         self.fallback = ReopenFallback(dataset.path, dataset.ac.mode, self.last_options,
                                        self.model.alpha if self.model.touched else None)
         self.topology.cancel()  # its job holds the dataset: stop it now
+        self.measures.cancel()  # likewise
         self.model.release()
         self.status.setText(f"{self.loader.title}: {dataset.path.name} was closed to make room "
                             "(Cancel re-opens it)")
@@ -241,6 +248,9 @@ class MainWindow(QMainWindow):
         self.topology.cancel()  # an older dataset's pass: stops at its next stage
         if not dataset.has_topology:
             self.topology.start(topology_job(dataset))
+        self.measures.cancel()  # an older molecule's: its result is dropped
+        if dataset.needs_measures:
+            self.measures.start(measures_job(dataset))
         reopened, self.reopen_alpha = self.reopen_alpha, None
         start = self.start_alpha if request == self.start_request else None
         alpha = reopened[1] if reopened is not None and reopened[0] == request else start
@@ -267,6 +277,10 @@ class MainWindow(QMainWindow):
     def _on_topology_failed(self, _request: int, message: str) -> None:
         """The topology pass failed: the slider keeps working; say why."""
         self.status.setText(f"{message}; the slider still works")
+
+    def _on_measures_failed(self, _request: int, message: str) -> None:
+        """A molecule's measures failed: the shape and slider stay; say why."""
+        self.status.setText(f"{message}; the shape and the slider still work")
 
     def _on_failed(self, _request: int, message: str) -> None:
         """Show why the current request failed; the file shown before comes back."""
@@ -300,6 +314,18 @@ class MainWindow(QMainWindow):
         self._show_banner(subsample_banner(ds))
         self.setWindowTitle(f"Alpha Scoop - {ds.path.name}")
         self.alpha_panel.slider.setFocus()
+
+    def _show_measures(self) -> None:
+        """A molecule's measures arrived: its pockets and their mouths become layers (with
+        the styles the Layers dock holds for them), drawn once."""
+        ds = self.model.dataset
+        self.scene.add_pockets(pocket_arrays(ds.ac, ds.molecule.pockets),
+                               self.layers_panel.styles)
+        exposed = exposed_of(ds)
+        if exposed is not None:
+            self.scene.set_exposed(exposed)
+        self.colourer.update()
+        self.scene.render()
 
     def _show_banner(self, text: str | None) -> None:
         """Show the subsample banner with `text`, or hide it (None)."""
@@ -383,7 +409,7 @@ class MainWindow(QMainWindow):
         """
         self.prefs.store.setValue("window/geometry", self.saveGeometry())
         self.prefs.store.setValue("window/state", self.saveState())
-        runners = (self.loader, self.topology, self.jobs)
+        runners = (self.loader, self.topology, self.measures, self.jobs)
         for runner in runners:
             runner.cancel()
         if any(runner.is_busy() for runner in runners):

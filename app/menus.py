@@ -162,8 +162,12 @@ def on_export_pockets(tools: MenuTools) -> None:
     from app.pocket_export import POCKET_FORMATS, write_pockets_file
 
     ds = tools.model.dataset
-    if ds is None or ds.molecule is None or ds.atom_labels is None:
+    if ds is None or not ds.is_molecule or ds.atom_labels is None:
         QMessageBox.information(tools.parent, "Export pockets", "Open a molecule first.")
+        return
+    if ds.molecule is None:
+        QMessageBox.information(tools.parent, "Export pockets",
+                                "The pockets are still being computed: try again in a moment.")
         return
     path = file_actions.ask_save_path(tools.parent, tools.prefs, "Export pockets",
                                       POCKET_FORMATS, f"{ds.path.stem}_pockets")

@@ -6,6 +6,8 @@ value is a critical alpha and every critical alpha is reachable.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 from PySide6.QtCore import QObject, Signal
 
@@ -24,6 +26,7 @@ class ExplorerModel(QObject):
     datasetChanged = Signal()
     alphaChanged = Signal()
     topologyChanged = Signal()  # the dataset's topology (signatures, optimal alpha) arrived
+    measuresChanged = Signal()  # a molecule's measures (area, cavities, pockets) arrived
     datasetReleased = Signal()  # the dataset was let go (a new load starts): no dataset now
 
     def __init__(self) -> None:
@@ -95,10 +98,13 @@ class ExplorerModel(QObject):
 
     def set_topology(self, dataset: Dataset) -> bool:
         """Take the topology-complete version of the current dataset (same table: the same
-        TableIndex); unless the alpha moved since the dataset opened, go to its opening
-        alpha. False (nothing done) for another dataset's result."""
-        if self.dataset is None or dataset.ac.index is not self.dataset.ac.index:
+        TableIndex), keeping a molecule's measures that arrived before it; unless the alpha
+        moved since the dataset opened, go to its opening alpha. False (nothing done) for
+        another dataset's result."""
+        if not self._same_table(dataset):
             return False
+        if dataset.needs_measures and self.dataset.molecule is not None:  # came meanwhile
+            dataset = replace(dataset, molecule=self.dataset.molecule)
         self.dataset = dataset
         self.topologyChanged.emit()
         if not self.touched:
@@ -106,6 +112,20 @@ class ExplorerModel(QObject):
             self.history.reset(self.index)
             self.touched = False
         return True
+
+    def set_measures(self, dataset: Dataset) -> bool:
+        """Take a molecule's measures from `dataset`, a measured version of the current one
+        (same table); the topology it may lack is kept. False (nothing done) for another
+        dataset's result."""
+        if not self._same_table(dataset) or dataset.molecule is None:
+            return False
+        self.dataset = replace(self.dataset, molecule=dataset.molecule)
+        self.measuresChanged.emit()
+        return True
+
+    def _same_table(self, dataset: Dataset) -> bool:
+        """dataset is a version of the current one: the same table (the same TableIndex)."""
+        return self.dataset is not None and dataset.ac.index is self.dataset.ac.index
 
     def set_index(self, index: int, record: bool = True) -> None:
         """Move to spectrum[index] (clamped); emits alphaChanged only when it changes.

@@ -1,5 +1,5 @@
-"""The load and topology jobs: read and build a dataset, then complete its topology, in the
-window's background runners (app.jobs).
+"""The load, topology and measures jobs: read and build a dataset, then complete its topology
+and a molecule's measures, in the window's background runners (app.jobs).
 
 Big triangulations run in a child process (app.build_process) that Cancel kills at once. The
 load job hands the dataset over as soon as the slider can use it (the table and its cursor);
@@ -12,7 +12,8 @@ written) and made its cursor (started earlier, it competed with that set-up and 
 went live later); the dataset carries it
 (`Dataset.topology_child`) to the topology job. A load that is cancelled, superseded or fails
 stops it, and the build process if that was left writing the cache entry, and waits until
-both have ended before it reports its outcome.
+both have ended before it reports its outcome. A molecule's measures (exact area, cavities,
+pockets: several times the build's cost) follow in a runner of their own (measures_job).
 """
 
 from __future__ import annotations
@@ -23,7 +24,14 @@ from dataclasses import replace
 from pathlib import Path
 
 from app import build_process, topology_process
-from app.dataset import Dataset, ImportOptions, load_dataset, with_parts, with_topology
+from app.dataset import (
+    Dataset,
+    ImportOptions,
+    load_dataset,
+    with_measures,
+    with_parts,
+    with_topology,
+)
 from app.jobs import Job, Progress
 from app.shared_folder import SharedTable
 from app.topology_child import TopologyChild, start_topology
@@ -48,7 +56,7 @@ def load_job(path: str | Path, mode: Mode | None = None,
         runner = build_process.ChildRunner(cancel, on_saved=on_saved)
         try:
             dataset = load_dataset(path, progress, runner, mode=mode, options=options,
-                                   topology=False)
+                                   topology=False, measures=False)
         except BaseException:  # cancelled, superseded or failed: nothing is left running
             for child in started:
                 child.stop()
@@ -95,6 +103,22 @@ def topology_job(dataset: Dataset) -> Job:
 
     return Job(f"topology of {dataset.path.name}", work,
                lambda error: f"topology of {dataset.path.name} failed: "
+                             f"{load_failure(dataset.path, error)}")
+
+
+def measures_job(dataset: Dataset) -> Job:
+    """A job that measures a molecule's dataset (app.dataset.with_measures); its result is
+    the Dataset with them. Cancel stops it between the measures' stages."""
+    def work(progress: Progress, cancel: threading.Event) -> Dataset:
+        def check() -> None:
+            if cancel.is_set():
+                raise Cancelled("measures cancelled")
+
+        progress(0.0, "measures")
+        return with_measures(dataset, check)
+
+    return Job(f"measures of {dataset.path.name}", work,
+               lambda error: f"measures of {dataset.path.name} failed: "
                              f"{load_failure(dataset.path, error)}")
 
 

@@ -70,3 +70,8 @@ SPLIT_EMPTY_RTOL = 1e-9
 #: rounding of the inclusion-exclusion sum, whose terms are up to that area each (buried balls
 #: of real molecules come out at 1e-16 to 1e-14 of it): the ball has no exposed area.
 EXPOSED_AREA_RTOL = 1e-9
+
+#: A power plane is left out of a ball's piece when its cap (the ball beyond it) lies beyond
+#: another plane of the piece by more than this fraction of the ball's radius (a sure margin:
+#: a plane left in changes nothing, one left out wrongly would).
+CAP_BEYOND_RTOL = 1e-9

@@ -158,10 +158,12 @@ def window(qtbot, tmp_path):
 
 def open_and_wait(qtbot, win, path) -> None:
     """Open path the way a user does (window.open_path) and wait until it is shown with its
-    topology (the slider works before: see test_app_topology_later)."""
+    topology and a molecule's measures (the slider works before: see
+    test_app_topology_later, test_app_measures_later)."""
     with qtbot.waitSignal(win.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
         win.open_path(path)
     wait_for_topology(qtbot, win)
+    qtbot.waitUntil(lambda: not win.model.dataset.needs_measures, timeout=BUILD_TIMEOUT_MS)
 
 
 def wait_for_topology(qtbot, win) -> None:

@@ -93,3 +93,23 @@ def test_random_polyhedra_against_sampling():
         q = ((centre + r * u) @ normals.T <= offsets).all(1).mean()
         sphere = 4 * np.pi * r ** 2
         assert abs(area[0] - q * sphere) <= 4 * sphere * np.sqrt(q * (1 - q) / n) + 1e-12
+
+
+def test_the_least_of_a_direction_over_a_cap_against_its_points():
+    """exact_cells._cap_low (what decides that a power plane's cap lies beyond a facet, so
+    the plane is left out of the clipping) is the least of n'·x over the cap's points: over
+    the cap's disk, or at the sphere's point opposite n' when that point is in the cap."""
+    from core.molecule.exact_cells import _cap_low
+
+    rng = np.random.default_rng(7)
+    x = rng.normal(size=(200_000, 3))
+    x *= (rng.uniform(size=len(x)) ** (1 / 3) / np.linalg.norm(x, axis=1))[:, None]
+    n = np.array([0.0, 0.0, 1.0])
+    for bound in (-0.6, -0.1, 0.0, 0.3, 0.8):
+        cap = x[x @ n >= bound]
+        for cos in (-1.0, -0.9, -0.5, 0.0, 0.4, 1.0):
+            other = np.array([np.sqrt(1 - cos * cos), 0.0, cos])
+            low = float(_cap_low(np.array(bound), np.array(1.0), np.array(cos)))
+            sampled = float((cap @ other).min())
+            assert low <= sampled + 1e-12, (bound, cos)
+            assert sampled - low < 0.05, (bound, cos)  # reached by the samples nearly

@@ -49,11 +49,23 @@ def scene_data(dataset: Dataset, styles: dict[str, LayerStyle],
                rgb: np.ndarray | None = None) -> SceneData:
     """The arrays the scene draws of dataset, with these layer styles (and ball colours)."""
     ac = dataset.ac
-    radii = None if ac.weights is None else np.sqrt(np.maximum(ac.weights, 0.0))
+    radii = ball_radii(dataset)
     molecule = dataset.molecule
     pockets = None if molecule is None else pocket_arrays(ac, molecule.pockets)
-    # the measures at alpha² 0 are of the balls of radii sqrt(weights): the ones drawn
-    exposed = (None if molecule is None or molecule.alpha2 != 0
-               else exposed_balls(molecule.point_area, radii))
     return SceneData(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                     radii, rgb, dataset.frame, dataset.unit, pockets, exposed)
+                     radii, rgb, dataset.frame, dataset.unit, pockets, exposed_of(dataset))
+
+
+def ball_radii(dataset: Dataset) -> np.ndarray | None:
+    """(m,) radii of the balls drawn for weighted points (sqrt of the weights), else None."""
+    weights = dataset.ac.weights
+    return None if weights is None else np.sqrt(np.maximum(weights, 0.0))
+
+
+def exposed_of(dataset: Dataset) -> np.ndarray | None:
+    """(m,) bool: the drawn balls with area on their union's boundary, from a molecule's
+    measures (at alpha² 0 they are of the balls drawn); None while unknown."""
+    molecule = dataset.molecule
+    if molecule is None or molecule.alpha2 != 0:
+        return None
+    return exposed_balls(molecule.point_area, ball_radii(dataset))

@@ -181,10 +181,12 @@ def ball_actor(mesh: pv.PolyData, colour: str, opacity: float) -> pv.Actor:
 
 
 def coloured_cells(kind: str, xyz: np.ndarray, cells: np.ndarray, rgb: np.ndarray) -> Layer:
-    """A layer of fixed cells, each in its own colour (cell data "rgb", (k, 3) uint8)."""
+    """A layer of fixed cells, each in its own colour (cell data "rgb", (k, 3) uint8; none
+    without cells: pyvista refuses an empty array, and a molecule may have no pockets)."""
     layer = Layer(kind, new_mesh(kind, xyz))
     layer.set_cells(cells)
-    layer.mesh.cell_data["rgb"] = np.ascontiguousarray(rgb, dtype=np.uint8)
+    if len(cells):
+        layer.mesh.cell_data["rgb"] = np.ascontiguousarray(rgb, dtype=np.uint8)
     return layer
 
 

@@ -17,6 +17,7 @@ from vtkmodules.vtkFiltersGeneral import vtkShrinkFilter
 
 from app.camera import Z_UP
 from app.palette import BACKGROUND, LayerStyle
+from app.pockets_layer import PocketArrays
 from app.scene.clipping import Clipper
 from app.scene.data import SceneData
 from app.scene.layers import (
@@ -80,6 +81,7 @@ class Scene:
                            self.plotter.renderer.GetUseFXAA())  # the full frame's
         self.layers: dict[str, Layer] = {}  # one dict for the scene's life (helpers share it)
         self.styles: dict[str, LayerStyle] = {}
+        self.xyz = np.zeros((0, 3))  # the shown dataset's points (SceneData.xyz)
         self.shape = None
         self.dim = 3
         self.frame = Z_UP
@@ -117,19 +119,36 @@ class Scene:
         if "cavities" in styles and data.dim == 3:
             self._add_layer("cavities", Layer("tets", new_mesh("tets", data.xyz)),
                             styles["cavities"])
+        self.xyz = data.xyz
         if data.pockets is not None and data.dim == 3:
-            p = data.pockets
-            for name, kind, cells, rgb in (("pockets", "tets", p.cells, p.cell_rgb),
-                                           ("mouths", "tris", p.mouths, p.mouth_rgb)):
-                if name in styles:
-                    self._add_layer(name, coloured_cells(kind, data.xyz, cells, rgb),
-                                    styles[name])
+            self._add_pockets(data.pockets, styles)
         self.layers["points"].set_cells(np.arange(len(data.xyz), dtype=np.int32)[:, None])
         self.layers["delaunay"].set_cells(data.edges)
         self.overlay.set_layers(self.styles)
         self.fit_view()
         if self.clipper.enabled:
             self.clipper.set_enabled(True)
+
+    def add_pockets(self, pockets: PocketArrays, styles: dict[str, LayerStyle]) -> None:
+        """A molecule's pockets and mouths (app.pockets_layer), measured after its first frame:
+        the "pockets" and "mouths" layers of `styles` join the shown dataset's (replaced if
+        there), clipped and in the legend like the others."""
+        if self.dim != 3 or "points" not in self.layers:
+            return
+        for name in ("pockets", "mouths"):
+            if name in self.layers:
+                self.plotter.remove_actor(name, reset_camera=False, render=False)
+                del self.layers[name], self.styles[name]
+        self._add_pockets(pockets, styles)
+        self.clipper.apply()
+        self.overlay.set_layers(self.styles)
+
+    def _add_pockets(self, pockets: PocketArrays, styles: dict[str, LayerStyle]) -> None:
+        """Add the pockets' layers named in styles, in their own colours."""
+        for name, kind, cells, rgb in (("pockets", "tets", pockets.cells, pockets.cell_rgb),
+                                       ("mouths", "tris", pockets.mouths, pockets.mouth_rgb)):
+            if name in styles:
+                self._add_layer(name, coloured_cells(kind, self.xyz, cells, rgb), styles[name])
 
     def _add_layer(self, name: str, layer: Layer, style: LayerStyle) -> None:
         """Keep layer under name and add its one actor (only on a new dataset)."""

@@ -4,6 +4,7 @@ volume and lining area (`regions`, `pockets`)."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -76,12 +77,15 @@ def _in_complex(ac, k: int, alpha2: float) -> np.ndarray:
     return ac.intervals_sq(k)[:, 0] <= alpha2
 
 
-def measure_molecule(ac, probe: float, alpha2: float = 0.0) -> MoleculeMeasures:
+def measure_molecule(ac, probe: float, alpha2: float = 0.0,
+                     check: Callable[[], None] | None = None) -> MoleculeMeasures:
     """Area, volume, per-atom area and cavities of a weighted 3D AlphaComplex's balls.
 
     At alpha² = 0 the complex is the dual of the union of balls of radii sqrt(weights);
-    another alpha² measures the balls grown to squared radii weights + alpha².
+    another alpha² measures the balls grown to squared radii weights + alpha². `check()` is
+    called between the stages and may raise (core.errors.Cancelled) to stop.
     """
+    check = check or (lambda: None)
     if ac.weights is None or ac.dim != 3:
         raise InputError("molecule measures need a weighted 3D complex (atoms as balls)")
     if ac.weights.min() + alpha2 <= 0:
@@ -89,9 +93,12 @@ def measure_molecule(ac, probe: float, alpha2: float = 0.0) -> MoleculeMeasures:
     radii = np.sqrt(ac.weights + alpha2)
     simplices = [ac.simplices(k)[_in_complex(ac, k, alpha2)] for k in range(4)]
     union = union_measures(ac.points, radii, *simplices[1:], vertices=simplices[0][:, 0])
+    check()
     facts = dual_facts(ac, alpha2)
     labels = void_cells(~facts.cell_in, facts.facet_cells, ~facts.facet_in)
     voids = region_measures(facts, labels, int(labels.max()) + 1 if len(labels) else 0)
+    check()
+    pockets = find_pockets(facts)
     volumes = voids.volume
     order = np.argsort(-volumes, kind="stable")
     relabel = np.full(len(order) + 1, -1)
@@ -106,4 +113,4 @@ def measure_molecule(ac, probe: float, alpha2: float = 0.0) -> MoleculeMeasures:
         cavity_cells=contiguous_readonly(relabel[labels]),
         cavity_areas=contiguous_readonly(voids.area[order]),
         cavity_atoms=tuple(lining_atoms(voids, int(v)) for v in order),
-        pockets=find_pockets(facts))
+        pockets=pockets)

@@ -18,9 +18,17 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from core.molecule.clipped import ball_in_polyhedron
+from core.tolerances import CAP_BEYOND_RTOL
 
 CHUNK = 1024  # ball pieces per vectorized batch (each holds P(P-1) x P plane tests)
 BLOCK = 20_000  # (ball, cell) pairs whose power planes are sorted out at once
+NEAR_BLOCK = 4096  # cells whose nearby balls are gathered at once
+
+
+def length(v: np.ndarray) -> np.ndarray:
+    """Euclidean length over the last axis (3) of v, as np.linalg.norm gives it, written
+    out: numpy reduces a short last axis row by row, several times slower."""
+    return np.sqrt(v[..., 0] * v[..., 0] + v[..., 1] * v[..., 1] + v[..., 2] * v[..., 2])
 
 
 def cell_planes(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -31,7 +39,7 @@ def cell_planes(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     for v in range(4):
         i, j, k = (w for w in range(4) if w != v)
         n = np.cross(c[:, j] - c[:, i], c[:, k] - c[:, i])
-        n /= np.linalg.norm(n, axis=1, keepdims=True)
+        n /= length(n)[:, None]
         flip = np.einsum("ij,ij->i", n, c[:, v] - c[:, i]) > 0
         n[flip] *= -1
         normals[:, v] = n
@@ -58,27 +66,41 @@ def _distance(corners: np.ndarray, x: np.ndarray) -> np.ndarray:
         e = corners[:, b] - corners[:, a]
         t = np.clip(np.einsum("mc,mc->m", x - corners[:, a], e)
                     / np.einsum("mc,mc->m", e, e), 0.0, 1.0)
-        best = np.minimum(best, np.linalg.norm(x - corners[:, a] - t[:, None] * e, axis=1))
+        best = np.minimum(best, length(x - corners[:, a] - t[:, None] * e))
     return np.where((side <= 0).all(1), 0.0, best)
 
 
 def near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.ndarray]:
-    """Pairs (position in rows, ball) (m,) int64 of the balls of K that meet each cell."""
+    """Pairs (position in rows, ball) (m,) int64 of the balls of K that meet each cell,
+    by position. Cells are taken NEAR_BLOCK at a time: their candidates' temporaries stay
+    in cache (all at once, 100,000 cells' took several times as long)."""
+    vertex = facts.vertices_in()
+    parts = [_near_block(facts, rows[start:start + NEAR_BLOCK], tree, vertex)
+             for start in range(0, len(rows), NEAR_BLOCK)]
+    if not parts:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    return (np.concatenate([i + start for (i, _), start in
+                            zip(parts, range(0, len(rows), NEAR_BLOCK), strict=True)]),
+            np.concatenate([j for _, j in parts]))
+
+
+def _near_block(facts, rows: np.ndarray, tree: cKDTree, vertex: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """near_balls of a block of rows; vertex (n,) bool: facts.vertices_in()."""
     c = facts.centres[facts.cells[rows]]
     g = c.mean(1)
-    reach = np.linalg.norm(c - g[:, None], axis=2).max(1)
-    vertex = facts.vertices_in()
+    reach = length(c - g[:, None]).max(1)
     lists = tree.query_ball_point(g, reach + facts.radii.max())
     count = np.fromiter(map(len, lists), np.int64, len(lists))
     i = np.repeat(np.arange(len(rows)), count)
     j = np.fromiter(itertools.chain.from_iterable(lists), np.int64, int(count.sum()))
     x, r = facts.centres[j], facts.radii[j]
-    keep = vertex[j] & (np.linalg.norm(x - g[i], axis=1) <= reach[i] + r)
+    keep = vertex[j] & (length(x - g[i]) <= reach[i] + r)
     i, j, x, r = i[keep], j[keep], x[keep], r[keep]
     normals, offsets = cell_planes(c)
     side = np.einsum("mvc,mc->mv", normals[i], x) - offsets[i]  # > r: wholly beyond a facet
     i, j, x, r, side = (a[(side <= r[:, None]).all(1)] for a in (i, j, x, r, side))
-    keep = (side <= 0).all(1) | (np.linalg.norm(c[i] - x[:, None], axis=2)
+    keep = (side <= 0).all(1) | (length(c[i] - x[:, None])
                                  <= r[:, None]).any(1)  # holds its centre or a corner
     ask = np.flatnonzero(~keep)
     keep[ask] = _distance(c[i[ask]], x[ask]) <= r[ask]
@@ -107,24 +129,53 @@ def neighbours(facts) -> tuple[np.ndarray, np.ndarray]:
     n = len(facts.radii)
     a = facts.cells[:, [0, 0, 0, 1, 1, 2, 3, 3, 3, 2, 2, 1]].ravel()
     b = facts.cells[:, [1, 2, 3, 2, 3, 3, 0, 1, 2, 0, 1, 0]].ravel()
-    key = np.unique(a * n + b)
+    key = np.sort(a * n + b)  # distinct by sorting: np.unique hashes, 20x slower at millions
+    key = key[np.concatenate(([True], key[1:] != key[:-1]))]
     return np.searchsorted(key // n, np.arange(n + 1)), key % n
+
+
+def _every(flags: np.ndarray) -> np.ndarray:
+    """(m,) flags (m, 4) all true along their rows (as .all(1), written out: faster)."""
+    return flags[:, 0] & flags[:, 1] & flags[:, 2] & flags[:, 3]
+
+
+def _some(flags: np.ndarray) -> np.ndarray:
+    """(m,) flags (m, 4) any true along their rows (as .any(1), written out: faster)."""
+    return flags[:, 0] | flags[:, 1] | flags[:, 2] | flags[:, 3]
+
+
+def _cap_low(bound: np.ndarray, radius: np.ndarray, cos: np.ndarray) -> np.ndarray:
+    """The least of n'·x over the cap {|x| <= radius, n·x >= bound} of a ball about the
+    origin, for unit n' at cosine `cos` to n: -radius when the ball's point -radius·n' is in
+    the cap, else the least over the cap's disk (centre bound·n, radius sqrt(r² - bound²))."""
+    rho = np.sqrt(np.maximum(radius * radius - bound * bound, 0.0))
+    low = bound * cos - rho * np.sqrt(np.maximum(1.0 - cos * cos, 0.0))
+    return np.where(-radius * cos >= bound, -radius, low)
+
+
+def _cap_beyond(normal, bound, radius, facet_normals, facet_offsets) -> np.ndarray:
+    """(r,) bool: power planes (unit normal, bound about the ball's centre, its radius) whose
+    cap lies wholly beyond a facet of the cell (facet_normals (r, 4, 3), facet_offsets (r, 4)
+    about the centre), by the margin CAP_BEYOND_RTOL: they cut nothing of the ball inside
+    the cell, so they are left out (each plane costs a piece's clipping about P² lines)."""
+    cos = np.einsum("mvc,mc->mv", facet_normals, normal)
+    return _some(_cap_low(bound[:, None], radius[:, None], cos)
+                 > facet_offsets + (CAP_BEYOND_RTOL * radius)[:, None])
 
 
 def _power_planes(facts, pair_i, pair_j, corners, planes, starts, others):
     """(piece (r,), normals (r, 3), offsets (r,) about the piece's centre) of the power
     planes that may cut a piece's ball inside its cell, and (pieces,) bool: the piece is
     empty (its ball or its cell wholly beyond one power plane). A plane is left out when
-    the ball or the cell lies on its inner side, or when the cap it cuts off the ball
-    (inside the ball about its foot of radius sqrt(r² - offset²)) is beyond a facet plane
-    of the cell; planes: `cell_planes(corners)`."""
+    the ball or the cell lies on its inner side, or when the cap it cuts off the ball is
+    beyond a facet plane of the cell (`_cap_beyond`); planes: `cell_planes(corners)`."""
     count = starts[pair_j + 1] - starts[pair_j]
     piece = np.repeat(np.arange(len(pair_i)), count)
     offset = np.arange(len(piece)) - np.repeat(np.cumsum(count) - count, count)
     ball = pair_j[piece]
     other = others[starts[ball] + offset]
     e = facts.centres[other] - facts.centres[ball]
-    dist = np.linalg.norm(e, axis=1)
+    dist = length(e)
     ra, rb = facts.radii[ball], facts.radii[other]
     normal = e / dist[:, None]
     bound = (dist * dist + ra * ra - rb * rb) / (2 * dist)
@@ -132,13 +183,14 @@ def _power_planes(facts, pair_i, pair_j, corners, planes, starts, others):
     side = np.einsum("mvc,mc->mv", corners[cell] - facts.centres[ball][:, None],
                      normal) - bound[:, None]
     empty = np.zeros(len(pair_i), bool)
-    empty[piece[(bound <= -ra) | (side >= 0).all(1)]] = True
-    keep = (bound < ra) & (side > 0).any(1) & ~empty[piece]
-    cap = np.flatnonzero(keep & (bound > 0))
-    foot = facts.centres[ball[cap]] + bound[cap, None] * normal[cap]
-    beyond = (np.einsum("mvc,mc->mv", planes[0][cell[cap]], foot) - planes[1][cell[cap]]
-              > np.sqrt(ra[cap] ** 2 - bound[cap] ** 2)[:, None]).any(1)
-    keep[cap[beyond]] = False
+    empty[piece[(bound <= -ra) | _every(side >= 0)]] = True
+    keep = (bound < ra) & _some(side > 0) & ~empty[piece]
+    rest = np.flatnonzero(keep)
+    facet_normals = planes[0][cell[rest]]
+    facet_offsets = planes[1][cell[rest]] - np.einsum("mvc,mc->mv", facet_normals,
+                                                      facts.centres[ball[rest]])
+    keep[rest[_cap_beyond(normal[rest], bound[rest], ra[rest], facet_normals,
+                          facet_offsets)]] = False
     return piece[keep], normal[keep], bound[keep], empty
 
 

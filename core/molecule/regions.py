@@ -4,6 +4,7 @@ complex's facts they are computed from (which cells, facets and edges are in it)
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -41,6 +42,17 @@ class DualFacts:
     triangles: np.ndarray
     tri_edges: np.ndarray
     vertex_in: np.ndarray | None = None
+
+    @cached_property
+    def tree(self) -> cKDTree:
+        """KD-tree of the centres, built once for the voids and the pockets."""
+        return cKDTree(self.centres)
+
+    @cached_property
+    def around(self) -> tuple[np.ndarray, np.ndarray]:
+        """exact_cells.neighbours of the triangulation, found once for the voids and the
+        pockets."""
+        return neighbours(self)
 
     def vertices_in(self) -> np.ndarray:
         """(n,) bool: the balls that are vertices of K."""
@@ -84,7 +96,7 @@ def region_measures(facts: DualFacts, labels: np.ndarray, count: int) -> RegionM
     rows = np.flatnonzero(labels >= 0)
     volume, area = np.zeros(count), np.zeros(count)
     parts = []
-    pairs = near_balls(facts, rows, cKDTree(facts.centres)) if len(rows) else None
+    pairs = near_balls(facts, rows, facts.tree) if len(rows) else None
     clip = needs_clipping(facts, rows, pairs) if len(rows) else np.zeros(0, bool)
     sector_rows = rows[~clip]
     for start in range(0, len(sector_rows), CHUNK):
@@ -106,7 +118,7 @@ def region_measures(facts: DualFacts, labels: np.ndarray, count: int) -> RegionM
         mine = clip[pairs[0]]
         i, j = at[pairs[0][mine]], pairs[1][mine]
         pairs = ((i[i < half], j[i < half]), (i[i >= half] - half, j[i >= half]))
-        around = neighbours(facts)
+        around = facts.around
     else:
         around = None
         pairs = ((np.zeros(0, np.int64),) * 2,) * 2
