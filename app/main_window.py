@@ -280,6 +280,7 @@ class MainWindow(QMainWindow):
 
     def _on_measures_failed(self, _request: int, message: str) -> None:
         """A molecule's measures failed: the shape and slider stay; say why."""
+        self.model.fail_measures(message)
         self.status.setText(f"{message}; the shape and the slider still work")
 
     def _on_failed(self, _request: int, message: str) -> None:
@@ -319,6 +320,8 @@ class MainWindow(QMainWindow):
         """A molecule's measures arrived: its pockets and their mouths become layers (with
         the styles the Layers dock holds for them), drawn once."""
         ds = self.model.dataset
+        if ds.molecule is None:  # they failed (model.measures_failure): nothing to draw
+            return
         self.scene.add_pockets(pocket_arrays(ds.ac, ds.molecule.pockets),
                                self.layers_panel.styles)
         exposed = exposed_of(ds)

@@ -38,6 +38,7 @@ class ExplorerModel(QObject):
         self._cursor = None
         self.history = AlphaHistory()
         self.touched = False  # the alpha moved since the dataset opened (user or --alpha)
+        self.measures_failure: str | None = None  # why a molecule's measures failed (None: not)
 
     @property
     def spectrum(self) -> np.ndarray:
@@ -77,6 +78,7 @@ class ExplorerModel(QObject):
     def set_dataset(self, dataset: Dataset) -> None:
         """Replace the dataset and move to its opening (default) alpha."""
         self.dataset = dataset
+        self.measures_failure = None
         self._cursor = dataset.cursor or dataset.ac.cursor()
         self.index = self.default_index()
         self.history.reset(self.index)
@@ -122,6 +124,14 @@ class ExplorerModel(QObject):
         self.dataset = replace(self.dataset, molecule=dataset.molecule)
         self.measuresChanged.emit()
         return True
+
+    def fail_measures(self, message: str) -> None:
+        """The current molecule's measures failed (`message` says why): they will not come;
+        emits measuresChanged so what waited for them says so."""
+        if self.dataset is None or not self.dataset.needs_measures:
+            return
+        self.measures_failure = message
+        self.measuresChanged.emit()
 
     def _same_table(self, dataset: Dataset) -> bool:
         """dataset is a version of the current one: the same table (the same TableIndex)."""
