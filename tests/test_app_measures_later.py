@@ -198,3 +198,26 @@ def test_failed_measures_are_said_everywhere(window, qtbot, monkeypatch):
     assert "try again" not in said[0]
     window.inspector.inspect_vertices(window.model.dataset.ac.simplices(3)[0])
     assert "failed" in window.inspect_panel.fields["pocket"].text()
+
+
+def test_export_pockets_before_the_measures_asks_to_wait(window, qtbot, held_measures,
+                                                         monkeypatch):
+    """File → Export pockets while a molecule's pockets are computed asks for no file and
+    says they are coming; once they came, it asks where to write them."""
+    import app.menus
+    from app.menus import MenuTools, on_export_pockets
+
+    said, asked = [], []
+    monkeypatch.setattr(app.menus.QMessageBox, "information",
+                        lambda _parent, _title, text: said.append(text))
+    monkeypatch.setattr(app.menus.file_actions, "ask_save_path",
+                        lambda *args: asked.append(args) or None)
+    open_table(qtbot, window, MOLECULES / "gemmi_HEM.pdb")
+    tools = MenuTools(window, window.prefs, window.model, window.scene, window.jobs,
+                      window.job_progress, window.report, window.open_asking)
+    on_export_pockets(tools)
+    assert len(said) == 1 and "still being computed" in said[0] and not asked
+    with qtbot.waitSignal(window.model.measuresChanged, timeout=BUILD_TIMEOUT_MS):
+        held_measures.set()
+    on_export_pockets(tools)
+    assert len(said) == 1 and len(asked) == 1
