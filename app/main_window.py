@@ -279,9 +279,10 @@ class MainWindow(QMainWindow):
         self.status.setText(f"{message}; the slider still works")
 
     def _on_measures_failed(self, _request: int, message: str) -> None:
-        """A molecule's measures failed: the shape and slider stay; say why."""
-        self.model.fail_measures(message)
-        self.status.setText(f"{message}; the shape and the slider still work")
+        """A molecule's measures failed: the shape and slider stay; say why (not over
+        another file shown since, which no measures superseded)."""
+        if self.model.fail_measures(message):
+            self.status.setText(f"{message}; the shape and the slider still work")
 
     def _on_failed(self, _request: int, message: str) -> None:
         """Show why the current request failed; the file shown before comes back."""

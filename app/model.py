@@ -125,13 +125,15 @@ class ExplorerModel(QObject):
         self.measuresChanged.emit()
         return True
 
-    def fail_measures(self, message: str) -> None:
+    def fail_measures(self, message: str) -> bool:
         """The current molecule's measures failed (`message` says why): they will not come;
-        emits measuresChanged so what waited for them says so."""
+        emits measuresChanged so what waited for them says so. False (nothing done) when
+        the current dataset awaits none (the failure was an older dataset's)."""
         if self.dataset is None or not self.dataset.needs_measures:
-            return
+            return False
         self.measures_failure = message
         self.measuresChanged.emit()
+        return True
 
     def _same_table(self, dataset: Dataset) -> bool:
         """dataset is a version of the current one: the same table (the same TableIndex)."""

@@ -221,3 +221,32 @@ def test_export_pockets_before_the_measures_asks_to_wait(window, qtbot, held_mea
         held_measures.set()
     on_export_pockets(tools)
     assert len(said) == 1 and len(asked) == 1
+
+
+def test_an_older_molecules_failure_is_not_said_over_a_new_file(window, qtbot, monkeypatch,
+                                                                 tmp_path):
+    """A molecule's measures that fail after another file (no molecule: nothing supersedes
+    them) is shown say nothing: the status line is the new file's."""
+    import app.worker
+    from core.errors import InputError
+
+    release = threading.Event()
+
+    def failing(dataset, check=None):
+        assert release.wait(RELEASE_TIMEOUT_S)
+        raise InputError("the balls' measures went wrong")
+
+    monkeypatch.setattr(app.worker, "with_measures", failing)
+    cloud = tmp_path / "cloud.csv"
+    np.savetxt(cloud, np.random.default_rng(4).normal(size=(300, 3)), delimiter=",",
+               header="x,y,z", comments="")
+    try:
+        open_table(qtbot, window, MOLECULES / "gemmi_HEM.pdb")
+        open_table(qtbot, window, cloud)
+    finally:
+        release.set()
+    qtbot.waitUntil(lambda: not window.measures.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    qtbot.wait(50)
+    assert window.model.dataset.path == cloud and not window.model.dataset.is_molecule
+    assert "went wrong" not in window.status.text()
+    assert window.model.measures_failure is None
