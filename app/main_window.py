@@ -275,8 +275,11 @@ class MainWindow(QMainWindow):
         self._show_status()
 
     def _on_topology_failed(self, _request: int, message: str) -> None:
-        """The topology pass failed: the slider keeps working; say why."""
-        self.status.setText(f"{message}; the slider still works")
+        """The topology pass failed: the slider keeps working; say why (not over a file
+        shown since that came with its topology, which superseded no pass)."""
+        ds = self.model.dataset
+        if ds is not None and not ds.has_topology:
+            self.status.setText(f"{message}; the slider still works")
 
     def _on_measures_failed(self, _request: int, message: str) -> None:
         """A molecule's measures failed: the shape and slider stay; say why (not over
