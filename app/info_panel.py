@@ -93,13 +93,15 @@ def breakable(text: str) -> str:
 
 def molecule_lines(model: ExplorerModel) -> list[str]:
     """A molecule's measures (union of its balls at alpha² = 0), MEASURING while they are
-    computed, or nothing."""
+    computed (or why they failed), or nothing."""
     ds = model.dataset
     if not ds.is_molecule:
         return []
     m = ds.molecule
     if m is None:
-        return [f"<b>molecule</b>, probe {ds.probe:g} Å (at alpha² 0)", MEASURING]
+        failure = model.measures_failure
+        return [f"<b>molecule</b>, probe {ds.probe:g} Å (at alpha² 0)",
+                MEASURING if failure is None else f"measures failed: {failure}"]
     cavities = ", ".join(f"{v:.3g}" for v in m.cavities[:5]) + (" ..." if len(m.cavities) > 5
                                                                 else "")
     return [f"<b>molecule</b>, probe {m.probe:g} Å (at alpha² 0)",

@@ -24,6 +24,7 @@ from app.palette import CLASS_COLOURS
 from app.pockets_layer import pocket_at, pocket_text
 
 HINT = "Click a point, edge, triangle or cell in the view (without dragging) to inspect it."
+POCKETS_PENDING = "being computed (a molecule's pockets come after its first frame)"
 
 
 class InspectPanel(QWidget):
@@ -96,10 +97,13 @@ class InspectPanel(QWidget):
 
     def _pocket(self, item: Inspection) -> str:
         """A molecule's pocket the simplex belongs to (a pocket cell or mouth), with its
-        residues; '' otherwise."""
+        residues; '' otherwise (what became of them while a molecule's are not known)."""
         ds = self.model.dataset
         if ds.molecule is None:
-            return ""
+            if not ds.is_molecule:
+                return ""
+            failure = self.model.measures_failure
+            return POCKETS_PENDING if failure is None else f"unknown (measures failed: {failure})"
         pocket = pocket_at(ds.molecule.pockets, item.k, item.row)
         return "" if pocket is None else pocket_text(ds.molecule.pockets, pocket,
                                                      ds.atom_labels)

@@ -275,12 +275,17 @@ class MainWindow(QMainWindow):
         self._show_status()
 
     def _on_topology_failed(self, _request: int, message: str) -> None:
-        """The topology pass failed: the slider keeps working; say why."""
-        self.status.setText(f"{message}; the slider still works")
+        """The topology pass failed: the slider keeps working; say why (not over a file
+        shown since that came with its topology, which superseded no pass)."""
+        ds = self.model.dataset
+        if ds is not None and not ds.has_topology:
+            self.status.setText(f"{message}; the slider still works")
 
     def _on_measures_failed(self, _request: int, message: str) -> None:
-        """A molecule's measures failed: the shape and slider stay; say why."""
-        self.status.setText(f"{message}; the shape and the slider still work")
+        """A molecule's measures failed: the shape and slider stay; say why (not over
+        another file shown since, which no measures superseded)."""
+        if self.model.fail_measures(message):
+            self.status.setText(f"{message}; the shape and the slider still work")
 
     def _on_failed(self, _request: int, message: str) -> None:
         """Show why the current request failed; the file shown before comes back."""
@@ -319,6 +324,8 @@ class MainWindow(QMainWindow):
         """A molecule's measures arrived: its pockets and their mouths become layers (with
         the styles the Layers dock holds for them), drawn once."""
         ds = self.model.dataset
+        if ds.molecule is None:  # they failed (model.measures_failure): nothing to draw
+            return
         self.scene.add_pockets(pocket_arrays(ds.ac, ds.molecule.pockets),
                                self.layers_panel.styles)
         exposed = exposed_of(ds)

@@ -166,8 +166,10 @@ def on_export_pockets(tools: MenuTools) -> None:
         QMessageBox.information(tools.parent, "Export pockets", "Open a molecule first.")
         return
     if ds.molecule is None:
-        QMessageBox.information(tools.parent, "Export pockets",
-                                "The pockets are still being computed: try again in a moment.")
+        failure = tools.model.measures_failure
+        QMessageBox.information(tools.parent, "Export pockets", (
+            "The pockets are still being computed: try again in a moment." if failure is None
+            else f"The pockets could not be computed: {failure}"))
         return
     path = file_actions.ask_save_path(tools.parent, tools.prefs, "Export pockets",
                                       POCKET_FORMATS, f"{ds.path.stem}_pockets")

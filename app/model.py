@@ -38,6 +38,7 @@ class ExplorerModel(QObject):
         self._cursor = None
         self.history = AlphaHistory()
         self.touched = False  # the alpha moved since the dataset opened (user or --alpha)
+        self.measures_failure: str | None = None  # why a molecule's measures failed (None: not)
 
     @property
     def spectrum(self) -> np.ndarray:
@@ -77,6 +78,7 @@ class ExplorerModel(QObject):
     def set_dataset(self, dataset: Dataset) -> None:
         """Replace the dataset and move to its opening (default) alpha."""
         self.dataset = dataset
+        self.measures_failure = None
         self._cursor = dataset.cursor or dataset.ac.cursor()
         self.index = self.default_index()
         self.history.reset(self.index)
@@ -120,6 +122,16 @@ class ExplorerModel(QObject):
         if not self._same_table(dataset) or dataset.molecule is None:
             return False
         self.dataset = replace(self.dataset, molecule=dataset.molecule)
+        self.measuresChanged.emit()
+        return True
+
+    def fail_measures(self, message: str) -> bool:
+        """The current molecule's measures failed (`message` says why): they will not come;
+        emits measuresChanged so what waited for them says so. False (nothing done) when
+        the current dataset awaits none (the failure was an older dataset's)."""
+        if self.dataset is None or not self.dataset.needs_measures:
+            return False
+        self.measures_failure = message
         self.measuresChanged.emit()
         return True
 

@@ -41,6 +41,13 @@ def molecule_scene(scene: Scene, dataset) -> None:
     scene.set_dataset(scene_data(dataset, styles, cpk_rgb(dataset.atomic_numbers)))
 
 
+def picture(scene: Scene) -> np.ndarray:
+    """The frame drawn now (a screenshot alone gives the last frame drawn, which may be
+    older than the mapper's input)."""
+    scene.plotter.render()
+    return scene.plotter.screenshot(None).copy()
+
+
 def drawn(scene: Scene):
     """The ball mesh the balls' mapper draws now."""
     return scene.layers["balls"].actor.GetMapper().GetInput()
@@ -73,11 +80,10 @@ def test_outer_balls_draw_the_same_picture(scene, molecule) -> None:
     exposed = scene_data(molecule, {**default_styles(3), "balls": ATOM_STYLE}).exposed
     assert drawn(scene).GetNumberOfPoints() == exposed.sum() + 2  # + the box's two corners
     assert layer.mesh.n_points == len(exposed) + 2
-    outer = scene.plotter.screenshot(None).copy()
+    outer = picture(scene)
     assert outer.std() > 10  # a picture, not a blank frame
     layer.actor.GetMapper().SetInputData(layer.mesh)
-    every = scene.plotter.screenshot(None)
-    np.testing.assert_array_equal(outer, every)
+    np.testing.assert_array_equal(outer, picture(scene))
     scene.set_style("balls", ATOM_STYLE)
     assert drawn(scene) is layer.outer
     scene.set_style("balls", LayerStyle(True, ATOM_STYLE.colour, 0.5))
@@ -134,9 +140,38 @@ def test_exposed_balls_known_after_the_first_frame(scene, molecule) -> None:
     molecule_scene(scene, replace(molecule, molecule=None))
     layer = scene.layers["balls"]
     assert drawn(scene) is layer.mesh and layer.outer is None
-    every = scene.plotter.screenshot(None).copy()
+    every = picture(scene)
     exposed = scene_data(molecule, {**default_styles(3), "balls": ATOM_STYLE}).exposed
     scene.set_exposed(exposed)
     assert drawn(scene) is layer.outer
     assert drawn(scene).GetNumberOfPoints() == exposed.sum() + 2
-    np.testing.assert_array_equal(scene.plotter.screenshot(None), every)
+    np.testing.assert_array_equal(picture(scene), every)
+
+
+
+def test_a_thinned_ball_set_draws_its_buried_balls(scene, monkeypatch) -> None:
+    """Balls thinned to at most a limit (a big molecule) are not the union the exposed areas
+    were measured on: a buried ball whose cover is partly left out shows, so it is drawn."""
+    import functools
+
+    import app.scene.view
+    from app.scene.layers import ball_mesh
+
+    axes = np.concatenate([np.eye(3), -np.eye(3)])
+    xyz = np.concatenate([np.zeros((1, 3)), axes])  # a ball and the six that cover it
+    radii = np.array([1.0] + [1.5] * 6)
+    sphere = np.random.default_rng(7).normal(size=(2000, 3))
+    sphere /= np.linalg.norm(sphere, axis=1, keepdims=True)
+    cover = np.linalg.norm(sphere[:, None] - axes[None], axis=2) < 1.5
+    assert cover.any(axis=1).all()  # the first ball is buried in the others
+    monkeypatch.setattr(app.scene.view, "ball_mesh", functools.partial(ball_mesh, limit=2))
+    styles = {name: LayerStyle(False, style.colour, style.opacity)
+              for name, style in default_styles(3).items()}
+    styles["balls"] = LayerStyle(True, "#ffffff", 1.0)
+    scene.set_dataset(SceneData(xyz, 3, np.zeros((0, 2), np.int64), styles, radii=radii,
+                                exposed=np.arange(7) > 0))
+    layer = scene.layers["balls"]
+    assert layer.mesh.n_points == 2 + 2  # the buried ball and one of its cover, and corners
+    shown = picture(scene)
+    layer.actor.GetMapper().SetInputData(layer.mesh)
+    np.testing.assert_array_equal(shown, picture(scene))

@@ -11,6 +11,7 @@ import pytest
 from conftest import BUILD_TIMEOUT_MS, image_contrast, wait_for_topology
 
 from app.info_panel import MEASURING
+from app.inspect_panel import POCKETS_PENDING
 from tests.molecule_reference import shared_molecule
 from tests.reference import DATA_ABSENT
 
@@ -84,6 +85,8 @@ def test_first_frame_before_the_measures(window, qtbot, held_measures):
     assert MEASURING in window.info_panel.data.text()
     assert "van der Waals radii (Bondi) + probe 1.4 Å" in window.info_panel.data.text()
     assert window.inspect_panel.fields["pocket"].text() == ""
+    window.inspector.inspect_vertices(ds.ac.simplices(3)[0])
+    assert window.inspect_panel.fields["pocket"].text() == POCKETS_PENDING  # not "no pocket"
     wait_for_topology(qtbot, window)  # the topology does not wait for the measures
     assert window.model.dataset.molecule is None and window.measures.is_busy()
     assert MEASURING in window.info_panel.data.text()
@@ -165,3 +168,85 @@ def test_closing_while_measuring(window, qtbot, held_measures, monkeypatch):
     qtbot.waitUntil(lambda: window.measures.wait(0), timeout=BUILD_TIMEOUT_MS)
     qtbot.wait(50)
     assert window.model.dataset is dataset and dataset.molecule is None
+
+
+def test_failed_measures_are_said_everywhere(window, qtbot, monkeypatch):
+    """Measures that fail leave the shape and slider, and say so: the info dock no longer
+    says they are being computed, Export pockets says why there are none instead of asking
+    to wait, and Inspect's pocket field says they are unknown."""
+    import app.menus
+    import app.worker
+    from app.menus import MenuTools, on_export_pockets
+    from core.errors import InputError
+
+    def failing(dataset, check=None):
+        raise InputError("the balls' measures went wrong")
+
+    monkeypatch.setattr(app.worker, "with_measures", failing)
+    said = []
+    monkeypatch.setattr(app.menus.QMessageBox, "information",
+                        lambda _parent, _title, text: said.append(text))
+    open_table(qtbot, window, MOLECULES / "gemmi_HEM.pdb")
+    qtbot.waitUntil(lambda: not window.measures.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    assert "the balls' measures went wrong" in window.status.text()
+    text = window.info_panel.data.text()
+    assert MEASURING not in text and "measures failed" in text
+    tools = MenuTools(window, window.prefs, window.model, window.scene, window.jobs,
+                      window.job_progress, window.report, window.open_asking)
+    on_export_pockets(tools)
+    assert len(said) == 1 and "could not be computed" in said[0]
+    assert "try again" not in said[0]
+    window.inspector.inspect_vertices(window.model.dataset.ac.simplices(3)[0])
+    assert "failed" in window.inspect_panel.fields["pocket"].text()
+
+
+def test_export_pockets_before_the_measures_asks_to_wait(window, qtbot, held_measures,
+                                                         monkeypatch):
+    """File → Export pockets while a molecule's pockets are computed asks for no file and
+    says they are coming; once they came, it asks where to write them."""
+    import app.menus
+    from app.menus import MenuTools, on_export_pockets
+
+    said, asked = [], []
+    monkeypatch.setattr(app.menus.QMessageBox, "information",
+                        lambda _parent, _title, text: said.append(text))
+    monkeypatch.setattr(app.menus.file_actions, "ask_save_path",
+                        lambda *args: asked.append(args) or None)
+    open_table(qtbot, window, MOLECULES / "gemmi_HEM.pdb")
+    tools = MenuTools(window, window.prefs, window.model, window.scene, window.jobs,
+                      window.job_progress, window.report, window.open_asking)
+    on_export_pockets(tools)
+    assert len(said) == 1 and "still being computed" in said[0] and not asked
+    with qtbot.waitSignal(window.model.measuresChanged, timeout=BUILD_TIMEOUT_MS):
+        held_measures.set()
+    on_export_pockets(tools)
+    assert len(said) == 1 and len(asked) == 1
+
+
+def test_an_older_molecules_failure_is_not_said_over_a_new_file(window, qtbot, monkeypatch,
+                                                                 tmp_path):
+    """A molecule's measures that fail after another file (no molecule: nothing supersedes
+    them) is shown say nothing: the status line is the new file's."""
+    import app.worker
+    from core.errors import InputError
+
+    release = threading.Event()
+
+    def failing(dataset, check=None):
+        assert release.wait(RELEASE_TIMEOUT_S)
+        raise InputError("the balls' measures went wrong")
+
+    monkeypatch.setattr(app.worker, "with_measures", failing)
+    cloud = tmp_path / "cloud.csv"
+    np.savetxt(cloud, np.random.default_rng(4).normal(size=(300, 3)), delimiter=",",
+               header="x,y,z", comments="")
+    try:
+        open_table(qtbot, window, MOLECULES / "gemmi_HEM.pdb")
+        open_table(qtbot, window, cloud)
+    finally:
+        release.set()
+    qtbot.waitUntil(lambda: not window.measures.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    qtbot.wait(50)
+    assert window.model.dataset.path == cloud and not window.model.dataset.is_molecule
+    assert "went wrong" not in window.status.text()
+    assert window.model.measures_failure is None

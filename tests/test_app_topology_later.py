@@ -163,3 +163,33 @@ def test_reopening_comes_complete_from_the_cache(window, qtbot, points_path):
     assert ds.source == "cache" and ds.has_topology  # no second pass, no waiting dock
     assert "loaded from cache in" in window.status.text()
     assert "topology from cache" in window.status.text()
+
+
+def test_an_older_files_topology_failure_is_not_said_over_a_complete_one(
+        window, qtbot, monkeypatch, tmp_path, points_path):
+    """A topology pass that fails after a file that came complete (from the cache: nothing
+    superseded the pass) is shown says nothing over that file."""
+    import app.worker
+    from core.errors import InputError
+
+    open_table(qtbot, window, points_path)
+    wait_for_topology(qtbot, window)  # its table is cached with its topology now
+    release = threading.Event()
+
+    def failing(dataset, check=None):
+        assert release.wait(RELEASE_TIMEOUT_S), "the test never released the topology"
+        raise InputError("the forests went wrong")
+
+    monkeypatch.setattr(app.worker, "with_topology", failing)
+    other = tmp_path / "other.npy"
+    np.save(other, ring(800, seed=5))
+    try:
+        open_table(qtbot, window, other)
+        open_table(qtbot, window, points_path)
+        assert window.model.dataset.has_topology
+    finally:
+        release.set()
+    qtbot.waitUntil(lambda: not window.topology.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    qtbot.wait(50)
+    assert window.model.dataset.path == points_path
+    assert "went wrong" not in window.status.text()

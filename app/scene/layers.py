@@ -126,9 +126,11 @@ def ball_mesh(xyz: np.ndarray, radii: np.ndarray, limit: int = MAX_BALLS,
 
 def mark_exposed(mesh: pv.PolyData, exposed: np.ndarray | None) -> None:
     """Set a ball_mesh's "exposed" marks from (m,) bool `exposed` over all the points (None:
-    every ball; the box corners always)."""
+    every ball; the box corners always). A mesh thinned to fewer than the m balls marks every
+    ball: a buried ball's cover may be among those left out, and then it shows."""
     pick = np.asarray(mesh.field_data[BALL_ROWS], dtype=np.int64)
-    shown = np.ones(len(pick), bool) if exposed is None else np.asarray(exposed, bool)[pick]
+    whole = exposed is not None and len(pick) == len(exposed)
+    shown = np.asarray(exposed, bool)[pick] if whole else np.ones(len(pick), bool)
     corners = mesh.n_points - len(pick)
     mesh[EXPOSED] = np.concatenate([shown, np.ones(corners, bool)]).astype(np.uint8)
 
