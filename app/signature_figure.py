@@ -26,7 +26,9 @@ XLABEL_PT, YLABEL_PT = 16.0, 32.0  # axis labels' distance from the axes (below,
 WIDTH_RATIOS = (1.0, 1.0, 1.0, 1.1)
 MAX_SAMPLES = 2000  # spectrum entries drawn per curve
 MINOR_SUBS = (2.0, 5.0)  # minor ticks of a log axis, per decade
-SYMLOG_TICKS = 7  # at most about this many decades labelled on a symmetric-log axis
+#: At most about this many decades labelled on a symmetric-log axis (more overlap in a
+#: signature plot of the window's width).
+SYMLOG_TICKS = 4
 CURSOR_COLOUR = "#444444"
 # Titles at a fixed height (y given): else every draw measures the axis under each title.
 TITLE_STYLE = {"fontsize": "small", "pad": 10, "y": 1.0}

@@ -3,6 +3,7 @@ clickable optimal/suggested markers, and a persistence diagram with the current 
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import replace
 from pathlib import Path
 
@@ -276,3 +277,30 @@ def test_slider_steps_move_the_cursors_without_a_full_redraw(panels, qtbot) -> N
     assert abs(new_x - old_x) > 3  # far enough apart to tell the two places apart
     assert cursor_pixel_gap(panel, new) < 40
     assert cursor_pixel_gap(panel, old) > 40
+
+
+@pytest.mark.parametrize("weighted", [True, False])
+def test_alpha_tick_labels_do_not_overlap_at_the_window_width(weighted):
+    """The alpha axis of each signature plot, over twelve decades at the width the window
+    gives it (1280 pixels for the four plots), has labels that do not run into each other."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from app.signature_figure import new_figure, set_alpha_scale
+
+    figure, axes = new_figure()
+    figure.set_size_inches(12.8, 1.8)
+    canvas = FigureCanvasAgg(figure)
+    x = np.concatenate([-np.logspace(2, 0, 20), [0.0], np.logspace(-1, 10.5, 60)])
+    if not weighted:
+        x = x[x > 0]
+    for ax in axes[:3]:
+        ax.set_visible(True)
+        ax.plot(x, np.arange(len(x)))
+        set_alpha_scale(ax, weighted, 1.0)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    for ax in axes[:3]:
+        boxes = sorted((t.get_window_extent(renderer) for t in ax.get_xticklabels()
+                        if t.get_text() and t.get_visible()), key=lambda b: b.x0)
+        assert len(boxes) >= 3
+        assert all(a.x1 < b.x0 for a, b in itertools.pairwise(boxes)), ax.get_xticklabels()
