@@ -1,0 +1,97 @@
+"""The numbers of a tiled shape without its simplices: counts per class, measures and
+components, folded in tile by tile (a union-find over the input rows), so a run of 10^7-10^8
+points never holds the whole shape (`alphascoop info --tiled` needs only these).
+
+The counts and measures are the sums merge_tiles makes; the components are those of the
+member edges over the global ids, as merge.components finds them on the merged shape.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+from core.tiled.result import TileResult
+
+_NAMES = ("vertices", "edges", "triangles", "tetrahedra")
+
+
+@dataclass(frozen=True)
+class TiledSummary:
+    """What a tiled shape at one alpha amounts to: `classes[k]` (singular, regular,
+    interior) counts of the k-simplices, `measure` volume (3D) or area (2D), `boundary_measure`
+    area or perimeter, `components`, `n_points` input rows, `hidden` weighted points, tiles."""
+
+    dim: int
+    alpha: float
+    alpha2: float
+    classes: tuple[tuple[int, int, int], ...]
+    measure: float
+    boundary_measure: float
+    components: int
+    n_points: int
+    hidden: int
+    n_tiles: int
+
+    def counts(self) -> dict[str, dict[str, int]]:
+        """Simplices per dimension and class, as TiledShape.counts gives them."""
+        return {_NAMES[k]: dict(zip(("singular", "regular", "interior"), c, strict=True))
+                for k, c in enumerate(self.classes)}
+
+
+class Components:
+    """Connected components of the vertices of n input rows joined by edges, fed a tile's
+    edges at a time: `label[row]` is the smallest row of its component so far."""
+
+    def __init__(self, n: int) -> None:
+        self.label = np.arange(n, dtype=np.int64)
+        self.vertex = np.zeros(n, dtype=bool)
+
+    def add(self, vertices: np.ndarray, edges: np.ndarray) -> None:
+        """Mark (v,) vertex rows and join the (e, 2) edges' ends."""
+        self.vertex[vertices] = True
+        if len(edges) == 0:
+            return
+        ends = self.label[edges]
+        roots, inverse = np.unique(ends, return_inverse=True)
+        pairs = inverse.reshape(-1, 2)
+        graph = coo_matrix((np.ones(len(pairs), dtype=np.int8), (pairs[:, 0], pairs[:, 1])),
+                           shape=(len(roots), len(roots)))
+        _, group = connected_components(graph, directed=False)
+        least = np.full(group.max() + 1, np.iinfo(np.int64).max, dtype=np.int64)
+        np.minimum.at(least, group, roots)  # roots ascending: the smallest row of a group
+        moved = roots != least[group]
+        if moved.any():
+            target = np.arange(len(self.label), dtype=np.int64)
+            target[roots[moved]] = least[group[moved]]
+            np.take(target, self.label, out=self.label)
+
+    def count(self) -> int:
+        """Components among the marked vertices."""
+        return int(np.count_nonzero(self.label[self.vertex] == np.flatnonzero(self.vertex)))
+
+
+def summarize_tiles(results: Iterable[TileResult], *, dim: int, n_rows: int, alpha: float,
+                    alpha2: float) -> TiledSummary:
+    """The summary of the tiles' owned simplices (input rows below `n_rows`), one tile's
+    result held at a time."""
+    classes = np.zeros((dim + 1, 3), dtype=np.int64)
+    measure = boundary = 0.0
+    n_points = hidden = n_tiles = 0
+    joined = Components(n_rows)
+    for result in results:
+        for k in range(dim + 1):
+            classes[k] += np.bincount(result.classes[k], minlength=4)[1:4]
+        joined.add(result.vertex_ids, result.simplices[1])
+        measure += result.measure
+        boundary += result.boundary
+        n_points += result.points
+        hidden += result.hidden
+        n_tiles += 1
+    return TiledSummary(dim, float(alpha), float(alpha2),
+                        tuple(tuple(int(x) for x in row) for row in classes), measure,
+                        boundary, joined.count(), n_points, hidden, n_tiles)
