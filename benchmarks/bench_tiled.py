@@ -210,6 +210,10 @@ def main() -> None:
              f"2-worker run (s): {', '.join(f'{k} {v:.1f}' for k, v in two['stages'].items())}.",
              "The machine's cores are shared with other work: the 1 -> 2 worker ratio is "
              "bounded by the cores free during the run.",
+             "CPU seconds (every process of the run): in memory "
+             f"{memory['cpu_seconds']:.1f}, 2 workers {two['cpu_seconds']:.1f}, 1 worker "
+             f"{one['cpu_seconds']:.1f}, in process {local['cpu_seconds']:.1f}; the tiles' "
+             f"own on 2 workers {sum(two['tile_cpu_seconds']):.1f}.",
              "Load average (1, 5, 15 min) at the start: "
              f"{', '.join(f'{x:.2f}' for x in load_before)}; at the end: "
              f"{', '.join(f'{x:.2f}' for x in os.getloadavg())} "
