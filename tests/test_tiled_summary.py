@@ -32,9 +32,10 @@ def test_summary_is_the_merged_shapes_numbers(dim, alpha):
     assert len(results) >= 16
     merged = merge_tiles(iter(results), dim=dim, ambient_dim=dim, frame=None, alpha=alpha,
                          alpha2=alpha * alpha, weighted=False)
-    summary = summarize_tiles(iter(results), dim=dim, n_rows=len(points), alpha=alpha,
-                              alpha2=alpha * alpha)
+    summary = summarize_tiles(iter(results), dim=dim, ambient_dim=dim, n_rows=len(points),
+                              alpha=alpha, alpha2=alpha * alpha, weighted=False)
     assert summary.counts() == merged.counts()
+    assert (summary.euler(), summary.betti()) == (merged.euler(), merged.betti())
     assert summary.components == merged.components == AlphaComplex.from_points(
         points).betti(alpha)[0]
     assert 1 < summary.components < len(points)

@@ -270,8 +270,10 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         clock = time.perf_counter()
         _step(options, 0.9, "merging the tiles")
         if summary:
-            merged = summarize_tiles(_results(paths), dim=source.dim, n_rows=seen.count,
-                                     alpha=q.alpha, alpha2=q.alpha2)
+            merged = summarize_tiles(_results(paths), dim=source.dim,
+                                     ambient_dim=source.ambient_dim, n_rows=seen.count,
+                                     alpha=q.alpha, alpha2=q.alpha2,
+                                     weighted=source.weights is not None)
         else:
             merged = merge_tiles(_results(paths), dim=source.dim,
                                  ambient_dim=source.ambient_dim, frame=source.frame,

@@ -24,9 +24,12 @@ _NAMES = ("vertices", "edges", "triangles", "tetrahedra")
 class TiledSummary:
     """What a tiled shape at one alpha amounts to: `classes[k]` (singular, regular,
     interior) counts of the k-simplices, `measure` volume (3D) or area (2D), `boundary_measure`
-    area or perimeter, `components`, `n_points` input rows, `hidden` weighted points, tiles."""
+    area or perimeter, `components`, `n_points` input rows, `hidden` weighted points, tiles.
+    Read as TiledShape is by `alphascoop info --tiled`."""
 
     dim: int
+    ambient_dim: int
+    weighted: bool
     alpha: float
     alpha2: float
     classes: tuple[tuple[int, int, int], ...]
@@ -41,6 +44,14 @@ class TiledSummary:
         """Simplices per dimension and class, as TiledShape.counts gives them."""
         return {_NAMES[k]: dict(zip(("singular", "regular", "interior"), c, strict=True))
                 for k, c in enumerate(self.classes)}
+
+    def euler(self) -> int:
+        """Euler characteristic of the complex: sum over k of (-1)^k n_k."""
+        return int(sum((-1) ** k * sum(c) for k, c in enumerate(self.classes)))
+
+    def betti(self) -> list[int] | None:
+        """Betti numbers in 2D (components, holes); None in 3D (TiledShape.betti)."""
+        return [self.components, self.components - self.euler()] if self.dim == 2 else None
 
 
 class Components:
@@ -75,8 +86,9 @@ class Components:
         return int(np.count_nonzero(self.label[self.vertex] == np.flatnonzero(self.vertex)))
 
 
-def summarize_tiles(results: Iterable[TileResult], *, dim: int, n_rows: int, alpha: float,
-                    alpha2: float) -> TiledSummary:
+def summarize_tiles(results: Iterable[TileResult], *, dim: int, ambient_dim: int,
+                    n_rows: int, alpha: float, alpha2: float, weighted: bool
+                    ) -> TiledSummary:
     """The summary of the tiles' owned simplices (input rows below `n_rows`), one tile's
     result held at a time."""
     classes = np.zeros((dim + 1, 3), dtype=np.int64)
@@ -92,6 +104,6 @@ def summarize_tiles(results: Iterable[TileResult], *, dim: int, n_rows: int, alp
         n_points += result.points
         hidden += result.hidden
         n_tiles += 1
-    return TiledSummary(dim, float(alpha), float(alpha2),
+    return TiledSummary(dim, ambient_dim, weighted, float(alpha), float(alpha2),
                         tuple(tuple(int(x) for x in row) for row in classes), measure,
                         boundary, joined.count(), n_points, hidden, n_tiles)
