@@ -32,8 +32,9 @@ def test_summary_is_the_merged_shapes_numbers(dim, alpha):
     assert len(results) >= 16
     merged = merge_tiles(iter(results), dim=dim, ambient_dim=dim, frame=None, alpha=alpha,
                          alpha2=alpha * alpha, weighted=False)
-    summary = summarize_tiles(iter(results), dim=dim, ambient_dim=dim, n_rows=len(points),
-                              alpha=alpha, alpha2=alpha * alpha, weighted=False)
+    summary = summarize_tiles((r.to_arrays() for r in results), dim=dim, ambient_dim=dim,
+                              n_rows=len(points), alpha=alpha, alpha2=alpha * alpha,
+                              weighted=False)
     assert summary.counts() == merged.counts()
     assert (summary.euler(), summary.betti()) == (merged.euler(), merged.betti())
     assert summary.components == merged.components == AlphaComplex.from_points(
@@ -53,4 +54,5 @@ def test_components_join_chains_fed_in_any_order():
         joined.add(np.array(edge), np.array([edge]))
     joined.add(np.array([10, 11, 12]), np.array([[11, 12]]))
     assert joined.count() == 3
-    assert set(joined.label[:10].tolist()) == {0}
+    assert set(joined.find(np.arange(10)).tolist()) == {0}
+    assert joined.find(np.array([12]))[0] == 11

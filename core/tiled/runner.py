@@ -234,6 +234,13 @@ def _results(paths: list[Path]) -> Iterator[TileResult]:
             yield TileResult.from_arrays({k: arrays[k] for k in arrays.files})
 
 
+def _saved(paths: list[Path]) -> Iterator:
+    """The tiles' saved arrays, one open .npz at a time (an array is read when asked for)."""
+    for path in paths:
+        with np.load(path, allow_pickle=False) as arrays:
+            yield arrays
+
+
 def tiled_run(source, q: Query, options: RunOptions | None = None,
               report: RunReport | None = None, *, summary: bool = False
               ) -> TiledShape | TiledSummary:
@@ -270,7 +277,7 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
         clock = time.perf_counter()
         _step(options, 0.9, "merging the tiles")
         if summary:
-            merged = summarize_tiles(_results(paths), dim=source.dim,
+            merged = summarize_tiles(_saved(paths), dim=source.dim,
                                      ambient_dim=source.ambient_dim, n_rows=seen.count,
                                      alpha=q.alpha, alpha2=q.alpha2,
                                      weighted=source.weights is not None)

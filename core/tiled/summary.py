@@ -8,14 +8,12 @@ member edges over the global ids, as merge.components finds them on the merged s
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
-
-from core.tiled.result import TileResult
 
 _NAMES = ("vertices", "edges", "triangles", "tetrahedra")
 
@@ -56,53 +54,64 @@ class TiledSummary:
 
 class Components:
     """Connected components of the vertices of n input rows joined by edges, fed a tile's
-    edges at a time: `label[row]` is the smallest row of its component so far."""
+    edges at a time: a union-find whose roots are the smallest row of their component (a
+    root points at a smaller one when two join), so a tile costs its edges, not n."""
 
     def __init__(self, n: int) -> None:
-        self.label = np.arange(n, dtype=np.int64)
+        self.parent = np.arange(n, dtype=np.int64)
         self.vertex = np.zeros(n, dtype=bool)
+
+    def find(self, rows: np.ndarray) -> np.ndarray:
+        """(r,) the root of each row (and those rows then point at it directly)."""
+        root = self.parent[rows]
+        while True:
+            up = self.parent[root]
+            if np.array_equal(up, root):
+                break
+            root = up
+        self.parent[rows] = root
+        return root
 
     def add(self, vertices: np.ndarray, edges: np.ndarray) -> None:
         """Mark (v,) vertex rows and join the (e, 2) edges' ends."""
         self.vertex[vertices] = True
         if len(edges) == 0:
             return
-        ends = self.label[edges]
-        roots, inverse = np.unique(ends, return_inverse=True)
+        roots, inverse = np.unique(self.find(np.ravel(edges)), return_inverse=True)
         pairs = inverse.reshape(-1, 2)
         graph = coo_matrix((np.ones(len(pairs), dtype=np.int8), (pairs[:, 0], pairs[:, 1])),
                            shape=(len(roots), len(roots)))
         _, group = connected_components(graph, directed=False)
         least = np.full(group.max() + 1, np.iinfo(np.int64).max, dtype=np.int64)
-        np.minimum.at(least, group, roots)  # roots ascending: the smallest row of a group
+        np.minimum.at(least, group, roots)  # the smallest root of each group
         moved = roots != least[group]
-        if moved.any():
-            target = np.arange(len(self.label), dtype=np.int64)
-            target[roots[moved]] = least[group[moved]]
-            np.take(target, self.label, out=self.label)
+        self.parent[roots[moved]] = least[group[moved]]
 
     def count(self) -> int:
         """Components among the marked vertices."""
-        return int(np.count_nonzero(self.label[self.vertex] == np.flatnonzero(self.vertex)))
+        rows = np.flatnonzero(self.vertex)
+        return int(np.count_nonzero(self.find(rows) == rows))
 
 
-def summarize_tiles(results: Iterable[TileResult], *, dim: int, ambient_dim: int,
-                    n_rows: int, alpha: float, alpha2: float, weighted: bool
-                    ) -> TiledSummary:
+def summarize_tiles(results: Iterable[Mapping[str, np.ndarray]], *, dim: int,
+                    ambient_dim: int, n_rows: int, alpha: float, alpha2: float,
+                    weighted: bool) -> TiledSummary:
     """The summary of the tiles' owned simplices (input rows below `n_rows`), one tile's
-    result held at a time."""
+    result held at a time: each given as its arrays (TileResult.to_arrays names; an open
+    .npz is read only for the classes, the edges, the vertices and the numbers)."""
     classes = np.zeros((dim + 1, 3), dtype=np.int64)
     measure = boundary = 0.0
     n_points = hidden = n_tiles = 0
     joined = Components(n_rows)
-    for result in results:
+    for arrays in results:
         for k in range(dim + 1):
-            classes[k] += np.bincount(result.classes[k], minlength=4)[1:4]
-        joined.add(result.vertex_ids, result.simplices[1])
-        measure += result.measure
-        boundary += result.boundary
-        n_points += result.points
-        hidden += result.hidden
+            classes[k] += np.bincount(arrays[f"classes{k}"], minlength=4)[1:4]
+        joined.add(arrays["vertex_ids"], arrays["simplices1"])
+        numbers = arrays["numbers"]  # TileResult.to_arrays: measure, boundary, points, hidden
+        measure += float(numbers[0])
+        boundary += float(numbers[1])
+        n_points += int(numbers[2])
+        hidden += int(numbers[3])
         n_tiles += 1
     return TiledSummary(dim, ambient_dim, weighted, float(alpha), float(alpha2),
                         tuple(tuple(int(x) for x in row) for row in classes), measure,
