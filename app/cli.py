@@ -489,15 +489,16 @@ def _export_pockets(args) -> int:
     return 0
 
 
-def _tiled(args):
-    """The tiled run of the options (app.tiled_cli), with a progress bar on a terminal."""
+def _tiled(args, summary: bool = False):
+    """The tiled run of the options (app.tiled_cli), with a progress bar on a terminal;
+    `summary`: only the shape's numbers (app.tiled_cli.run_tiled)."""
     from app import tiled_cli
 
     if is_molecule(args):
         raise UsageError("--tiled does not apply to molecule files")
     update, close = _progress()
     try:
-        return tiled_cli.run_tiled(args, update)
+        return tiled_cli.run_tiled(args, update, summary)
     finally:
         close()
 
@@ -506,7 +507,7 @@ def _tiled_info(args) -> int:
     """`info --tiled`: the tiled shape's summary."""
     from app import tiled_cli
 
-    info = tiled_cli.tiled_summary(*_tiled(args))
+    info = tiled_cli.tiled_summary(*_tiled(args, summary=True))
     print(json.dumps(info, indent=2) if args.json else tiled_cli.tiled_text(info))
     return 0
 

@@ -113,8 +113,10 @@ def las_source(path: Path):
     return CopcSource.open(path) if copc else LasSource(path)
 
 
-def run_tiled(args, progress=None):
-    """(merged shape, run report, georef, load report) of the tiled run the options ask."""
+def run_tiled(args, progress=None, summary: bool = False):
+    """(merged shape, run report, georef, load report) of the tiled run the options ask;
+    with `summary` (for `info`), only the shape's numbers (core.tiled.summary: no step holds
+    the whole shape) where no georeference asks for the polygons' own measures."""
     from core.tiled.memory import query
     from core.tiled.runner import RunOptions, RunReport, tiled_run
 
@@ -124,12 +126,14 @@ def run_tiled(args, progress=None):
                          scratch=args.scratch, tile_points=args.tile_points,
                          progress=progress)
     report = RunReport()
-    merged = tiled_run(source, query(args.alpha, args.alpha2), options, report)
+    merged = tiled_run(source, query(args.alpha, args.alpha2), options, report,
+                       summary=summary and georef is None)
     return merged, report, georef, load_report
 
 
 def tiled_summary(merged, report, georef, load_report) -> dict:
-    """What `info --tiled` reports, JSON-ready."""
+    """What `info --tiled` reports, JSON-ready (`merged`: a TiledShape, or a TiledSummary
+    where there is no `georef`)."""
     from core.tiled.view import MergedComplex
 
     measures = (("volume", "area") if merged.dim == 3 else ("area", "perimeter"))

@@ -45,6 +45,32 @@ def _tube_angles(rng: np.random.Generator, n: int, major: float, minor: float) -
     return kept[:n]
 
 
+def write_torus_las(n: int, seed: int, path: str, chunk: int = 1 << 20,
+                    scale: float = 1e-7) -> None:
+    """A noisy torus of n points as a LAS file written chunk by chunk (no array of all n
+    points): chunk i is noisy_torus(chunk, seed * 1_000_003 + i), an area-uniform sample as
+    the whole is; coordinates stored on a `scale` grid, as a scanner's are."""
+    import laspy
+
+    header = laspy.LasHeader(point_format=0, version="1.2")
+    header.scales = np.full(3, scale)
+    header.offsets = np.zeros(3)
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(suffix=".las", dir=folder)
+    os.close(fd)
+    try:
+        with laspy.open(tmp, mode="w", header=header) as writer:
+            for i, lo in enumerate(range(0, n, chunk)):
+                xyz = noisy_torus(min(chunk, n - lo), seed * 1_000_003 + i)
+                record = laspy.ScaleAwarePointRecord.zeros(len(xyz), header=header)
+                record.x, record.y, record.z = xyz.T
+                writer.write_points(record)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
 def write_points(points: np.ndarray, path: str) -> None:
     """Save (n, d) float64 points as .npy atomically (temp file + os.replace)."""
     folder = os.path.dirname(os.path.abspath(path))

@@ -72,10 +72,16 @@ def unsplit(job: Callable[[], T]) -> T:
         _unsplit.on = before
 
 
+def in_unsplit() -> bool:
+    """Whether this thread runs an `unsplit` job: its work should take no second core (a
+    triangulation in two halves included, core.backends.split)."""
+    return bool(getattr(_unsplit, "on", False))
+
+
 def _inside(role: str) -> bool:
     """Whether this thread is `role`'s helper (waiting on itself would deadlock), or runs
     an `unsplit` job."""
-    if getattr(_unsplit, "on", False):
+    if in_unsplit():
         return True
     return threading.current_thread().name.startswith(f"{HELPER}-{role}")
 

@@ -13,6 +13,7 @@ import core.backends as backends
 import core.backends.split as split
 from core import AlphaComplex
 from core.build.delaunay import Triangulation, regular_triangulate, triangulate
+from core.parallel import unsplit
 
 
 def assert_same_cells(tri: Triangulation, ref: Triangulation) -> None:
@@ -223,3 +224,13 @@ def test_one_cpu_never_splits(monkeypatch) -> None:
     monkeypatch.setattr(split.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
     assert split.worth_splitting(split.SPLIT_FROM_POINTS)
     assert not split.worth_splitting(split.SPLIT_FROM_POINTS - 1)
+
+
+def test_an_unsplit_job_never_splits(monkeypatch) -> None:
+    """A job beside others (a tile on a worker: core.parallel.unsplit) takes no second core,
+    so it triangulates in one call whatever its size."""
+    monkeypatch.setattr(split.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    assert split.worth_splitting(10 * split.GMSH_SPLIT_FROM_POINTS, "gmsh")
+    for backend in ("qhull", "gmsh"):
+        assert not unsplit(lambda b=backend: split.worth_splitting(
+            10 * split.GMSH_SPLIT_FROM_POINTS, b))

@@ -73,6 +73,50 @@ def test_failed_tile_is_named(tmp_path):
         assert not (tmp_path / "results" / f"t{broken:07d}.npz").exists()
 
 
+def test_tile_task_builds_unsplit_on_one_core(tmp_path, monkeypatch):
+    """A worker's tile takes one core (the cluster's other workers have the others): its
+    build runs unsplit, and the answer is the in-process tile's."""
+    from core.parallel import in_unsplit
+    from core.tiled import runner
+    from core.tiled.partition import read_tile, tile_folder
+    from core.tiled.result import TileResult
+
+    source = ArraySource.from_points(cloud(3000))
+    q, options = query(alpha=0.05), RunOptions(tile_points=1000)
+    seen = survey(source)
+    plan = plan_source(source, seen, q, options, 1, 1 << 30)
+    tile = partition_source(source, plan, tmp_path, options, seen.count)[0]
+    seen_unsplit, real = [], runner.compute_tile
+
+    def compute(*args):
+        seen_unsplit.append(in_unsplit())
+        return real(*args)
+
+    monkeypatch.setattr(runner, "compute_tile", compute)
+    out = tmp_path / "t.npz"
+    cost = runner.tile_task(str(tile_folder(tmp_path, tile)), str(out), 3, False, q.at)
+    assert seen_unsplit == [True] and not in_unsplit()
+    assert cost["cpu_seconds"] > 0 and cost["points"] > 0
+    with np.load(out, allow_pickle=False) as arrays:
+        got = TileResult.from_arrays({k: arrays[k] for k in arrays.files})
+    expected = real(*read_tile(tile_folder(tmp_path, tile), 3, False), q.at, 3)
+    for a, b in zip(got.simplices, expected.simplices, strict=True):
+        assert np.array_equal(a, b)
+
+
+def test_local_workers_keep_the_default_malloc_threshold(tmp_path):
+    """distributed's MALLOC_TRIM_THRESHOLD_ (a fixed mmap threshold: every large temporary
+    mapped anew) is not passed to the local cluster's workers."""
+    from core.tiled.runner import _close, client_for
+
+    client = client_for(RunOptions(), 1, 1 << 30, tmp_path)
+    try:
+        values = client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_"))
+    finally:
+        _close(client, RunOptions())
+    assert list(values.values()) == [None]
+
+
 def test_cancel_removes_scratch(tmp_path):
     def progress(fraction: float, stage: str) -> None:
         if stage.startswith("tiles"):

@@ -35,6 +35,7 @@ from core.build.delaunay import Triangulation, compacted, delaunay_cells, regula
 from core.errors import InputError
 from core.geometry.circumspheres import CACHE_CHUNK, centre_terms, circumspheres, edge_vectors
 from core.geometry.power import orthospheres
+from core.parallel import in_unsplit
 from core.tolerances import ILL_CONDITIONED_RTOL, SPLIT_EMPTY_RTOL
 
 #: From this many points the Qhull backend triangulates in two halves, on two threads: it
@@ -49,8 +50,11 @@ KD_LEAF = 64  # points per leaf of the other half's tree: big spheres search fas
 
 
 def worth_splitting(n_points: int, backend: str = "qhull") -> bool:
-    """Whether `backend` should triangulate `n_points` points in halves: enough of them, and
-    a second CPU this process may run on."""
+    """Whether `backend` should triangulate `n_points` points in halves: enough of them, a
+    second CPU this process may run on, and the caller not in an unsplit job (one whose
+    second core is taken: core.parallel.unsplit)."""
+    if in_unsplit():
+        return False
     try:
         cpus = len(os.sched_getaffinity(0))
     except AttributeError:  # not on Linux

@@ -3,10 +3,11 @@
 Modules: plan (tile sizes from density and memory budget), partition (points into tiles with
 their margins, in memory or streamed to per-tile files), tile (one tile's complex,
 classified, owned simplices in global ids), degenerate (tiles on a line), merge (union of
-the tiles, components, measures), memory (all of it in this process), sources (chunked
-readers; LAS/LAZ, and core.io.streams for big text and PLY files), copc and octree (COPC
-files read by box through their octree index), runner (tiles as Dask tasks), view (the
-merged shape seen by core.export).
+the tiles, components, measures), summary (their numbers only, folded in a tile at a time),
+memory (all of it in this process), sources (chunked readers; LAS/LAZ, and core.io.streams
+for big text and PLY files), copc and octree (COPC files read by box through their octree
+index), runner (tiles as Dask tasks, each on one core of its worker), view (the merged
+shape seen by core.export).
 
 Why the union of the tiles equals the whole complex at alpha
 ============================================================

@@ -123,7 +123,11 @@ def _level(parts: list[tuple], k: int, row_of: np.ndarray):
     and intervals."""
     if not parts:
         return np.empty((0, k + 1), np.int64), np.empty(0, np.int8), np.empty((0, 3))
-    s = np.concatenate([row_of[p[0]] for p in parts]).reshape(-1, k + 1).astype(np.int64)
+    s = np.empty((sum(len(p[0]) for p in parts), k + 1), dtype=np.int64)
+    start = 0
+    for p in parts:  # gathered straight into the result: no concatenated copy to cast
+        s[start:start + len(p[0])] = row_of[p[0]]
+        start += len(p[0])
     c = np.concatenate([p[1] for p in parts])
     iv = np.concatenate([p[2] for p in parts]).reshape(-1, 3)
     return s, c, iv

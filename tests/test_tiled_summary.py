@@ -1,0 +1,58 @@
+"""The summary of a tiled shape (core.tiled.summary): the merged shape's numbers, folded in
+a tile at a time."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from core import AlphaComplex
+from core.tiled.memory import plan_for, prepared
+from core.tiled.merge import merge_tiles
+from core.tiled.partition import tile_groups
+from core.tiled.plan import margin_for
+from core.tiled.summary import Components, summarize_tiles
+from core.tiled.tile import compute_tile
+
+
+def tile_results(points: np.ndarray, alpha: float, tile_points: int) -> list:
+    coords = prepared(points)[0]
+    plan = plan_for(coords, margin_for(alpha * alpha), tile_points, None)
+    dim = coords.shape[1]
+    return [compute_tile(rows, coords[rows], in_core, None, {"alpha": alpha}, dim)
+            for _, rows, in_core in tile_groups(plan, coords)]
+
+
+@pytest.mark.parametrize("dim, alpha", [(2, 0.012), (3, 0.05)])
+def test_summary_is_the_merged_shapes_numbers(dim, alpha):
+    """Many components crossing many tiles: the same counts, measures and components as the
+    merged shape and the in-memory complex."""
+    points = np.random.default_rng(8).random((3000, dim))
+    results = tile_results(points, alpha, 150)
+    assert len(results) >= 16
+    merged = merge_tiles(iter(results), dim=dim, ambient_dim=dim, frame=None, alpha=alpha,
+                         alpha2=alpha * alpha, weighted=False)
+    summary = summarize_tiles((r.to_arrays() for r in results), dim=dim, ambient_dim=dim,
+                              n_rows=len(points), alpha=alpha, alpha2=alpha * alpha,
+                              weighted=False)
+    assert summary.counts() == merged.counts()
+    assert (summary.euler(), summary.betti()) == (merged.euler(), merged.betti())
+    assert summary.components == merged.components == AlphaComplex.from_points(
+        points).betti(alpha)[0]
+    assert 1 < summary.components < len(points)
+    assert summary.measure == pytest.approx(merged.measure, rel=1e-12)
+    assert summary.boundary_measure == pytest.approx(merged.boundary_measure, rel=1e-12)
+    assert (summary.n_points, summary.n_tiles) == (len(points), merged.n_tiles)
+
+
+def test_components_join_chains_fed_in_any_order():
+    """A path 0-1-...-9 fed one edge at a time from both ends, a separate pair, a lone
+    vertex, and a row that is no vertex (a merged duplicate): three components."""
+    joined = Components(14)
+    path = [(i, i + 1) for i in range(9)]
+    for edge in path[::2] + path[1::2][::-1]:
+        joined.add(np.array(edge), np.array([edge]))
+    joined.add(np.array([10, 11, 12]), np.array([[11, 12]]))
+    assert joined.count() == 3
+    assert set(joined.find(np.arange(10)).tolist()) == {0}
+    assert joined.find(np.array([12]))[0] == 11
