@@ -26,6 +26,9 @@ XLABEL_PT, YLABEL_PT = 16.0, 32.0  # axis labels' distance from the axes (below,
 WIDTH_RATIOS = (1.0, 1.0, 1.0, 1.1)
 MAX_SAMPLES = 2000  # spectrum entries drawn per curve
 MINOR_SUBS = (2.0, 5.0)  # minor ticks of a log axis, per decade
+#: At most about this many decades labelled on a log axis (every decade of 1e-05 ... 100 ran
+#: into each other at the window's width).
+LOG_TICKS = 5
 #: At most about this many decades labelled on a symmetric-log axis (more overlap in a
 #: signature plot of the window's width).
 SYMLOG_TICKS = 4
@@ -96,6 +99,7 @@ def plain_log_ticks(axis, linthresh: float = 0.0) -> None:
     # Minor ticks at 2 and 5 per decade (log) or none (symmetric log): each tick is an
     # object made on the first draw, and eight a decade over many decades cost a second.
     if axis.get_scale() == "log":
+        axis.set_major_locator(LogLocator(numticks=LOG_TICKS))
         axis.set_minor_locator(LogLocator(subs=MINOR_SUBS))
     else:  # symmetric log: every decade on both sides of 0 would crowd the labels
         axis.set_minor_locator(NullLocator())

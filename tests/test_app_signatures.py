@@ -279,10 +279,12 @@ def test_slider_steps_move_the_cursors_without_a_full_redraw(panels, qtbot) -> N
     assert cursor_pixel_gap(panel, old) > 40
 
 
+@pytest.mark.parametrize("decades", [3, 8, 12])
 @pytest.mark.parametrize("weighted", [True, False])
-def test_alpha_tick_labels_do_not_overlap_at_the_window_width(weighted):
-    """The alpha axis of each signature plot, over twelve decades at the width the window
-    gives it (1280 pixels for the four plots), has labels that do not run into each other."""
+def test_alpha_tick_labels_do_not_overlap_at_the_window_width(weighted, decades):
+    """The alpha axis of each signature plot, over a few to many decades at the width the
+    window gives it (1280 pixels for the four plots), has labels that do not run into each
+    other."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     from app.signature_figure import new_figure, set_alpha_scale
@@ -290,7 +292,7 @@ def test_alpha_tick_labels_do_not_overlap_at_the_window_width(weighted):
     figure, axes = new_figure()
     figure.set_size_inches(12.8, 1.8)
     canvas = FigureCanvasAgg(figure)
-    x = np.concatenate([-np.logspace(2, 0, 20), [0.0], np.logspace(-1, 10.5, 60)])
+    x = np.concatenate([-np.logspace(2, 0, 20), [0.0], np.logspace(-5, decades - 5, 60)])
     if not weighted:
         x = x[x > 0]
     for ax in axes[:3]:
@@ -302,5 +304,5 @@ def test_alpha_tick_labels_do_not_overlap_at_the_window_width(weighted):
     for ax in axes[:3]:
         boxes = sorted((t.get_window_extent(renderer) for t in ax.get_xticklabels()
                         if t.get_text() and t.get_visible()), key=lambda b: b.x0)
-        assert len(boxes) >= 3
+        assert len(boxes) >= 2
         assert all(a.x1 < b.x0 for a, b in itertools.pairwise(boxes)), ax.get_xticklabels()
