@@ -56,3 +56,20 @@ def test_components_join_chains_fed_in_any_order():
     assert joined.count() == 3
     assert set(joined.find(np.arange(10)).tolist()) == {0}
     assert joined.find(np.array([12]))[0] == 11
+
+
+def test_counting_components_takes_no_copy_of_the_rows():
+    """Counting the roots of every input row (10^8 of them in a big run) allocates a bounded
+    block at a time, not several (n,) int64 arrays beside the union-find's own."""
+    import tracemalloc
+
+    n = 1 << 22
+    joined = Components(n)
+    joined.add(np.arange(n), np.array([[0, 1], [2, n - 1]]))
+    tracemalloc.start()
+    try:
+        assert joined.count() == n - 2
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 2 * n  # a quarter of one (n,) int64 array

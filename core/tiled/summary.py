@@ -16,6 +16,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 _NAMES = ("vertices", "edges", "triangles", "tetrahedra")
+COUNT_BLOCK = 1 << 18  # rows a block of Components.count
 
 
 @dataclass(frozen=True)
@@ -88,9 +89,15 @@ class Components:
         self.parent[roots[moved]] = least[group[moved]]
 
     def count(self) -> int:
-        """Components among the marked vertices."""
-        rows = np.flatnonzero(self.vertex)
-        return int(np.count_nonzero(self.find(rows) == rows))
+        """Components among the marked vertices: the marked roots (a row is a root exactly
+        where it is its own parent), counted a block of rows at a time so that no (n,)
+        temporary joins the union-find's arrays."""
+        total = 0
+        for start in range(0, len(self.parent), COUNT_BLOCK):
+            stop = min(start + COUNT_BLOCK, len(self.parent))
+            own = self.parent[start:stop] == np.arange(start, stop, dtype=np.int64)
+            total += int(np.count_nonzero(own & self.vertex[start:stop]))
+        return total
 
 
 def summarize_tiles(results: Iterable[Mapping[str, np.ndarray]], *, dim: int,
