@@ -106,14 +106,18 @@ def test_tile_task_builds_unsplit_on_one_core(tmp_path, monkeypatch):
 
 def test_local_workers_keep_the_default_malloc_threshold(tmp_path):
     """distributed's MALLOC_TRIM_THRESHOLD_ (a fixed mmap threshold: every large temporary
-    mapped anew) is not passed to the local cluster's workers."""
-    from core.tiled.runner import _close, client_for
+    mapped anew) is not passed to the local cluster's workers. The nannies' settings for
+    their workers (OMP_NUM_THREADS=1 and the like) are taken out of this process after, as
+    tiled_run does, so no later test's child process inherits them."""
+    from core.tiled.runner import _close, _restore, client_for
 
+    environ = dict(os.environ)
     client = client_for(RunOptions(), 1, 1 << 30, tmp_path)
     try:
         values = client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_"))
     finally:
         _close(client, RunOptions())
+        _restore(environ)
     assert list(values.values()) == [None]
 
 
