@@ -15,11 +15,14 @@ from core.tiled.summary import Components, summarize_tiles
 from core.tiled.tile import compute_tile
 
 
-def tile_results(points: np.ndarray, alpha: float, tile_points: int) -> list:
+def tile_results(points: np.ndarray, alpha: float, tile_points: int,
+                 weights: np.ndarray | None = None) -> list:
     coords = prepared(points)[0]
-    plan = plan_for(coords, margin_for(alpha * alpha), tile_points, None)
+    heaviest = 0.0 if weights is None else float(weights.max())
+    plan = plan_for(coords, margin_for(alpha * alpha, heaviest), tile_points, None)
     dim = coords.shape[1]
-    return [compute_tile(rows, coords[rows], in_core, None, {"alpha": alpha}, dim)
+    return [compute_tile(rows, coords[rows], in_core, None if weights is None else
+                         weights[rows], {"alpha": alpha}, dim)
             for _, rows, in_core in tile_groups(plan, coords)]
 
 
@@ -43,6 +46,28 @@ def test_summary_is_the_merged_shapes_numbers(dim, alpha):
     assert summary.measure == pytest.approx(merged.measure, rel=1e-12)
     assert summary.boundary_measure == pytest.approx(merged.boundary_measure, rel=1e-12)
     assert (summary.n_points, summary.n_tiles) == (len(points), merged.n_tiles)
+
+
+@pytest.mark.parametrize("dim, alpha", [(2, 0.012), (3, 0.05)])
+def test_summary_of_weighted_points_and_repeated_rows(dim, alpha):
+    """Weighted points, some hidden, and rows repeated (a repeat is no vertex of its own):
+    the merged shape's numbers, and the in-memory complex's components and 2D holes."""
+    rng = np.random.default_rng(9)
+    unique = rng.random((2500, dim))
+    points = np.concatenate([unique, unique[:300]])
+    weights = np.concatenate([w := rng.random(2500) * (0.3 * alpha * alpha), w[:300]])
+    results = tile_results(points, alpha, 150, weights)
+    merged = merge_tiles(iter(results), dim=dim, ambient_dim=dim, frame=None, alpha=alpha,
+                         alpha2=alpha * alpha, weighted=True)
+    summary = summarize_tiles((r.to_arrays() for r in results), dim=dim, ambient_dim=dim,
+                              n_rows=len(points), alpha=alpha, alpha2=alpha * alpha,
+                              weighted=True)
+    assert summary.hidden == merged.hidden > 0
+    assert summary.counts() == merged.counts()
+    betti = AlphaComplex.from_points(points, weights=weights).betti(alpha)
+    assert summary.components == merged.components == betti[0] > 1
+    assert summary.betti() == (list(betti) if dim == 2 else None)
+    assert summary.measure == pytest.approx(merged.measure, rel=1e-12)
 
 
 def test_components_join_chains_fed_in_any_order():
