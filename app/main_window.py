@@ -285,7 +285,7 @@ class MainWindow(QMainWindow):
         """A molecule's measures failed: the shape and slider stay; say why (not over
         another file shown since, which no measures superseded)."""
         if self.model.fail_measures(message):
-            self.status.setText(f"{message}; the shape and the slider still work")
+            self._show_status()
 
     def _on_failed(self, _request: int, message: str) -> None:
         """Show why the current request failed; the file shown before comes back."""
@@ -362,7 +362,8 @@ class MainWindow(QMainWindow):
         self.scene.set_level_of_detail(False)
 
     def _show_status(self) -> None:
-        """Status line: points, cells, alpha, where the table came from, the topology."""
+        """Status line: points, cells, alpha, where the table came from, the topology, and a
+        molecule's failed measures (kept on every later line)."""
         ds = self.model.dataset
         self.status.setText(
             f"{len(ds.ac.points):,} points · {len(self.model.shape.cells):,} cells · "
@@ -370,6 +371,8 @@ class MainWindow(QMainWindow):
                else f"alpha {self.model.alpha:.6g}")
             + (f" ({ds.ac.mode.name})" if ds.ac.mode.active else "")
             + f" · {ds.build_line()} · {ds.topology_line()}"
+            + (f" · {self.model.measures_failure} (the shape and the slider still work)"
+               if self.model.measures_failure else "")
         )
 
     def _set_style(self, name: str, style) -> None:

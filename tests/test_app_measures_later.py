@@ -187,8 +187,12 @@ def test_failed_measures_are_said_everywhere(window, qtbot, monkeypatch):
     monkeypatch.setattr(app.menus.QMessageBox, "information",
                         lambda _parent, _title, text: said.append(text))
     open_table(qtbot, window, MOLECULES / "gemmi_HEM.pdb")
-    qtbot.waitUntil(lambda: not window.measures.is_busy(), timeout=BUILD_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: window.model.measures_failure is not None,
+                    timeout=BUILD_TIMEOUT_MS)
     assert "the balls' measures went wrong" in window.status.text()
+    wait_for_topology(qtbot, window)  # a later status line (topology, a step) keeps saying it
+    window.model.set_index(window.model.index + 1)
+    assert "failed: the balls' measures went wrong" in window.status.text()
     text = window.info_panel.data.text()
     assert MEASURING not in text and "measures failed" in text
     tools = MenuTools(window, window.prefs, window.model, window.scene, window.jobs,
