@@ -56,3 +56,19 @@ def mid_gap_alpha(ac: AlphaComplex, quantile: float) -> float:
     spectrum = spectrum[spectrum > 0]
     i = min(int(quantile * len(spectrum)), len(spectrum) - 2)
     return float(np.sqrt(spectrum[i] * spectrum[i + 1]))
+
+
+def same_info(tiled: dict, memory: dict) -> list[str]:
+    """What differs between `info --tiled --json` and the in-memory `info --json` of the same
+    file at the same alpha (empty: the same counts per class, components, volume, points)."""
+    problems = [f"{name}: {tiled['classes'].get(name)} != {counts}"
+                for name, counts in memory["classes"].items()
+                if tiled["classes"].get(name) != {**counts, "exterior": None}]
+    if tiled["components"] != memory["betti"][0]:
+        problems.append(f"components {tiled['components']} != {memory['betti'][0]}")
+    if not np.isclose(tiled["volume"], memory["volume"], rtol=1e-9, atol=0.0):
+        problems.append(f"volume {tiled['volume']} != {memory['volume']}")
+    if tiled["points"] != memory["load"]["n_points"]:
+        problems.append(f"points {tiled['points']} != {memory['load']['n_points']}")
+    return problems
+
