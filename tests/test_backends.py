@@ -457,7 +457,7 @@ def test_gmsh_leaves_sigpipe_ignored() -> None:
 def test_row_of_finds_each_row_by_a_dictionary():
     """restore's row lookup against a plain dictionary of the table's rows (the last of
     equal rows), on small ids where rows repeat."""
-    from core.backends.restore import _row_of
+    from core.backends.restore import row_of
 
     rng = np.random.default_rng(3)
     for _ in range(200):
@@ -466,4 +466,4 @@ def test_row_of_finds_each_row_by_a_dictionary():
         rows = rng.integers(0, size, (int(rng.integers(1, 40)), k)).astype(np.int32)
         index = {tuple(r): i for i, r in enumerate(table.tolist())}
         want = [index.get(tuple(r), -1) for r in rows.tolist()]
-        assert _row_of(rows, table).tolist() == want
+        assert row_of(rows, table).tolist() == want

@@ -173,10 +173,10 @@ def _one_by_one(full: dict) -> dict:
     for packer in compact.PACKERS:
         trial = dict(out)
         packer(full, trial)
-        if compact._unpacks_to(trial, full):
+        if compact.unpacks_to(trial, full):
             out = trial
-    out = compact._without_derived(full, out)
-    return out if compact._unpacks_to(out, full) else dict(full)
+    out = compact.without_derived(full, out)
+    return out if compact.unpacks_to(out, full) else dict(full)
 
 
 @pytest.mark.parametrize("kind", sorted(TABLES))

@@ -96,10 +96,10 @@ def test_random_polyhedra_against_sampling():
 
 
 def test_the_least_of_a_direction_over_a_cap_against_its_points():
-    """exact_cells._cap_low (what decides that a power plane's cap lies beyond a facet, so
+    """exact_cells.cap_low (what decides that a power plane's cap lies beyond a facet, so
     the plane is left out of the clipping) is the least of n'·x over the cap's points: over
     the cap's disk, or at the sphere's point opposite n' when that point is in the cap."""
-    from core.molecule.exact_cells import _cap_low
+    from core.molecule.exact_cells import cap_low
 
     rng = np.random.default_rng(7)
     x = rng.normal(size=(200_000, 3))
@@ -109,7 +109,7 @@ def test_the_least_of_a_direction_over_a_cap_against_its_points():
         cap = x[x @ n >= bound]
         for cos in (-1.0, -0.9, -0.5, 0.0, 0.4, 1.0):
             other = np.array([np.sqrt(1 - cos * cos), 0.0, cos])
-            low = float(_cap_low(np.array(bound), np.array(1.0), np.array(cos)))
+            low = float(cap_low(np.array(bound), np.array(1.0), np.array(cos)))
             sampled = float((cap @ other).min())
             assert low <= sampled + 1e-12, (bound, cos)
             assert sampled - low < 0.05, (bound, cos)  # reached by the samples nearly

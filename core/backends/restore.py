@@ -19,9 +19,9 @@ from core.backends.facets import paired
 from core.build.delaunay import sort_rows
 
 
-def _row_of(rows: np.ndarray, table: np.ndarray) -> np.ndarray:
-    """(n,) int64: the index in (p, k) `table` of each of the (n, k) int rows, -1 where it
-    is none."""
+def row_of(rows: np.ndarray, table: np.ndarray) -> np.ndarray:
+    """(n,) int64: the index in (p, k) `table` of each of the (n, k) int rows (the last of
+    equal table rows), -1 where it is none."""
     both = np.concatenate((table, rows))
     order = np.lexsort(both.T[::-1])  # rows in order: equal rows side by side
     ordered = both[order]
@@ -75,10 +75,10 @@ def outside(points: np.ndarray, cells: np.ndarray, outer: np.ndarray, behind: np
     corners = np.unique(simplices)
     on_corners = np.zeros(len(points), dtype=bool)
     on_corners[corners] = True
-    inside = _row_of(simplices, cells[on_corners[cells].all(axis=1)]) >= 0
+    inside = row_of(simplices, cells[on_corners[cells].all(axis=1)]) >= 0
     keep = np.arange(width)[None, :] != np.arange(width)[:, None]
     faces = simplices[:, None, :].repeat(width, axis=1)[:, keep].reshape(-1, width - 1)
-    wall = _row_of(faces, outer)
+    wall = row_of(faces, outer)
     at = np.flatnonzero(wall >= 0)
     apex = simplices.ravel()[at]  # face k of a cell is opposite its vertex k
     beyond = np.sign(_side(points, faces[at], apex)) * np.sign(

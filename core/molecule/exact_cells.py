@@ -148,7 +148,7 @@ def _some(flags: np.ndarray) -> np.ndarray:
     return flags[:, 0] | flags[:, 1] | flags[:, 2] | flags[:, 3]
 
 
-def _cap_low(bound: np.ndarray, radius: np.ndarray, cos: np.ndarray) -> np.ndarray:
+def cap_low(bound: np.ndarray, radius: np.ndarray, cos: np.ndarray) -> np.ndarray:
     """The least of n'·x over the cap {|x| <= radius, n·x >= bound} of a ball about the
     origin, for unit n' at cosine `cos` to n: -radius when the ball's point -radius·n' is in
     the cap, else the least over the cap's disk (centre bound·n, radius sqrt(r² - bound²))."""
@@ -163,7 +163,7 @@ def _cap_beyond(normal, bound, radius, facet_normals, facet_offsets) -> np.ndarr
     about the centre), by the margin CAP_BEYOND_RTOL: they cut nothing of the ball inside
     the cell, so they are left out (each plane costs a piece's clipping about P² lines)."""
     cos = np.einsum("mvc,mc->mv", facet_normals, normal)
-    return _some(_cap_low(bound[:, None], radius[:, None], cos)
+    return _some(cap_low(bound[:, None], radius[:, None], cos)
                  > facet_offsets + (CAP_BEYOND_RTOL * radius)[:, None])
 
 

@@ -220,20 +220,20 @@ def pack(full: Mapping[str, np.ndarray]) -> Arrays:
     out = dict(full)
     for packer in PACKERS:
         packer(full, out)
-    out = _without_derived(full, out)
-    if _unpacks_to(out, full):
+    out = without_derived(full, out)
+    if unpacks_to(out, full):
         return out
     out = dict(full)
     for packer in PACKERS:
         trial = dict(out)
         packer(full, trial)
-        if _unpacks_to(trial, full):
+        if unpacks_to(trial, full):
             out = trial
-    out = _without_derived(full, out)
-    return out if _unpacks_to(out, full) else dict(full)
+    out = without_derived(full, out)
+    return out if unpacks_to(out, full) else dict(full)
 
 
-def _without_derived(full: Mapping[str, np.ndarray], out: Arrays) -> Arrays:
+def without_derived(full: Mapping[str, np.ndarray], out: Arrays) -> Arrays:
     """`out` without the arrays a derivation gives back exactly."""
     context, ways = {**full, **out}, derivations(dim_of(full))
     return {name: array for name, array in out.items()
@@ -248,7 +248,8 @@ def _gives_back(derive: Callable[[Mapping], np.ndarray], context: Mapping, name:
         return False
 
 
-def _unpacks_to(members: Arrays, full: Mapping[str, np.ndarray]) -> bool:
+def unpacks_to(members: Arrays, full: Mapping[str, np.ndarray]) -> bool:
+    """Whether `members` unpack to exactly the arrays `full` (members unpack rejects: no)."""
     try:
         got = unpack(members)
     except (IndexError, KeyError, TypeError, ValueError):
