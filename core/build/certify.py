@@ -278,6 +278,20 @@ def _flip_3d(mesh: _Mesh, t, i, u, j) -> int:
     return int((~flippable).sum())
 
 
+def _facet_columns(d: int) -> np.ndarray:
+    """(d + 1, d) int: row j, the columns of a d-cell's row but j (its facet opposite vertex
+    j)."""
+    return np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
+
+
+def _hull_slots(mesh: _Mesh) -> tuple[np.ndarray, np.ndarray]:
+    """(cells, slots) of the hull facets (neighbour -1) of the live cells not flagged bad."""
+    d = mesh.cells.shape[1] - 1
+    t, k = rows_cols(nonzero(lambda lo, hi: mesh.nbs[lo:hi] < 0, len(mesh.nbs)), d + 1)
+    keep = mesh.alive[t] & ~mesh.bad[t]
+    return t[keep], k[keep]
+
+
 def _fill_reflex_hull(mesh: _Mesh) -> int:
     """Cells over reflex ridges of the hull: where the vertex g of a hull facet G lies
     strictly outside the plane of the neighbouring hull facet F, the cell F + g belongs to
@@ -285,12 +299,10 @@ def _fill_reflex_hull(mesh: _Mesh) -> int:
     Returns how many reflex ridges are left unfilled (the hull is then not convex there)."""
     d = mesh.cells.shape[1] - 1
     mesh.concave = np.empty(0, dtype=np.int64)
-    t, k = rows_cols(nonzero(lambda lo, hi: mesh.nbs[lo:hi] < 0, len(mesh.nbs)), d + 1)
-    keep = mesh.alive[t] & ~mesh.bad[t]
-    t, k = t[keep], k[keep]
+    t, k = _hull_slots(mesh)
     if not len(t):
         return 0
-    others = np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
+    others = _facet_columns(d)
     facets = np.take_along_axis(mesh.cells[t], others[k], axis=1)  # (h, d)
     ridges = np.concatenate([np.sort(facets[:, others[r][: d - 1]], axis=1)
                              for r in range(d)])  # each hull facet without its vertex r
@@ -338,12 +350,10 @@ def _hull_not_convex(mesh: _Mesh) -> np.ndarray:
     check a hull that passes is convex (a locally convex closed surface star-shaped once
     around o)."""
     d = mesh.cells.shape[1] - 1
-    t, k = rows_cols(nonzero(lambda lo, hi: mesh.nbs[lo:hi] < 0, len(mesh.nbs)), d + 1)
-    keep = mesh.alive[t] & ~mesh.bad[t]
-    t, k = t[keep], k[keep]
+    t, k = _hull_slots(mesh)
     if not len(t):
         return t
-    others = np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
+    others = _facet_columns(d)
     facets = np.take_along_axis(mesh.cells[t], others[k], axis=1)
     verts, local = np.unique(np.concatenate((facets.ravel(), mesh.cells[t, k])),
                              return_inverse=True)
@@ -401,7 +411,7 @@ def _glue_hull(mesh: _Mesh) -> None:
     """Link every pair of hull slots (neighbour -1) that hold the same facet."""
     d = mesh.cells.shape[1] - 1
     t, k = np.nonzero((mesh.nbs < 0) & mesh.alive[:, None])
-    others = np.array([[c for c in range(d + 1) if c != j] for j in range(d + 1)])
+    others = _facet_columns(d)
     keys = np.sort(np.take_along_axis(mesh.cells[t], others[k], axis=1), axis=1)
     order = np.lexsort(keys.T[::-1])
     keys, t, k = keys[order], t[order], k[order]
