@@ -97,14 +97,14 @@ def molecule_lines(model: ExplorerModel) -> list[str]:
     ds = model.dataset
     if not ds.is_molecule:
         return []
+    head = f"<b>molecule</b>, probe {ds.probe:g} Å (at alpha² 0)"
     m = ds.molecule
     if m is None:
         failure = model.measures_failure
-        return [f"<b>molecule</b>, probe {ds.probe:g} Å (at alpha² 0)",
-                MEASURING if failure is None else f"measures failed: {failure}"]
+        return [head, MEASURING if failure is None else f"measures failed: {failure}"]
     cavities = ", ".join(f"{v:.3g}" for v in m.cavities[:5]) + (" ..." if len(m.cavities) > 5
                                                                 else "")
-    return [f"<b>molecule</b>, probe {m.probe:g} Å (at alpha² 0)",
+    return [head,
             f"surface area {m.surface_area:,.2f} Å² (exact)",
             f"volume {m.volume:,.2f} Å³ (exact, union of balls)",
             f"{len(m.cavities)} cavities" + (f": {cavities} Å³" if cavities else ""),

@@ -36,11 +36,10 @@ from app.menus import MenuTools, build_menus
 from app.mode_panel import ModePanel
 from app.model import ExplorerModel
 from app.palette import ATOM_STYLE, CAVITY_STYLE, MOUTH_STYLE, POCKET_STYLE, cpk_rgb
-from app.pockets_layer import pocket_arrays
 from app.progress_widget import ProgressWidget
 from app.reopen import ReopenFallback
 from app.resources import ICON_PATH
-from app.scene import exposed_of, scene_data
+from app.scene import exposed_of, pockets_of, scene_data
 from app.scene.interactive import interactive_scene
 from app.settings import Preferences
 from app.signatures_dock import SignaturesPanel
@@ -324,10 +323,10 @@ class MainWindow(QMainWindow):
         """A molecule's measures arrived: its pockets and their mouths become layers (with
         the styles the Layers dock holds for them), drawn once."""
         ds = self.model.dataset
-        if ds.molecule is None:  # they failed (model.measures_failure): nothing to draw
+        pockets = pockets_of(ds)
+        if pockets is None:  # they failed (model.measures_failure): nothing to draw
             return
-        self.scene.add_pockets(pocket_arrays(ds.ac, ds.molecule.pockets),
-                               self.layers_panel.styles)
+        self.scene.add_pockets(pockets, self.layers_panel.styles)
         exposed = exposed_of(ds)
         if exposed is not None:
             self.scene.set_exposed(exposed)

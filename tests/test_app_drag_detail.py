@@ -22,6 +22,8 @@ def test_drag_thins_the_layers_and_release_restores_the_full_frame(window, qtbot
     assert renderer.GetUseFXAA()  # the window's full frame is smoothed
     edges = scene.layers["singular_edges"].actor.prop
     width = edges.line_width
+    points = scene.layers["singular_points"].actor.GetProperty()
+    assert points.GetRenderPointsAsSpheres()  # the full frame's round points
     model.set_index(model.hull_index() - 1)  # many surface triangles
     qtbot.wait(10)
     assert len(shape_cells(model.shape, "surface")) > 4 * LIMIT
@@ -34,10 +36,12 @@ def test_drag_thins_the_layers_and_release_restores_the_full_frame(window, qtbot
     assert 0 < drawn <= LIMIT < full
     assert render_window.GetMultiSamples() == 0 and not renderer.GetUseFXAA()
     assert edges.line_width == 1 < width
+    assert not points.GetRenderPointsAsSpheres()  # flat squares while dragging
     slider.setSliderDown(False)  # the release
     qtbot.wait(10)
     assert scene.layers["surface"].mesh.n_cells == len(shape_cells(model.shape, "surface"))
     assert renderer.GetUseFXAA() and edges.line_width == width
+    assert points.GetRenderPointsAsSpheres()
 
 
 def test_a_release_draws_one_full_frame_at_the_released_alpha(window, qtbot) -> None:

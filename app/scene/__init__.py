@@ -6,9 +6,9 @@ plane (clipping), colour-by's mapper state (painting) and picking with its highl
 (picking). Other modules hand it numpy arrays (data.SceneData, shapes) and styles.
 """
 
-from app.scene.data import SceneData, as_xyz, exposed_of, scene_data
+from app.scene.data import SceneData, as_xyz, exposed_of, pockets_of, scene_data
 from app.scene.layers import KINDS_2D, KINDS_3D, ball_mesh
 from app.scene.view import Scene
 
 __all__ = ["KINDS_2D", "KINDS_3D", "Scene", "SceneData", "as_xyz", "ball_mesh", "exposed_of",
-           "scene_data"]
+           "pockets_of", "scene_data"]

@@ -49,17 +49,22 @@ def scene_data(dataset: Dataset, styles: dict[str, LayerStyle],
                rgb: np.ndarray | None = None) -> SceneData:
     """The arrays the scene draws of dataset, with these layer styles (and ball colours)."""
     ac = dataset.ac
-    radii = ball_radii(dataset)
-    molecule = dataset.molecule
-    pockets = None if molecule is None else pocket_arrays(ac, molecule.pockets)
     return SceneData(as_xyz(ac.to_ambient(ac.points)), ac.dim, ac.simplices(1), styles,
-                     radii, rgb, dataset.frame, dataset.unit, pockets, exposed_of(dataset))
+                     ball_radii(dataset), rgb, dataset.frame, dataset.unit,
+                     pockets_of(dataset), exposed_of(dataset))
 
 
 def ball_radii(dataset: Dataset) -> np.ndarray | None:
     """(m,) radii of the balls drawn for weighted points (sqrt of the weights), else None."""
     weights = dataset.ac.weights
     return None if weights is None else np.sqrt(np.maximum(weights, 0.0))
+
+
+def pockets_of(dataset: Dataset) -> PocketArrays | None:
+    """The drawn arrays of a molecule's pockets and mouths (app.pockets_layer); None while
+    its measures are unknown, and for other point sets."""
+    molecule = dataset.molecule
+    return None if molecule is None else pocket_arrays(dataset.ac, molecule.pockets)
 
 
 def exposed_of(dataset: Dataset) -> np.ndarray | None:
