@@ -100,7 +100,7 @@ def las_source(path: Path):
     from core.io.las_checks import check_las_file
     from core.tiled.copc import CopcSource
     from core.tiled.octree import is_copc
-    from core.tiled.sources import LasSource
+    from core.tiled.sources import LasSource, unreadable_las
 
     if not path.is_file():
         raise FileFormatError(f"{path}: no such file")
@@ -108,8 +108,7 @@ def las_source(path: Path):
     try:
         copc = is_copc(path)
     except Exception as exc:  # laspy on a header it cannot parse
-        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise FileFormatError(f"{path}: not a readable LAS/LAZ file ({reason})") from exc
+        raise unreadable_las(path, exc) from exc
     return CopcSource.open(path) if copc else LasSource(path)
 
 

@@ -24,7 +24,7 @@ from core.errors import FileFormatError
 from core.io import read_points
 from core.tiled.copc import CopcSource
 from core.tiled.memory import query
-from core.tiled.partition import read_tile
+from core.tiled.partition import read_tile, tile_folder
 from core.tiled.runner import (
     RunOptions,
     RunReport,
@@ -113,8 +113,8 @@ def test_tiles_read_by_box_are_the_streamed_tiles(tmp_path):
     theirs = partition_source(streamed, plan, tmp_path / "streamed", options, seen.count)
     assert ours == theirs and len(ours) >= 8
     for tile in ours:
-        a = read_tile(tmp_path / "box" / "tiles" / f"t{tile:07d}", 3, False)
-        b = read_tile(tmp_path / "streamed" / "tiles" / f"t{tile:07d}", 3, False)
+        a = read_tile(tile_folder(tmp_path / "box", tile), 3, False)
+        b = read_tile(tile_folder(tmp_path / "streamed", tile), 3, False)
         for x, y in zip(a[:3], b[:3], strict=True):
             np.testing.assert_array_equal(x, y)
     assert len(report.read) == plan.n_tiles

@@ -109,15 +109,15 @@ def test_local_workers_keep_the_default_malloc_threshold(tmp_path):
     mapped anew) is not passed to the local cluster's workers. The nannies' settings for
     their workers (OMP_NUM_THREADS=1 and the like) are taken out of this process after, as
     tiled_run does, so no later test's child process inherits them."""
-    from core.tiled.runner import _close, _restore, client_for
+    from core.tiled.runner import client_for, close_client, restore_environment
 
     environ = dict(os.environ)
     client = client_for(RunOptions(), 1, 1 << 30, tmp_path)
     try:
         values = client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_"))
     finally:
-        _close(client, RunOptions())
-        _restore(environ)
+        close_client(client, RunOptions())
+        restore_environment(environ)
     assert list(values.values()) == [None]
 
 
@@ -141,10 +141,9 @@ def test_a_file_changed_while_read_is_refused(tmp_path):
 
     path = tmp_path / "growing.xyz"
     path.write_text("\n".join(" ".join(repr(v) for v in p) for p in cloud(3000).tolist()))
-    source = TextSource.open(path, chunk=1000)
     passes = []
 
-    class Growing(type(source)):
+    class Growing(TextSource):
         def chunks(self):
             passes.append(1)
             yield from super().chunks()
@@ -156,7 +155,7 @@ def test_a_file_changed_while_read_is_refused(tmp_path):
     options = RunOptions(workers=1, memory_per_worker=1 << 30, tile_points=500,
                          scratch=scratch)
     with pytest.raises(FileFormatError, match="changed while it was read"):
-        tiled_run(Growing(**vars(source)), query(alpha=0.05), options)
+        tiled_run(Growing.open(path, chunk=1000), query(alpha=0.05), options)
     assert len(passes) == 3 and list(scratch.iterdir()) == []
 
 

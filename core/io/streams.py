@@ -111,7 +111,7 @@ class PlySource:
     def open(cls, path: Path, chunk: int = CHUNK_ROWS) -> PlySource | None:
         """The source, or None when the vertex element cannot be streamed (list properties,
         list elements before it in a binary file, a weight or radius property)."""
-        _, before, vertex = _layout(path)
+        before, vertex = _vertex_element(path)
         names = [p.name for p in vertex.properties]
         if vertex.has_lists or any(n in (*WEIGHT_NAMES, "radius") for n in names):
             return None
@@ -149,9 +149,9 @@ class PlySource:
                                   "vertices)")
 
 
-def _layout(path: Path) -> tuple[object, list[Element], Element]:
-    """(header, elements before the vertex element, the vertex element); the same checks of
-    the header and the file's size as core.io.ply."""
+def _vertex_element(path: Path) -> tuple[list[Element], Element]:
+    """(elements before the vertex element, the vertex element); the same checks of the
+    header and the file's size as core.io.ply."""
     with open(path, "rb") as fh:
         header = parse_header(fh, str(path))
         check_size(header, os.fstat(fh.fileno()).st_size - fh.tell(), path)
@@ -163,7 +163,7 @@ def _layout(path: Path) -> tuple[object, list[Element], Element]:
     if [a for a in ("x", "y", "z") if a in properties][:2] != ["x", "y"]:
         raise FileFormatError(f"{path}: PLY vertices have no x/y properties "
                               f"({', '.join(properties)})")
-    return header, header.elements[: names.index("vertex")], vertex
+    return header.elements[: names.index("vertex")], vertex
 
 
 def _binary_rows(fh, vertex: Element, before: list[Element], chunk: int

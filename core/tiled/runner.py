@@ -322,12 +322,12 @@ def tiled_run(source, q: Query, options: RunOptions | None = None,
     finally:
         client = client if client is not None else _started(starting)
         if client is not None:
-            _close(client, options)
+            close_client(client, options)
         shutil.rmtree(scratch, ignore_errors=True)
-        _restore(environ)
+        restore_environment(environ)
 
 
-def _restore(environ: dict[str, str]) -> None:
+def restore_environment(environ: dict[str, str]) -> None:
     """Put back the process's environment as it was before the run: a local cluster's
     nannies set OMP_NUM_THREADS=1, MALLOC_TRIM_THRESHOLD_ and the like in this process for
     their workers, which every process started later (a window's build) would inherit."""
@@ -346,7 +346,7 @@ def _started(starting: Future):
         return None
 
 
-def _close(client, options: RunOptions) -> None:
+def close_client(client, options: RunOptions) -> None:
     """Close the client (and the local cluster this run started)."""
     cluster = None if options.scheduler else client.cluster
     client.close()

@@ -83,9 +83,13 @@ class LasSource:
                                            np.asarray(records.z, dtype=np.float64)])
                     yield xyz[np.isfinite(xyz).all(axis=1)], None
         except Exception as exc:  # laspy, lazrs or the OS on a corrupt or vanished file
-            reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-            raise FileFormatError(f"{self.path}: not a readable LAS/LAZ file ({reason})"
-                                  ) from exc
+            raise unreadable_las(self.path, exc) from exc
+
+
+def unreadable_las(path: Path, exc: BaseException) -> FileFormatError:
+    """The one-line error of a LAS/LAZ file laspy, lazrs or the OS could not read."""
+    reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    return FileFormatError(f"{path}: not a readable LAS/LAZ file ({reason})")
 
 
 @dataclass(frozen=True)
