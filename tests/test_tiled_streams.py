@@ -270,3 +270,15 @@ def test_ply_without_vertex_axes_says_it_as_the_whole_read(tmp_path, head):
     with pytest.raises(FileFormatError) as parts:
         streamed(streamed_source(path, stream_from=0))
     assert str(parts.value) == str(whole.value)
+
+
+def test_ply_rewritten_without_vertices_is_a_format_error(tmp_path):
+    """A PLY rewritten between opening its source and reading it (no vertex element any
+    more) is the whole read's one-line format error, not a failure inside the stream."""
+    path = tmp_path / "scan.ply"
+    write_ply(path, cloud(50), "binary_little_endian")
+    source = PlySource.open(path)
+    path.write_text("ply\nformat ascii 1.0\nelement face 0\n"
+                    "property list uchar int vertex_indices\nend_header\n")
+    with pytest.raises(FileFormatError, match="no 'vertex' element"):
+        streamed(source)

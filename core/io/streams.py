@@ -135,6 +135,8 @@ class PlySource:
         with _readable(self.path), open(self.path, "rb") as fh:
             header = parse_header(fh, str(self.path))
             names = [e.name for e in header.elements]
+            if "vertex" not in names:  # the file was rewritten since the source was opened
+                raise FileFormatError(f"{self.path}: PLY has no 'vertex' element")
             at = names.index("vertex")
             vertex, before = header.elements[at], header.elements[:at]
             tables = (_text_rows(fh, vertex, sum(e.n for e in before), self.chunk)
