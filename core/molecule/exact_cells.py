@@ -13,16 +13,12 @@ no foreign ball meets and whose balls do not cross their opposite facets; the ot
 from __future__ import annotations
 
 import itertools
-from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from core.molecule.clipped import ball_in_polyhedron
 from core.tolerances import CAP_BEYOND_RTOL
-
-if TYPE_CHECKING:  # regions imports this module
-    from core.molecule.regions import DualFacts
 
 CHUNK = 1024  # ball pieces per vectorized batch (each holds P(P-1) x P plane tests)
 BLOCK = 20_000  # (ball, cell) pairs whose power planes are sorted out at once
@@ -74,7 +70,7 @@ def _distance(corners: np.ndarray, x: np.ndarray) -> np.ndarray:
     return np.where((side <= 0).all(1), 0.0, best)
 
 
-def near_balls(facts: DualFacts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.ndarray]:
+def near_balls(facts, rows: np.ndarray, tree: cKDTree) -> tuple[np.ndarray, np.ndarray]:
     """Pairs (position in rows, ball) (m,) int64 of the balls of K that meet each cell,
     by position. Cells are taken NEAR_BLOCK at a time: their candidates' temporaries stay
     in cache, where all cells' at once do not."""
@@ -88,7 +84,7 @@ def near_balls(facts: DualFacts, rows: np.ndarray, tree: cKDTree) -> tuple[np.nd
             np.concatenate([j for _, j in parts]))
 
 
-def _near_block(facts: DualFacts, rows: np.ndarray, tree: cKDTree, vertex: np.ndarray
+def _near_block(facts, rows: np.ndarray, tree: cKDTree, vertex: np.ndarray
                 ) -> tuple[np.ndarray, np.ndarray]:
     """near_balls of a block of rows; vertex (n,) bool: facts.vertices_in()."""
     c = facts.centres[facts.cells[rows]]
@@ -111,7 +107,7 @@ def _near_block(facts: DualFacts, rows: np.ndarray, tree: cKDTree, vertex: np.nd
     return i[keep], j[keep]
 
 
-def needs_clipping(facts: DualFacts, rows: np.ndarray, pairs: tuple[np.ndarray, np.ndarray]
+def needs_clipping(facts, rows: np.ndarray, pairs: tuple[np.ndarray, np.ndarray]
                    ) -> np.ndarray:
     """(len(rows),) bool: cells whose sector measure may differ from the union inside them
     (a ball reaches over its opposite facet or is no vertex of K, or a foreign ball may
@@ -127,7 +123,7 @@ def needs_clipping(facts: DualFacts, rows: np.ndarray, pairs: tuple[np.ndarray, 
     return over
 
 
-def neighbours(facts: DualFacts) -> tuple[np.ndarray, np.ndarray]:
+def neighbours(facts) -> tuple[np.ndarray, np.ndarray]:
     """(starts (n+1,), others) int64: the balls joined to each ball by an edge of the
     triangulation, others[starts[a]:starts[a+1]]; their planes bound a's power cell."""
     n = len(facts.radii)
@@ -167,7 +163,7 @@ def _cap_beyond(normal, bound, radius, facet_normals, facet_offsets) -> np.ndarr
                  > facet_offsets + (CAP_BEYOND_RTOL * radius)[:, None])
 
 
-def _power_planes(facts: DualFacts, pair_i, pair_j, corners, planes, starts, others):
+def _power_planes(facts, pair_i, pair_j, corners, planes, starts, others):
     """(piece (r,), normals (r, 3), offsets (r,) about the piece's centre) of the power
     planes that may cut a piece's ball inside its cell, and (pieces,) bool: the piece is
     empty (its ball or its cell wholly beyond one power plane). A plane is left out when
@@ -198,7 +194,7 @@ def _power_planes(facts: DualFacts, pair_i, pair_j, corners, planes, starts, oth
     return piece[keep], normal[keep], bound[keep], empty
 
 
-def clipped_cell_measures(facts: DualFacts, rows: np.ndarray, pairs: tuple[np.ndarray, np.ndarray],
+def clipped_cell_measures(facts, rows: np.ndarray, pairs: tuple[np.ndarray, np.ndarray],
                           neighbours: tuple[np.ndarray, np.ndarray]
                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(covered volume (t,), and the exposed sphere area as entries (positions, balls,
