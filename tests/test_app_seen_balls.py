@@ -205,3 +205,20 @@ def test_the_balls_kept_are_those_in_front_at_some_pixel(scene) -> None:
         assert in_front.sum() > 20
         assert kept_rows[in_front].all()  # none left out that shows
         assert reachable[kept_rows].all()  # none kept that no pixel shows
+
+
+def test_without_an_id_pass_every_ball_is_drawn(scene, monkeypatch) -> None:
+    """Where the id pass cannot draw (no OpenGL context for it), every ball is drawn."""
+    from app.scene.seen_balls import IdPass
+
+    made = IdPass.__init__
+
+    def unusable(self) -> None:
+        made(self)
+        self.usable = False
+
+    monkeypatch.setattr(IdPass, "__init__", unusable)
+    centres, radii = packed_balls(300, seed=4)
+    ball_scene(scene, centres, radii)
+    picture(scene)
+    assert drawn(scene) is scene.layers["balls"].mesh

@@ -88,6 +88,7 @@ class IdPass:
         self.grab.SetInputBufferTypeToRGB()
         self.grab.ReadFrontBufferOff()
         self.grab.ShouldRerenderOff()
+        self.usable = bool(self.window.SupportsOpenGL())  # else every ball is drawn
 
     def set_balls(self, mesh: pv.PolyData) -> None:
         """Draw mesh's balls (a ball mesh), each in its id colour."""
@@ -127,7 +128,8 @@ class SeenBalls:
     """Draws a ball actor's balls as only those its view shows, checked before every render
     of the window: a new view (camera or size) draws them all while the view moves (an
     interaction in progress) and finds the seen ones again once it is still. A multisampled
-    window draws them all (the id pass has one sample a pixel)."""
+    window draws them all (the id pass has one sample a pixel), and so does a machine where
+    the id pass gets no OpenGL context."""
 
     def __init__(self, window: vtkRenderWindow, renderer: vtkRenderer) -> None:
         """Watch window's renders of renderer's view."""
@@ -169,7 +171,8 @@ class SeenBalls:
         if self.balls is None or self.actor is None or not self.actor.GetVisibility():
             return
         source = self.balls
-        if self.window.GetMultiSamples() == 0 and not self.interacting():
+        if (self.window.GetMultiSamples() == 0 and not self.interacting()
+                and self._id_pass().usable):
             key = view_key(self.renderer)
             if key != self.key:
                 keep = self._id_pass().seen(self.renderer, self.balls)
