@@ -14,7 +14,8 @@ change of the machine's load falls on all alike), software GL here:
   step): sphere impostors lit from the eye (BALL_LIGHT), of the balls with exposed area
   (outer_balls: exact per-atom areas of measure_molecule at the drawn radii) only those the
   view shows (app.scene.seen_balls: an id pass finds them once per view);
-- new view: the same after the view changed (a render with its id pass);
+- new view: the same after the view changed, its id pass in the render (the window paints
+  a new view with every outer ball first and runs the pass after);
 - outer: every ball with exposed area, lit from the eye (what was drawn before the id pass);
 - every ball, lit from the eye (what clipping or translucency draws);
 - before: every ball under the renderer's light kit (the impostors as first drawn);
@@ -184,9 +185,9 @@ def figures(result: dict) -> list:
     return [
         Figure("balls.impostors_vs_points", label, result["balls"], "ms",
                points, result["plain_points"], "<= 2"),
-        Figure("balls.new_view_vs_points", f"{n} balls, a render of a new view (its id pass "
-               "and the balls it shows)", result["new_view"], "ms", points,
-               result["plain_points"]),
+        Figure("balls.new_view_vs_points", f"{n} balls, a new view's id pass and its frame "
+               "of the balls it shows (the window paints the new view with every outer ball "
+               "first)", result["new_view"], "ms", points, result["plain_points"]),
         Figure("balls.outer_vs_points", f"{n} balls, the {result['drawn']:,} seen from "
                "outside all drawn (before the id pass)", result["outer"], "ms", points,
                result["plain_points"]),

@@ -222,3 +222,39 @@ def test_without_an_id_pass_every_ball_is_drawn(scene, monkeypatch) -> None:
     ball_scene(scene, centres, radii)
     picture(scene)
     assert drawn(scene) is scene.layers["balls"].mesh
+
+
+def test_a_deferred_id_pass_runs_after_the_frame_of_a_new_view() -> None:
+    """As in the window (its event loop runs the pass once the frame is painted): a new
+    view's frame draws every ball, the pass then finds those it shows, and the next frame
+    draws those with the same picture; a view that moved again meanwhile is the one found."""
+    tasks = []
+    scene = Scene.off_screen(SIZE)
+    scene.seen.defer = tasks.append  # what interactive_scene gives: a call after the frame
+    try:
+        scene.plotter.render_window.SetMultiSamples(0)
+        centres, radii = packed_balls(800, seed=6)
+        ball_scene(scene, centres, radii)
+        layer = scene.layers["balls"]
+        first = picture(scene)
+        assert drawn(scene) is layer.mesh and len(tasks) == 1
+        picture(scene)
+        assert len(tasks) == 1  # one pass waiting, not one a frame
+        tasks.pop()()
+        assert drawn(scene).GetNumberOfPoints() < 0.5 * len(centres)
+        np.testing.assert_array_equal(picture(scene), first)
+        assert not tasks  # the view is known
+        camera = scene.plotter.renderer.GetActiveCamera()
+        camera.Azimuth(40.0)
+        moved = picture(scene)
+        assert drawn(scene) is layer.mesh and len(tasks) == 1
+        camera.Elevation(30.0)
+        camera.OrthogonalizeViewUp()
+        again = picture(scene)
+        tasks.pop()()
+        shown = drawn(scene).GetNumberOfPoints()
+        np.testing.assert_array_equal(picture(scene), again)
+        assert drawn(scene).GetNumberOfPoints() == shown < 0.5 * len(centres)
+        assert not np.array_equal(moved, again)
+    finally:
+        scene.close()

@@ -7,10 +7,13 @@ and the balls kept are drawn in the same order (ties fall as before).
 On a software renderer the balls' cost is the fragments shaded, every overlapping ball's:
 a molecule's outer balls are several times more than those a view shows (those behind
 others). The id pass costs about one frame of all the balls, once per view; a frame of a
-still view (a slider step) draws the seen ones only.
+still view (a slider step) draws the seen ones only. In the window the pass runs once the
+new view's frame (every ball) is painted, so that frame comes as soon as before.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import numpy as np
 import pyvista as pv
@@ -127,12 +130,15 @@ class IdPass:
 class SeenBalls:
     """Draws a ball actor's balls as only those its view shows, checked before every render
     of the window: a new view (camera or size) draws them all while the view moves (an
-    interaction in progress) and finds the seen ones again once it is still. A multisampled
-    window draws them all (the id pass has one sample a pixel), and so does a machine where
-    the id pass gets no OpenGL context."""
+    interaction in progress) and finds the seen ones again once it is still: at once, or
+    when `defer` (a call later, after the frame: the window's event loop) runs it, the new
+    view's frame drawing them all. A multisampled window draws them all (the id pass has
+    one sample a pixel), and so does a machine where the id pass gets no OpenGL context."""
 
-    def __init__(self, window: vtkRenderWindow, renderer: vtkRenderer) -> None:
-        """Watch window's renders of renderer's view."""
+    def __init__(self, window: vtkRenderWindow, renderer: vtkRenderer,
+                 defer: Callable[[Callable[[], None]], None] | None = None) -> None:
+        """Watch window's renders of renderer's view; defer(task) runs task later (None:
+        the id pass runs in the render that needs it)."""
         self.window: vtkRenderWindow | None = window
         self.renderer: vtkRenderer | None = renderer
         self.actor: pv.Actor | None = None
@@ -140,6 +146,8 @@ class SeenBalls:
         self.subset: pv.PolyData | None = None  # those the view `key` shows
         self.key: tuple | None = None
         self._pass: IdPass | None = None
+        self.defer = defer
+        self._pending = False  # a deferred id pass is waiting
         self._observer = window.AddObserver("StartEvent", self._before_render)
 
     def track(self, actor: pv.Actor | None, balls: pv.PolyData | None) -> None:
@@ -165,21 +173,46 @@ class SeenBalls:
         return (interactor is not None
                 and self.window.GetDesiredUpdateRate() > interactor.GetStillUpdateRate())
 
+    def still(self) -> bool:
+        """True when the id pass can tell the balls this view shows: one sample a pixel,
+        no interaction moving the view, an OpenGL context for the pass."""
+        return (self.window.GetMultiSamples() == 0 and not self.interacting()
+                and self._id_pass().usable)
+
     def _before_render(self, *_) -> None:
         """Before a render: the seen balls of the view when it is still and known (found now
-        when new), else every ball."""
+        when new, or later with defer), else every ball."""
         if self.balls is None or self.actor is None or not self.actor.GetVisibility():
             return
         source = self.balls
-        if (self.window.GetMultiSamples() == 0 and not self.interacting()
-                and self._id_pass().usable):
+        if self.still():
             key = view_key(self.renderer)
-            if key != self.key:
-                keep = self._id_pass().seen(self.renderer, self.balls)
-                keep |= np.asarray(self.balls["radius"]) == 0  # the box's corners: the bounds
-                self.subset, self.key = ball_subset(self.balls, keep), key
-            source = self.subset
+            if key != self.key and self.defer is None:
+                self._find(key)
+            elif key != self.key and not self._pending:
+                self._pending = True
+                self.defer(self._find_later)
+            if key == self.key:
+                source = self.subset
         self._set_input(source)
+
+    def _find(self, key: tuple) -> None:
+        """Find the balls the view `key` (the renderer's now) shows."""
+        keep = self._id_pass().seen(self.renderer, self.balls)
+        keep |= np.asarray(self.balls["radius"]) == 0  # the box's corners: the bounds
+        self.subset, self.key = ball_subset(self.balls, keep), key
+
+    def _find_later(self) -> None:
+        """The deferred id pass: the balls the view shows now, for the frames that follow
+        (the frame on screen, of every ball, is the same picture)."""
+        self._pending = False
+        if (self.window is None or self.balls is None or self.actor is None
+                or not self.actor.GetVisibility() or not self.still()):
+            return
+        key = view_key(self.renderer)
+        if key != self.key:
+            self._find(key)
+        self._set_input(self.subset)  # for the next frame
 
     def _set_input(self, source: pv.PolyData) -> None:
         """Draw source with the tracked actor (no change when it draws it already)."""

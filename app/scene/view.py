@@ -68,9 +68,12 @@ class Scene:
     """Layers of one dataset drawn into a pyvista plotter (QtInteractor or off-screen), with
     their overlay, clipping plane (`clipper`) and colour-by mapper state (`painter`)."""
 
-    def __init__(self, plotter: pv.BasePlotter, render: Callable[[], None] | None = None) -> None:
-        """Draw into plotter; render() defaults to plotter.render (QtInteractor: pass update).
-        Made by Scene.off_screen or app.scene.interactive.interactive_scene."""
+    def __init__(self, plotter: pv.BasePlotter, render: Callable[[], None] | None = None,
+                 defer: Callable[[Callable[[], None]], None] | None = None) -> None:
+        """Draw into plotter; render() defaults to plotter.render (QtInteractor: pass update);
+        defer(task) runs task after the frame (the window's event loop; None: at once), for
+        the balls' id pass (app.scene.seen_balls). Made by Scene.off_screen or
+        app.scene.interactive.interactive_scene."""
         self.plotter = plotter
         self.plotter.theme.allow_empty_mesh = True
         self.plotter.set_background(BACKGROUND)
@@ -89,7 +92,7 @@ class Scene:
         self.overlay = Overlay(plotter)
         self.clipper = Clipper(plotter, self.layers, self.render)
         self.painter = Painter(plotter, self.layers, self.overlay)
-        self.seen = SeenBalls(plotter.render_window, plotter.renderer)  # the balls a view shows
+        self.seen = SeenBalls(plotter.render_window, plotter.renderer, defer)  # balls shown
 
     @classmethod
     def off_screen(cls, size: tuple[int, int]) -> Scene:
