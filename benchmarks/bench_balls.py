@@ -6,20 +6,25 @@ against the balls drawn before and against tessellated sphere glyphs, in one run
 The balls: a synthetic protein (bench_molecule.write_copies: rotated copies of the shared
 1A8O, 556 atoms each; 36 copies = 20,016 atoms) at the radii a molecule opens with in the
 window (van der Waals + the 1.4 Å probe: the balls its measures are of), fitted in a view
-the size of the window's 3D view. Each way is one actor in an off-screen plotter, timed as
-the median of full renders (`render_window.Render()` after `Modified()`), one of each way
-in turn (a change of the machine's load falls on all alike), software GL here:
-- balls: app.scene.layers as the window draws an opaque, uncut molecule: sphere impostors
-  lit from the eye (BALL_LIGHT), only the balls with exposed area (outer_balls: exact
-  per-atom areas of measure_molecule at the drawn radii);
+the size of the window's 3D view, drawn as the window draws (app.scene.interactive: one
+sample a pixel, FXAA). Each way is one actor in an off-screen plotter, timed as the median
+of full renders (`render_window.Render()` after `Modified()`), one of each way in turn (a
+change of the machine's load falls on all alike), software GL here:
+- balls: app.scene as the window draws an opaque, uncut molecule in a still view (a slider
+  step): sphere impostors lit from the eye (BALL_LIGHT), of the balls with exposed area
+  (outer_balls: exact per-atom areas of measure_molecule at the drawn radii) only those the
+  view shows (app.scene.seen_balls: an id pass finds them once per view);
+- new view: the same after the view changed, its id pass in the render (the window paints
+  a new view with every outer ball first and runs the pass after);
+- outer: every ball with exposed area, lit from the eye (what was drawn before the id pass);
 - every ball, lit from the eye (what clipping or translucency draws);
-- before: every ball under the renderer's light kit (the impostors as drawn before);
-- van der Waals: every ball at van der Waals radii, lit from the eye (almost every atom has
-  some exposed area there: nothing to leave out);
+- before: every ball under the renderer's light kit (the impostors as first drawn);
+- van der Waals: the balls at van der Waals radii as the window draws them in a still view;
 - plain points: the same centres as the points layer draws them (3 px);
 - same-pixel points: square points as wide as the balls' mean diameter on screen (the fill
   of every ball, without sphere shading and depth);
 - glyphs: the sphere glyphs drawn before the impostors (10 x 10 facets a ball).
+The balls and plain points are timed again without FXAA.
 """
 
 from __future__ import annotations
@@ -40,16 +45,19 @@ PROBE = 1.4  # Å: the window's molecule balls are van der Waals + probe
 COLOUR = "#8fb8de"
 
 
-def render_ms(plotter, actors: dict) -> dict[str, float]:
+def render_ms(plotter, actors: dict, before: dict | None = None) -> dict[str, float]:
     """Median milliseconds of RENDERS full renders of plotter with each of actors alone,
     taken in turns (one render of each a round, after one untimed each), so a change in the
-    machine's load falls on every way alike."""
+    machine's load falls on every way alike; before[name]() runs ahead of each of its
+    renders, untimed."""
     window = plotter.render_window
     times: dict[str, list[float]] = {name: [] for name in actors}
     for timed in [False] + [True] * RENDERS:
         for name, actor in actors.items():
             for other in actors.values():
                 other.SetVisibility(other is actor)
+            if before and name in before:
+                before[name]()
             plotter.renderer.Modified()
             start = time.perf_counter()
             window.Render()
@@ -90,6 +98,20 @@ def protein(copies: int, probe: float = PROBE) -> dict:
             "radii": radii, "exposed": exposed_balls(measures.point_area, radii)}
 
 
+def seen_actor(plotter, balls, colour: str = COLOUR):
+    """A ball actor drawing the balls of the ball mesh `balls` that plotter's view shows, as
+    the window does (app.scene.seen_balls), and its SeenBalls."""
+    from app.scene.layers import ball_actor
+    from app.scene.seen_balls import SeenBalls
+
+    actor = ball_actor(balls, colour, 1.0)
+    actor.GetMapper().SetInputData(balls)
+    plotter.add_actor(actor, reset_camera=False, render=False)
+    seen = SeenBalls(plotter.render_window, plotter.renderer)
+    seen.track(actor, balls)
+    return actor, seen
+
+
 def run(copies: int, size: tuple[int, int]) -> dict:
     """Milliseconds per render of each way on the same balls."""
     import pyvista as pv
@@ -99,16 +121,22 @@ def run(copies: int, size: tuple[int, int]) -> dict:
     mol = protein(copies)
     points, radii = mol["points"], mol["radii"]
     plotter = pv.Plotter(off_screen=True, window_size=list(size))
+    plotter.render_window.SetMultiSamples(0)  # as the window draws (app.scene.interactive)
+    plotter.renderer.SetUseFXAA(True)
     mesh = ball_mesh(points, radii, limit=len(points), exposed=mol["exposed"])
     every = ball_actor(mesh, COLOUR, 1.0)
     plotter.add_actor(every, reset_camera=True, render=False)
+    outer_mesh = outer_balls(mesh)
     outer = ball_actor(mesh, COLOUR, 1.0)
-    outer.GetMapper().SetInputData(outer_balls(mesh))
+    outer.GetMapper().SetInputData(outer_mesh)
     before = ball_actor(mesh, COLOUR, 1.0)
     before.GetShaderProperty().ClearAllShaderReplacements()
-    vdw = ball_actor(ball_mesh(mol["centres"], mol["vdw"], limit=len(points)), COLOUR, 1.0)
-    for actor in (outer, before, vdw):
+    for actor in (outer, before):
         plotter.add_actor(actor, reset_camera=False, render=False)
+    balls, seen = seen_actor(plotter, outer_mesh)
+    new_view, fresh = seen_actor(plotter, outer_balls(mesh))
+    vdw, vdw_seen = seen_actor(plotter, ball_mesh(mol["centres"], mol["vdw"],
+                                                  limit=len(points)))
     cloud = pv.PolyData(points)
     plain = plotter.add_mesh(cloud, color="#c9d1d9", point_size=3.0, style="points",
                              render=False, reset_camera=False)
@@ -119,12 +147,28 @@ def run(copies: int, size: tuple[int, int]) -> dict:
     sphere = pv.Sphere(radius=1.0, theta_resolution=10, phi_resolution=10)
     glyphs = plotter.add_mesh(cloud.glyph(scale="radius", geom=sphere, orient=False),
                               color=COLOUR, render=False, reset_camera=False)
-    actors = {"balls": outer, "every_ball": every, "before": before, "vdw": vdw,
-              "plain_points": plain, "same_pixel_points": wide, "glyphs": glyphs}
+    actors = {"balls": balls, "new_view": new_view, "outer": outer, "every_ball": every,
+              "before": before, "vdw": vdw, "plain_points": plain,
+              "same_pixel_points": wide, "glyphs": glyphs}
+
+    def forget_view() -> None:
+        """The new-view way finds its balls again at its next render (a moved camera)."""
+        fresh.key = None
+
     result = {"atoms": len(mol["centres"]), "balls_n": len(points),
               "drawn": int(mol["exposed"].sum()), "size": size,
               "ball_pixels": pixels, "probe": PROBE}
-    result.update(render_ms(plotter, actors))
+    result.update(render_ms(plotter, actors, {"new_view": forget_view}))
+    result["seen"] = balls.GetMapper().GetInput().GetNumberOfPoints() - 2  # - the corners
+    result["vdw_seen"] = vdw.GetMapper().GetInput().GetNumberOfPoints() - 2
+    plotter.renderer.SetUseFXAA(False)
+    for actor in actors.values():
+        actor.SetVisibility(False)
+    plain_fxaa = render_ms(plotter, {"balls": balls, "plain_points": plain})
+    result["balls_no_fxaa"] = plain_fxaa["balls"]
+    result["plain_points_no_fxaa"] = plain_fxaa["plain_points"]
+    for each in (seen, fresh, vdw_seen):
+        each.close()
     plotter.close()
     return result
 
@@ -135,19 +179,32 @@ def figures(result: dict) -> list:
     from results import Figure
 
     n = f"{result['balls_n']:,}"
-    label = f"{n} balls as the window draws them ({result['drawn']:,} seen from outside)"
+    label = (f"{n} balls as the window draws them, a still view ({result['seen']:,} it shows "
+             f"of {result['drawn']:,} seen from outside), one render")
+    points = f"{n} plain points (3 px)"
     return [
-        Figure("balls.impostors_vs_points", label + ", one render", result["balls"], "ms",
-               f"{n} plain points (3 px)", result["plain_points"], "<= 2"),
-        Figure("balls.before_vs_impostors", f"{n} balls as drawn before (all, light kit)",
-               result["before"], "ms", "as the window draws them", result["balls"]),
+        Figure("balls.impostors_vs_points", label, result["balls"], "ms",
+               points, result["plain_points"], "<= 2"),
+        Figure("balls.new_view_vs_points", f"{n} balls, a new view's id pass and its frame "
+               "of the balls it shows (the window paints the new view with every outer ball "
+               "first)", result["new_view"], "ms", points, result["plain_points"]),
+        Figure("balls.outer_vs_points", f"{n} balls, the {result['drawn']:,} seen from "
+               "outside all drawn (before the id pass)", result["outer"], "ms", points,
+               result["plain_points"]),
         Figure("balls.every_ball_vs_points", f"{n} balls, all drawn (clipped or translucent)",
-               result["every_ball"], "ms", f"{n} plain points (3 px)", result["plain_points"]),
-        Figure("balls.vdw_vs_points", f"{n} balls at van der Waals radii, all drawn",
-               result["vdw"], "ms", f"{n} plain points (3 px)", result["plain_points"]),
-        Figure("balls.impostors_vs_same_pixels", label + ", one render", result["balls"], "ms",
+               result["every_ball"], "ms", points, result["plain_points"]),
+        Figure("balls.before_vs_impostors", f"{n} balls as first drawn (all, light kit)",
+               result["before"], "ms", "as the window draws them", result["balls"]),
+        Figure("balls.vdw_vs_points", f"{n} balls at van der Waals radii as the window draws "
+               f"them, a still view ({result['vdw_seen']:,} it shows)", result["vdw"], "ms",
+               points, result["plain_points"]),
+        Figure("balls.outer_vs_same_pixels", f"{n} balls, the {result['drawn']:,} seen from "
+               "outside all drawn", result["outer"], "ms",
                f"{n} square points {result['ball_pixels']:.0f} px wide (every ball's fill)",
                result["same_pixel_points"]),
+        Figure("balls.impostors_vs_points_no_fxaa", label + ", without FXAA",
+               result["balls_no_fxaa"], "ms", points + ", without FXAA",
+               result["plain_points_no_fxaa"]),
         Figure("balls.glyphs_vs_impostors", f"{n} tessellated sphere glyphs, one render",
                result["glyphs"], "ms", "as the window draws them", result["balls"]),
     ]
@@ -164,25 +221,27 @@ def main(argv: list[str] | None = None) -> None:
     args = parser.parse_args(argv)
     size = tuple(int(v) for v in args.size.split("x"))
     result = run(args.copies, size)
-    for name in ("balls", "every_ball", "before", "vdw", "plain_points", "same_pixel_points",
-                 "glyphs"):
-        print(f"{name:18s} {result[name]:9.1f} ms")
-    print(f"balls {result['balls_n']:,} ({result['drawn']:,} exposed), "
-          f"{result['ball_pixels']:.1f} px wide on screen")
+    for name in ("balls", "new_view", "outer", "every_ball", "before", "vdw", "plain_points",
+                 "same_pixel_points", "glyphs", "balls_no_fxaa", "plain_points_no_fxaa"):
+        print(f"{name:20s} {result[name]:9.1f} ms")
+    print(f"balls {result['balls_n']:,} ({result['drawn']:,} exposed, {result['seen']:,} "
+          f"shown), {result['ball_pixels']:.1f} px wide on screen")
     if not args.no_save:
         save("balls", figures(result), notes=[
             f"A synthetic protein of {result['atoms']:,} atoms (rotated copies of 1A8O; "
             f"{result['balls_n']:,} balls in its complex, the others inside their "
             f"neighbours') at van der Waals radii + the {PROBE:g} Å probe (the window's balls), "
-            "fitted in a "
-            f"{size[0]} x {size[1]} view, software GL (llvmpipe, no multisampling in an "
-            f"off-screen plotter); median of {RENDERS} full renders each, taken in turns.",
+            f"fitted in a {size[0]} x {size[1]} view, software GL (llvmpipe), one sample a "
+            "pixel and FXAA as the window draws; median of "
+            f"{RENDERS} full renders each, taken in turns.",
             "On a software renderer the fill is the cost: every covered fragment of every "
             "overlapping ball is shaded (the depth of an impostor is its own, so no early "
-            "depth test skips it). The window shades balls with one light at the eye instead "
-            "of the renderer's five-light kit, and leaves out balls inside the union of the "
-            "others (exact per-atom areas at the drawn radii) while they are opaque and uncut: "
-            "the same picture."])
+            "depth test skips it). The window shades balls with one light at the eye, leaves "
+            "out balls inside the union of the others (exact per-atom areas at the drawn "
+            "radii) while they are opaque and uncut, and of the rest draws only those the "
+            "view shows: an id pass (every outer ball flat in a colour of its own, read back) "
+            "finds them once per view, and a still view (a slider step) draws those alone. "
+            "The same picture, pixel for pixel (tests/test_app_seen_balls.py)."])
 
 
 if __name__ == "__main__":

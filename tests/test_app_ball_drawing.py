@@ -175,3 +175,26 @@ def test_a_thinned_ball_set_draws_its_buried_balls(scene, monkeypatch) -> None:
     shown = picture(scene)
     layer.actor.GetMapper().SetInputData(layer.mesh)
     np.testing.assert_array_equal(shown, picture(scene))
+
+
+@molecule_data
+def test_a_still_view_draws_only_the_outer_balls_it_shows(scene, molecule) -> None:
+    """Drawn as the window draws (one sample a pixel, FXAA), a still view draws only the
+    outer balls it shows (app.scene.seen_balls), a few of them, with the same picture as
+    every ball drawn, from several sides."""
+    scene.plotter.render_window.SetMultiSamples(0)
+    scene.plotter.renderer.SetUseFXAA(True)
+    molecule_scene(scene, molecule)
+    layer = scene.layers["balls"]
+    camera = scene.plotter.renderer.GetActiveCamera()
+    for turn in (0.0, 70.0, 150.0):
+        camera.Azimuth(turn)
+        camera.Elevation(turn / 5)
+        camera.OrthogonalizeViewUp()
+        scene.plotter.renderer.ResetCameraClippingRange()
+        shown = picture(scene)
+        assert drawn(scene).GetNumberOfPoints() < 0.6 * layer.outer.n_points
+        scene.seen.track(layer.actor, None)
+        layer.actor.GetMapper().SetInputData(layer.mesh)
+        np.testing.assert_array_equal(shown, picture(scene))
+        scene.seen.track(layer.actor, layer.outer)

@@ -77,8 +77,8 @@ def test_first_frame_before_the_measures(window, qtbot, held_measures):
     assert {"balls", "cavities"} <= set(scene.layers) and "pockets" not in scene.layers
     assert scene.layers["balls"].actor.GetVisibility()
     balls = scene.layers["balls"]
-    assert balls.outer is None  # every ball drawn while the exposed ones are unknown
-    assert balls.actor.GetMapper().GetInput() is balls.mesh
+    assert balls.outer is None  # every ball may show while the exposed ones are unknown
+    assert scene.seen.balls is balls.mesh  # (of those, the ones the view shows are drawn)
     scene.plotter.render()
     qtbot.wait(50)
     assert image_contrast(scene.plotter.screenshot(return_img=True)) > MIN_CONTRAST
@@ -97,8 +97,8 @@ def test_first_frame_before_the_measures(window, qtbot, held_measures):
     text = window.info_panel.data.text()
     assert MEASURING not in text and "4,668.88 Å²" in text and "2 cavities" in text
     assert window.model.dataset.has_topology  # the measures kept the topology
-    drawn = balls.actor.GetMapper().GetInput()  # now only the balls seen from outside
-    assert drawn is balls.outer and drawn.GetNumberOfPoints() < balls.mesh.n_points
+    assert scene.seen.balls is balls.outer  # now only the balls seen from outside (and of
+    assert balls.outer.n_points < balls.mesh.n_points  # those, the ones the view shows)
     pockets = m.pockets
     assert len(pockets) >= 2
     assert scene.meshes["pockets"].n_cells == int((pockets.cells >= 0).sum())

@@ -47,6 +47,10 @@ def test_molecule_window(window, qtbot, recwarn):
     assert window.scene.layers["balls"].actor.GetVisibility()
     mapper = window.scene.layers["balls"].actor.mapper  # drawn in those element colours
     assert mapper.GetScalarVisibility() and mapper.GetArrayName() == "rgb"
+    window.scene.render()  # a still view draws only the outer balls it shows
+    qtbot.wait(50)
+    layer = window.scene.layers["balls"]
+    assert 0 < mapper.GetInput().GetNumberOfPoints() < 0.6 * layer.outer.n_points
     model.set_alpha2(0.0)
     qtbot.wait(50)
     cavities = window.scene.meshes["cavities"]

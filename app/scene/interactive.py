@@ -9,6 +9,7 @@ import os
 
 os.environ["QT_API"] = "pyside6"
 
+from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QWidget
 from pyvistaqt import QtInteractor
 
@@ -17,11 +18,12 @@ from app.scene.view import Scene
 
 def interactive_scene(parent: QWidget) -> tuple[Scene, QWidget]:
     """A scene drawing into a new Qt render widget of parent, and that widget (to place in
-    a layout). It renders only when asked (auto_update=False), smooths edges with FXAA and
-    takes no drops (the window does)."""
+    a layout). It renders only when asked (auto_update=False), smooths edges with FXAA,
+    takes no drops (the window does) and finds the balls a new view shows after its frame."""
     plotter = QtInteractor(parent, auto_update=False)
     plotter.setAcceptDrops(False)
     # FXAA, not multisampling: a software renderer draws a multisampled frame 2-3 times slower
     plotter.render_window.SetMultiSamples(0)
     plotter.renderer.SetUseFXAA(True)
-    return Scene(plotter, render=plotter.update), plotter
+    return Scene(plotter, render=plotter.update,
+                 defer=lambda task: QTimer.singleShot(0, task)), plotter

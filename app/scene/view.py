@@ -38,6 +38,7 @@ from app.scene.layers import (
 from app.scene.overlay import Overlay
 from app.scene.painting import Painter
 from app.scene.picking import ViewPicker
+from app.scene.seen_balls import SeenBalls
 from core.storage.atomic import atomic_path
 
 LOD_CELLS = 16_000  # triangles a layer draws at most while the slider is dragged
@@ -67,9 +68,12 @@ class Scene:
     """Layers of one dataset drawn into a pyvista plotter (QtInteractor or off-screen), with
     their overlay, clipping plane (`clipper`) and colour-by mapper state (`painter`)."""
 
-    def __init__(self, plotter: pv.BasePlotter, render: Callable[[], None] | None = None) -> None:
-        """Draw into plotter; render() defaults to plotter.render (QtInteractor: pass update).
-        Made by Scene.off_screen or app.scene.interactive.interactive_scene."""
+    def __init__(self, plotter: pv.BasePlotter, render: Callable[[], None] | None = None,
+                 defer: Callable[[Callable[[], None]], None] | None = None) -> None:
+        """Draw into plotter; render() defaults to plotter.render (QtInteractor: pass update);
+        defer(task) runs task after the frame (the window's event loop; None: at once), for
+        the balls' id pass (app.scene.seen_balls). Made by Scene.off_screen or
+        app.scene.interactive.interactive_scene."""
         self.plotter = plotter
         self.plotter.theme.allow_empty_mesh = True
         self.plotter.set_background(BACKGROUND)
@@ -88,6 +92,7 @@ class Scene:
         self.overlay = Overlay(plotter)
         self.clipper = Clipper(plotter, self.layers, self.render)
         self.painter = Painter(plotter, self.layers, self.overlay)
+        self.seen = SeenBalls(plotter.render_window, plotter.renderer, defer)  # balls shown
 
     @classmethod
     def off_screen(cls, size: tuple[int, int]) -> Scene:
@@ -197,21 +202,24 @@ class Scene:
         layer.outer = outer if outer.n_points < layer.mesh.n_points else None
         self._draw_balls(layer, self.styles["balls"], self.clipper.enabled)
 
-    @staticmethod
-    def _draw_balls(layer: Layer, style: LayerStyle, clipped: bool) -> None:
-        """Draw only the balls seen from outside (layer.outer) while they are opaque and
-        uncut; all of them when translucent or clipped (inner balls show then)."""
-        whole = clipped or style.opacity < 1.0 or layer.outer is None
-        source = layer.mesh if whole else layer.outer
-        mapper = layer.actor.GetMapper()
-        if mapper.GetInput() is not source:
-            mapper.SetInputData(source)
+    def _draw_balls(self, layer: Layer, style: LayerStyle, clipped: bool) -> None:
+        """While the balls are opaque and uncut, draw only those seen from outside
+        (layer.outer), and of those only the ones the view shows (self.seen); all of them
+        when translucent or clipped (inner balls show then)."""
+        if clipped or style.opacity < 1.0:
+            self.seen.track(layer.actor, None)
+            mapper = layer.actor.GetMapper()
+            if mapper.GetInput() is not layer.mesh:
+                mapper.SetInputData(layer.mesh)
+            return
+        self.seen.track(layer.actor, layer.mesh if layer.outer is None else layer.outer)
 
     def clear(self) -> None:
         """Remove every layer's actor and forget the shape (only when the dataset changes or
         is released)."""
         for name in self.layers:
             self.plotter.remove_actor(name, reset_camera=False, render=False)
+        self.seen.track(None, None)
         self.layers.clear()
         self.styles.clear()
         self.shape = None
@@ -340,5 +348,7 @@ class Scene:
             Image.fromarray(self.plotter.screenshot(return_img=True)).save(tmp, format="PNG")
 
     def close(self) -> None:
-        """Release the plotter and its render window (before Qt goes)."""
+        """Release the plotter and its render window (before Qt goes), and the balls' id
+        pass."""
+        self.seen.close()
         self.plotter.close()
