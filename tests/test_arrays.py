@@ -1,0 +1,48 @@
+"""core.arrays' helpers against plain Python."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from core.arrays import row_index
+
+
+@st.composite
+def tables_and_rows(draw) -> tuple[np.ndarray, np.ndarray]:
+    """A (t, c) table and (q, c) rows of small ids (rows repeat, in the table too), of
+    either int width."""
+    c = draw(st.integers(1, 4))
+    size = draw(st.integers(1, 6))
+    ids = st.integers(0, size - 1)
+    table = draw(arrays(draw(st.sampled_from([np.int32, np.int64])),
+                        (draw(st.integers(0, 40)), c), elements=ids))
+    rows = draw(arrays(draw(st.sampled_from([np.int32, np.int64])),
+                       (draw(st.integers(0, 40)), c), elements=ids))
+    return table, rows
+
+
+@settings(max_examples=300, deadline=None)
+@given(tables_and_rows())
+def test_row_index_is_a_dictionary_of_the_first_equal_rows(case) -> None:
+    table, rows = case
+    first: dict[tuple, int] = {}
+    for i, row in enumerate(table.tolist()):
+        first.setdefault(tuple(row), i)
+    found = row_index(table, rows)
+    assert found.dtype == np.int64 and found.shape == (len(rows),)
+    assert found.tolist() == [first.get(tuple(row), -1) for row in rows.tolist()]
+
+
+def test_row_index_picks_the_first_of_equal_rows_in_a_large_table() -> None:
+    """Duplicates spread over a table larger than one sort block."""
+    rng = np.random.default_rng(5)
+    table = rng.integers(0, 30, (200_000, 3))
+    rows = rng.integers(0, 31, (50_000, 3))
+    first: dict[tuple, int] = {}
+    for i, row in enumerate(map(tuple, table.tolist())):
+        first.setdefault(row, i)
+    assert row_index(table, rows).tolist() == [first.get(row, -1)
+                                              for row in map(tuple, rows.tolist())]
