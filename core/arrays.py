@@ -58,3 +58,14 @@ def row_index(table: np.ndarray, rows: np.ndarray) -> np.ndarray:
     out = np.empty(len(both), dtype=np.int64)
     out[order] = found[np.cumsum(start) - 1]
     return out[len(table):]
+
+
+def unique_ints(values: np.ndarray) -> np.ndarray:
+    """The sorted distinct values of an int array, flattened: np.unique(values), by one sort
+    and a mask (numpy 2.4's np.unique hashes integers, 4-15x slower when most are distinct)."""
+    ordered = np.sort(values, axis=None)
+    keep = np.empty(len(ordered), dtype=bool)
+    keep[:1] = True
+    np.not_equal(ordered[1:], ordered[:-1], out=keep[1:])
+    return ordered[keep]
+

@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from core.arrays import row_index
+from core.arrays import row_index, unique_ints
 
 
 @st.composite
@@ -46,3 +46,22 @@ def test_row_index_picks_the_first_of_equal_rows_in_a_large_table() -> None:
         first.setdefault(row, i)
     assert row_index(table, rows).tolist() == [first.get(row, -1)
                                               for row in map(tuple, rows.tolist())]
+
+
+INT_TYPES = [np.int8, np.uint8, np.int16, np.int32, np.uint32, np.int64, np.uint64]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.sampled_from(INT_TYPES).flatmap(lambda dtype: arrays(
+    dtype, st.tuples(st.integers(0, 30), st.integers(1, 3)),
+    elements=st.integers(int(np.iinfo(dtype).min), int(np.iinfo(dtype).max)))))
+def test_unique_ints_is_np_unique(values) -> None:
+    """Every int width, extremes included, 2-D input flattened; few and many repeats."""
+    for case in (values, values % 4):
+        got, want = unique_ints(case), np.unique(case)
+        assert got.dtype == want.dtype and np.array_equal(got, want)
+
+
+def test_unique_ints_on_a_million_mostly_distinct_ids() -> None:
+    ids = np.random.default_rng(2).integers(0, 400_000, (1_000_000, 3))
+    assert np.array_equal(unique_ints(ids), np.unique(ids))
