@@ -69,3 +69,12 @@ def unique_ints(values: np.ndarray) -> np.ndarray:
     np.not_equal(ordered[1:], ordered[:-1], out=keep[1:])
     return ordered[keep]
 
+
+def compact_ids(ids: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """(u,) int64 the ids in range(n) that occur in `ids`, ascending, and for each of `ids`
+    (same shape) its row among them: np.unique(ids, return_inverse=True) by a mask over
+    range(n) and its running count, no sort."""
+    used = np.zeros(n, dtype=bool)
+    used[ids] = True
+    rows = np.cumsum(used, dtype=np.int64) - 1
+    return np.flatnonzero(used), rows[ids]

@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from core.arrays import row_index, unique_ints
+from core.arrays import compact_ids, row_index, unique_ints
 
 
 @st.composite
@@ -65,3 +65,15 @@ def test_unique_ints_is_np_unique(values) -> None:
 def test_unique_ints_on_a_million_mostly_distinct_ids() -> None:
     ids = np.random.default_rng(2).integers(0, 400_000, (1_000_000, 3))
     assert np.array_equal(unique_ints(ids), np.unique(ids))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(1, 50).flatmap(lambda n: st.tuples(st.just(n), arrays(
+    st.sampled_from([np.int32, np.int64]), st.tuples(st.integers(0, 40), st.integers(1, 3)),
+    elements=st.integers(0, n - 1)))))
+def test_compact_ids_is_np_unique_with_its_inverse(case) -> None:
+    n, ids = case
+    used, rows = compact_ids(ids, n)
+    want, inverse = np.unique(ids, return_inverse=True)
+    assert used.dtype == rows.dtype == np.int64 and rows.shape == ids.shape
+    assert np.array_equal(used, want) and np.array_equal(rows, inverse.reshape(ids.shape))
