@@ -60,10 +60,11 @@ def row_index(table: np.ndarray, rows: np.ndarray) -> np.ndarray:
     return out[len(table):]
 
 
-def unique_ints(values: np.ndarray) -> np.ndarray:
-    """The sorted distinct values of an int array, flattened: np.unique(values), by one sort
-    and a mask (numpy 2.4's np.unique hashes integers, 4-15x slower when most are distinct)."""
-    ordered = np.sort(values, axis=None)
+def unique_sorted(values: np.ndarray, kind: str | None = None) -> np.ndarray:
+    """The sorted distinct values of an array without NaN, flattened: np.unique(values), by
+    one sort and a mask. numpy 2.4's np.unique hashes integers (4-15x slower when most are
+    distinct); kind="stable" sorts an array made of a few ascending runs by merging them."""
+    ordered = np.sort(values, axis=None, kind=kind)
     keep = np.empty(len(ordered), dtype=bool)
     keep[:1] = True
     np.not_equal(ordered[1:], ordered[:-1], out=keep[1:])

@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from core.arrays import compact_ids, row_index, unique_ints
+from core.arrays import compact_ids, row_index, unique_sorted
 
 
 @st.composite
@@ -55,16 +55,16 @@ INT_TYPES = [np.int8, np.uint8, np.int16, np.int32, np.uint32, np.int64, np.uint
 @given(st.sampled_from(INT_TYPES).flatmap(lambda dtype: arrays(
     dtype, st.tuples(st.integers(0, 30), st.integers(1, 3)),
     elements=st.integers(int(np.iinfo(dtype).min), int(np.iinfo(dtype).max)))))
-def test_unique_ints_is_np_unique(values) -> None:
+def test_unique_sorted_is_np_unique(values) -> None:
     """Every int width, extremes included, 2-D input flattened; few and many repeats."""
     for case in (values, values % 4):
-        got, want = unique_ints(case), np.unique(case)
+        got, want = unique_sorted(case), np.unique(case)
         assert got.dtype == want.dtype and np.array_equal(got, want)
 
 
-def test_unique_ints_on_a_million_mostly_distinct_ids() -> None:
+def test_unique_sorted_on_a_million_mostly_distinct_ids() -> None:
     ids = np.random.default_rng(2).integers(0, 400_000, (1_000_000, 3))
-    assert np.array_equal(unique_ints(ids), np.unique(ids))
+    assert np.array_equal(unique_sorted(ids), np.unique(ids))
 
 
 @settings(max_examples=200, deadline=None)
@@ -77,3 +77,15 @@ def test_compact_ids_is_np_unique_with_its_inverse(case) -> None:
     want, inverse = np.unique(ids, return_inverse=True)
     assert used.dtype == rows.dtype == np.int64 and rows.shape == ids.shape
     assert np.array_equal(used, want) and np.array_equal(rows, inverse.reshape(ids.shape))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.lists(st.one_of(st.integers(-40, 40).map(lambda i: i / 8),
+                                   st.just(np.inf), st.just(-np.inf)), max_size=30),
+                max_size=4))
+def test_unique_sorted_of_ascending_runs_is_np_unique(runs) -> None:
+    """A table's levels, each ascending with ties and infinities, merged by a stable sort."""
+    values = np.concatenate([np.sort(np.array(run, dtype=np.float64)) for run in runs]
+                            or [np.empty(0)])
+    got, want = unique_sorted(values, kind="stable"), np.unique(values)
+    assert got.dtype == want.dtype and np.array_equal(got, want)
