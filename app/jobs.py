@@ -6,7 +6,9 @@ which raises core.errors.Cancelled once Cancel was pressed (core writers then le
 target as it was); long steps that never report can watch `cancel` themselves (a child
 process build). Outcomes come back to the GUI thread through one slot, `_deliver`, the only
 place where a stale request's progress and outcome (a newer request was started, or the
-runner was shut down) are dropped: listeners see exactly one outcome of the current request.
+runner was shut down) are dropped: listeners see exactly one outcome of the current request,
+whatever the job raised (a BaseException too: SystemExit or KeyboardInterrupt then also end
+the runner's thread, as Python means them to, and the next job gets a new one).
 """
 
 from __future__ import annotations
@@ -27,9 +29,19 @@ Work = Callable[[Progress, threading.Event], object]
 PROGRESS, FINISHED, FAILED, CANCELLED = "progress", "finished", "failed", "cancelled"
 
 
+STOPS = (SystemExit, KeyboardInterrupt)  # what asks a thread to end, not only a job
+
+
 def title_failed(title: str, error: Exception) -> str:
     """The default failure line: 'Export shape failed: disk full'."""
     return f"{title} failed: {error or type(error).__name__}"
+
+
+def title_stopped(title: str, error: BaseException) -> str:
+    """The line of a job stopped by a BaseException that is no Exception (SystemExit,
+    KeyboardInterrupt, GeneratorExit): 'Open cloud.las stopped: SystemExit (3)'."""
+    detail = f" ({error})" if str(error) else ""
+    return f"{title} stopped: {type(error).__name__}{detail}"
 
 
 @dataclass(frozen=True)
@@ -42,9 +54,15 @@ class Job:
     work: Work
     explain: Callable[[Exception], str] | None = None
 
-    def failure(self, error: Exception) -> str:
-        """The line shown for error."""
-        return self.explain(error) if self.explain else title_failed(self.title, error)
+    def failure(self, error: BaseException) -> str:
+        """The line shown for error; the default line when `explain` itself fails."""
+        if not isinstance(error, Exception):
+            return title_stopped(self.title, error)
+        try:
+            return self.explain(error) if self.explain else title_failed(self.title, error)
+        except Exception:  # a bug in explain: keep its traceback, still show a line
+            traceback.print_exc(file=sys.stderr)
+            return title_failed(self.title, error)
 
 
 def cancellable(cancel: threading.Event, report: Progress, why: str) -> Progress:
@@ -86,7 +104,7 @@ class Runner(QObject):
         self._queue: queue.SimpleQueue = queue.SimpleQueue()
         self._thread: threading.Thread | None = None  # started with the first job
         self._active = 0  # jobs submitted and not yet returned
-        self._idle = threading.Condition()
+        self._idle = threading.Condition()  # also guards _thread and the queue's hand-over
         self._current = 0
         self._title = ""  # the newest request's job title; the job itself is not kept
         self._cancel = threading.Event()
@@ -120,12 +138,15 @@ class Runner(QObject):
         self._unfinished.add(request)
         with self._idle:
             self._active += 1
-        if self._thread is None:
-            self._thread = threading.Thread(target=self._serve, name="alphascoop-job",
-                                            daemon=True)
-            self._thread.start()
-        self._queue.put((request, job, cancel))
+            self._queue.put((request, job, cancel))
+            if self._thread is None:
+                self._start_thread()
         return request
+
+    def _start_thread(self) -> None:
+        """Start the thread that serves the queue (the caller holds `_idle`)."""
+        self._thread = threading.Thread(target=self._serve, name="alphascoop-job", daemon=True)
+        self._thread.start()
 
     def cancel(self) -> None:
         """Ask the running job to stop (at its next progress report)."""
@@ -146,33 +167,53 @@ class Runner(QObject):
         return stopped
 
     def _serve(self) -> None:
-        """The runner's thread: run the queued jobs one after another, for its whole life."""
+        """The runner's thread: run the queued jobs one after another, until a job raises
+        SystemExit or KeyboardInterrupt: that job's failure is reported, then the exception
+        ends this thread (it is not swallowed) and the next job gets a new thread."""
         while True:
-            self._run(*self._queue.get())
+            stop = self._run(*self._queue.get())
+            if stop is not None:
+                raise stop
 
-    def _run(self, request: int, job: Job, cancel: threading.Event) -> None:
-        """Worker-thread body: report exactly one outcome of request."""
+    def _run(self, request: int, job: Job, cancel: threading.Event) -> BaseException | None:
+        """Worker-thread body: report exactly one outcome of request; returns the exception
+        that should end the thread, if any."""
         try:
-            self._outcome(request, job, cancel)
+            return self._outcome(request, job, cancel)
         finally:
             with self._idle:
                 self._active -= 1
                 self._idle.notify_all()
 
-    def _outcome(self, request: int, job: Job, cancel: threading.Event) -> None:
-        """Run job and report its one outcome."""
+    def _outcome(self, request: int, job: Job,
+                 cancel: threading.Event) -> BaseException | None:
+        """Run job and report its one outcome; returns a SystemExit or KeyboardInterrupt it
+        raised, after handing the queue to a new thread."""
         progress = cancellable(cancel, lambda fraction, stage: self._report.emit(
             request, PROGRESS, (fraction, stage)), f"{job.title} cancelled")
         try:
             result = job.work(progress, cancel)
         except Cancelled:
             self._report.emit(request, CANCELLED, None)
-        except Exception as error:  # every failure becomes a message; none escapes the thread
-            if not isinstance(error, AlphaScoopError) and not isinstance(error, MemoryError):
+        except BaseException as error:  # every failure becomes a message; none is lost
+            stop = isinstance(error, STOPS)  # re-raised: the thread's excepthook shows it
+            if not isinstance(error, (AlphaScoopError, MemoryError, *STOPS)):
                 traceback.print_exc(file=sys.stderr)  # a bug: keep its traceback too
+            if stop:
+                self._retire()  # before the outcome, so a start answering it gets a thread
             self._report.emit(request, FAILED, job.failure(error))
+            return error if stop else None
         else:
             self._report.emit(request, CANCELLED if cancel.is_set() else FINISHED, result)
+        return None
+
+    def _retire(self) -> None:
+        """This thread is about to end: a later start begins a new one; a job queued
+        meanwhile gets one now."""
+        with self._idle:
+            self._thread = None
+            if not self._queue.empty():
+                self._start_thread()
 
     def _deliver(self, request: int, kind: str, payload: object) -> None:
         """GUI thread: pass the current request's reports on; drop stale ones (the one place)."""

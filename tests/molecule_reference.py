@@ -137,8 +137,7 @@ def free_in_tets(corners, centres, radii, n: int, rng, chunk: int = 1_000_000
     nearest centre lifted to (c, sqrt(R² - r²)) in 4D (R the largest radius), the sample
     taken as (x, 0), since |x - c|² + R² - r² is its power plus R²."""
     vol = tet_volumes(corners)
-    reach = radii.max()
-    tree = cKDTree(np.column_stack([centres, np.sqrt(reach ** 2 - radii ** 2)]))
+    tree, reach = lifted_centres(centres, radii)
     free = 0
     for start in range(0, n, chunk):
         x, _ = uniform_in_tets(corners, min(chunk, n - start), rng)
@@ -146,3 +145,20 @@ def free_in_tets(corners, centres, radii, n: int, rng, chunk: int = 1_000_000
         free += int((dist > reach).sum())
     p = free / n
     return p * vol.sum(), vol.sum() * np.sqrt(p * (1 - p) / n)
+
+
+def lifted_centres(centres: np.ndarray, radii: np.ndarray) -> tuple[cKDTree, float]:
+    """A tree of the centres lifted to (c, sqrt(R² - r²)) and R, the largest radius: a point
+    (x, 0) lies in a ball exactly when a lifted centre is nearer than R (free_in_tets)."""
+    reach = float(radii.max())
+    return cKDTree(np.column_stack([centres, np.sqrt(reach ** 2 - radii ** 2)])), reach
+
+
+def exposed_points(points: np.ndarray, ball: np.ndarray, centres: np.ndarray,
+                   radii: np.ndarray) -> np.ndarray:
+    """(p,) bool: which points on the spheres of `ball` lie in no other ball. Every ball is
+    asked (its own has power about 0 there, a covering one less: one of the two nearest)."""
+    tree, reach = lifted_centres(centres, radii)
+    dist, idx = tree.query(np.column_stack([points, np.zeros(len(points))]), k=2,
+                           distance_upper_bound=reach)
+    return ~((idx != ball[:, None]) & (dist < reach)).any(1)

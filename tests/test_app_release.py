@@ -227,3 +227,35 @@ def test_a_start_alpha_goes_to_its_own_open(window, qtbot, files, held):
     with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
         window.open_path(files["next"])
     assert window.model.touched and window.model.alpha == pytest.approx(0.05, rel=0.05)
+
+
+@pytest.mark.parametrize("error", [KeyboardInterrupt, SystemExit])
+def test_a_load_stopped_by_a_base_exception_fails_and_brings_the_file_back(
+        window, qtbot, files, monkeypatch, error):
+    """A KeyboardInterrupt or SystemExit out of the load's code (not Cancel) used to end the
+    runner's thread with no outcome: 'opening next.npy' stayed in the status bar, the
+    released file never came back and no later open ran. Now it is a failed open."""
+    from PySide6.QtWidgets import QMessageBox
+
+    warnings: list[str] = []
+    monkeypatch.setattr(QMessageBox, "warning", lambda *args: warnings.append(args[2]))
+    monkeypatch.setattr(threading, "excepthook", lambda args: None)  # the thread's end
+    open_and_wait(qtbot, window, files["shown"])
+    real, calls = app.dataset.obtain, []
+
+    def interrupted(points, **kwargs):  # the first load only: the re-open runs at once
+        calls.append(points)
+        if len(calls) == 1:
+            raise error
+        return real(points, **kwargs)
+
+    monkeypatch.setattr(app.dataset, "obtain", interrupted)
+    with qtbot.waitSignal(window.loader.failed, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["next"])
+    assert warnings == [f"opening next.npy stopped: {error.__name__}"]
+    qtbot.waitUntil(lambda: window.model.dataset is not None, timeout=BUILD_TIMEOUT_MS)
+    assert window.model.dataset.path == files["shown"]
+    assert not window.progress.isVisible() and not window.loader.is_busy()
+    with qtbot.waitSignal(window.model.datasetChanged, timeout=BUILD_TIMEOUT_MS):
+        window.open_path(files["third"])
+    assert window.model.dataset.path == files["third"]

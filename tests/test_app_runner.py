@@ -152,3 +152,85 @@ def test_the_runner_keeps_nothing_a_finished_job_held(qtbot) -> None:
     del held, work
     gc.collect()
     assert ref() is None and runner.title == "holds a payload"
+
+
+class Escaped(BaseException):
+    """A BaseException of a library's own (like gevent's GreenletExit): no Exception."""
+
+
+@pytest.mark.parametrize(("error", "line"), [
+    (KeyboardInterrupt(), "boom stopped: KeyboardInterrupt"),
+    (SystemExit(3), "boom stopped: SystemExit (3)"),
+    (GeneratorExit(), "boom stopped: GeneratorExit"),
+    (Escaped("out"), "boom stopped: Escaped (out)"),
+])
+def test_a_job_that_raises_a_base_exception_fails_like_any_other(
+        qtbot, monkeypatch, error, line) -> None:
+    """A BaseException out of a job used to kill the runner's thread with no outcome: the
+    progress stayed up, is_busy() stayed True (an exclusive runner refused every later job)
+    and no later job ran. Now it is a failure; SystemExit and KeyboardInterrupt still end
+    the thread they were raised in (its excepthook sees them), and the next job gets a new
+    one; no thread is left behind."""
+    hooked: list[type] = []
+    monkeypatch.setattr(threading, "excepthook", lambda args: hooked.append(args.exc_type))
+    runner = Runner(exclusive=True)
+    seen = recorder(runner)
+    ran_in: list[threading.Thread] = []
+
+    def work(progress, cancel):
+        ran_in.append(threading.current_thread())
+        raise error
+
+    with qtbot.waitSignal(runner.failed, timeout=TIMEOUT_MS) as blocker:
+        request = runner.start(Job("boom", work))
+    assert blocker.args == [request, line]
+    qtbot.waitUntil(lambda: not runner.is_busy(), timeout=TIMEOUT_MS)
+    with qtbot.waitSignal(runner.finished, timeout=TIMEOUT_MS) as blocker:
+        later = runner.start(Job("later", lambda progress, cancel: ran_in.append(
+            threading.current_thread()) or "done"))
+    assert blocker.args == [later, "done"]
+    assert [event[0] for event in seen] == ["failed", "finished"]
+    stops = isinstance(error, (KeyboardInterrupt, SystemExit))
+    ran_in[0].join(TIMEOUT_MS / 1000)
+    assert ran_in[0].is_alive() is not stops and (ran_in[1] is ran_in[0]) is not stops
+    assert hooked == ([type(error)] if stops else [])
+    alive = [thread for thread in threading.enumerate() if thread.name == "alphascoop-job"
+             and thread in ran_in]
+    assert alive == [ran_in[1]]
+
+
+def test_a_job_queued_behind_one_that_ends_the_thread_still_runs(qtbot, monkeypatch) -> None:
+    """The thread a SystemExit ends hands the jobs queued meanwhile to a new thread."""
+    monkeypatch.setattr(threading, "excepthook", lambda args: None)
+    runner = Runner()
+    seen = recorder(runner)
+    started, release = threading.Event(), threading.Event()
+
+    def exits(progress, cancel):
+        started.set()
+        release.wait(10)
+        raise SystemExit
+
+    first = runner.start(Job("exits", exits))
+    assert started.wait(10)
+    with qtbot.waitSignal(runner.finished, timeout=TIMEOUT_MS) as blocker:
+        second = runner.start(Job("queued", lambda progress, cancel: "ran"))
+        release.set()
+    assert blocker.args == [second, "ran"]
+    qtbot.waitUntil(lambda: not runner.is_busy(), timeout=TIMEOUT_MS)
+    assert ("dropped", first, "failed") in seen  # in either order: two threads reported
+
+
+def test_a_failing_explain_still_gives_the_default_line(qtbot) -> None:
+    runner = Runner()
+
+    def work(progress, cancel):
+        raise OSError("disk full")
+
+    def explain(error):
+        raise KeyError("no such message")
+
+    with qtbot.waitSignal(runner.failed, timeout=TIMEOUT_MS) as blocker:
+        runner.start(Job("save", work, explain))
+    assert blocker.args[1] == "save failed: disk full"
+    qtbot.waitUntil(lambda: not runner.is_busy(), timeout=TIMEOUT_MS)

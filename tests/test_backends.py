@@ -452,18 +452,3 @@ def test_gmsh_leaves_sigpipe_ignored() -> None:
     with pytest.raises(BrokenPipeError):
         os.write(writer, b"x")
     os.close(writer)
-
-
-def test_row_of_finds_each_row_by_a_dictionary():
-    """restore's row lookup against a plain dictionary of the table's rows (the last of
-    equal rows), on small ids where rows repeat."""
-    from core.backends.restore import row_of
-
-    rng = np.random.default_rng(3)
-    for _ in range(200):
-        k, size = int(rng.integers(1, 5)), int(rng.integers(2, 9))
-        table = rng.integers(0, size, (int(rng.integers(1, 40)), k)).astype(np.int32)
-        rows = rng.integers(0, size, (int(rng.integers(1, 40)), k)).astype(np.int32)
-        index = {tuple(r): i for i, r in enumerate(table.tolist())}
-        want = [index.get(tuple(r), -1) for r in rows.tolist()]
-        assert row_of(rows, table).tolist() == want

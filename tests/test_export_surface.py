@@ -163,6 +163,25 @@ def test_sidecar_json(tmp_path, ball):
     assert meta["manifold_split"]["nonmanifold_edges"] > 0
 
 
+def test_both_surfaces_index_the_shapes_facets_exactly(ball):
+    """Plain and split surfaces: each face's corners are its facet's points, every vertex is
+    used, faces are int64; the plain one numbers the points as np.unique does."""
+    from core.export.manifold import split_nonmanifold
+
+    shape = ball.shape(ALPHA)
+    facets = np.asarray(shape.regular_facets, dtype=np.int64)
+    used, inverse = np.unique(facets, return_inverse=True)
+    v0, f0, _ = surface_arrays(ball, shape, manifold=False)
+    v1, f1, report = surface_arrays(ball, shape, manifold=True)
+    assert np.array_equal(f0, inverse.reshape(-1, 3)) and len(v0) == len(used)
+    for v, f in ((v0, f0), (v1, f1)):
+        assert f.dtype == np.int64 and np.array_equal(np.unique(f), np.arange(len(v)))
+    assert np.array_equal(v1[f1], v0[f0])
+    ids, split_faces, _ = split_nonmanifold(ball, shape)
+    assert np.array_equal(ids[split_faces], facets)
+    assert len(ids) == len(used) + report.vertices_added > len(used)
+
+
 @needs_data
 def test_milk_manifold_split_resolves_every_edge():
     from core.io import read_points

@@ -15,23 +15,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import Delaunay, QhullError
 
+from core.arrays import row_index
 from core.backends.facets import paired
 from core.build.delaunay import sort_rows
-
-
-def row_of(rows: np.ndarray, table: np.ndarray) -> np.ndarray:
-    """(n,) int64: the index in (p, k) `table` of each of the (n, k) int rows (the last of
-    equal table rows), -1 where it is none."""
-    both = np.concatenate((table, rows))
-    order = np.lexsort(both.T[::-1])  # rows in order: equal rows side by side
-    ordered = both[order]
-    new = np.ones(len(both), dtype=bool)
-    new[1:] = (ordered[1:] != ordered[:-1]).any(axis=1)
-    ids = np.empty(len(both), dtype=np.int64)
-    ids[order] = np.cumsum(new) - 1  # equal rows, equal ids (np.unique(axis=0): 2.6x the CPU)
-    where = np.full(int(ids.max()) + 1, -1, dtype=np.int64)
-    where[ids[:len(table)]] = np.arange(len(table))
-    return where[ids[len(table):]]
 
 
 def _side(points: np.ndarray, facets: np.ndarray, apex: np.ndarray) -> np.ndarray:
@@ -75,10 +61,10 @@ def outside(points: np.ndarray, cells: np.ndarray, outer: np.ndarray, behind: np
     corners = np.unique(simplices)
     on_corners = np.zeros(len(points), dtype=bool)
     on_corners[corners] = True
-    inside = row_of(simplices, cells[on_corners[cells].all(axis=1)]) >= 0
+    inside = row_index(cells[on_corners[cells].all(axis=1)], simplices) >= 0
     keep = np.arange(width)[None, :] != np.arange(width)[:, None]
     faces = simplices[:, None, :].repeat(width, axis=1)[:, keep].reshape(-1, width - 1)
-    wall = row_of(faces, outer)
+    wall = row_index(outer, faces)
     at = np.flatnonzero(wall >= 0)
     apex = simplices.ravel()[at]  # face k of a cell is opposite its vertex k
     beyond = np.sign(_side(points, faces[at], apex)) * np.sign(

@@ -17,6 +17,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
+from core.arrays import first_cofaces
 from core.errors import AlphaScoopError
 
 MAX_ROUNDS = 6  # gluing choices per edge are revised at most this often
@@ -157,15 +158,16 @@ def split_nonmanifold(ac, shape) -> tuple[np.ndarray, np.ndarray, ManifoldReport
         wedge = _rematch(faces, corner_vertex, wedge, edge, bad)
         label, new_faces = _fans(faces, corner_vertex, wedge, len(faces))
         bad = _overfull_half_edges(label.reshape(-1, 3), int(label.max()) + 1)
-    copies, first = np.unique(label, return_index=True)
+    # labels 0..c-1 of connected components, each used: the first corner of each copy
+    first = first_cofaces(label[:, None], int(label.max()) + 1)
     vertex_ids = corner_vertex[first]
     per_vertex = np.bincount(vertex_ids, minlength=len(ac.points))
     split = np.flatnonzero(per_vertex > 1)
     report = ManifoldReport(int(np.count_nonzero(np.bincount(edge) > 2)),
                             int(np.count_nonzero(per_vertex > 1)),
-                            int(len(copies) - np.count_nonzero(per_vertex)),
+                            int(len(first) - np.count_nonzero(per_vertex)),
                             len(np.unique(edge[bad])), split, per_vertex[split])
-    return vertex_ids, np.searchsorted(copies, new_faces), report
+    return vertex_ids, new_faces.astype(np.int64), report
 
 
 def _rematch(faces, corner_vertex, wedge, edge, bad) -> np.ndarray:

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from core.arrays import compact_ids
 from core.export.manifold import ManifoldReport, split_nonmanifold
 from core.export.metadata import comment_lines
 from core.export.plywriter import write_ply_mesh
@@ -45,7 +46,7 @@ def surface_arrays(ac, shape, *, manifold: bool = False):
         faces = np.asarray(shape.regular_facets, dtype=np.int64)
     else:
         faces = _ccw(ac.points, shape.cells)
-    used, inverse = np.unique(faces, return_inverse=True)
+    used, inverse = compact_ids(faces, len(ac.points))
     return _ambient3(ac, ac.points[used]), inverse.reshape(-1, 3), report
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from core.arrays import unique_sorted
 from core.errors import FileFormatError
 from core.io.obj import read_obj, vertex_note
 from core.io.problems import unreadable
@@ -47,7 +48,7 @@ def _geometry_part(geom) -> tuple[np.ndarray, np.ndarray | None, int, int]:
     else:
         colors = np.asarray(getattr(geom, "colors", ())) if faces.size == 0 else np.empty(0)
     colors = colors[:, :3] if colors.ndim == 2 and len(colors) == len(vertices) else None
-    used = len(np.unique(faces)) if faces.size else 0
+    used = len(unique_sorted(faces)) if faces.size else 0
     return vertices, colors, used, len(faces)
 
 

@@ -27,6 +27,7 @@ from collections.abc import Callable, Mapping
 
 import numpy as np
 
+from core.arrays import unique_sorted
 from core.parallel import both
 from core.storage import derived, steps
 from core.storage.derived import CELLS_IN, derivations, dim_of, facet_slots
@@ -50,7 +51,7 @@ def _pack_enter(a: Mapping, out: Arrays) -> None:
     levels = [k for k in range(dim + 1) if _ascending(a[f"enter_{k}"])]
     if not levels:
         return
-    values = np.unique(np.concatenate([a[f"enter_{k}"] for k in levels]))
+    values = unique_sorted(np.concatenate([a[f"enter_{k}"] for k in levels]), kind="stable")
     out["enter_values"] = values
     for k in levels:
         rank = np.searchsorted(values, a[f"enter_{k}"])

@@ -11,24 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.arrays import readonly
+from core.arrays import readonly, row_index
 from core.tiled.merge import TiledShape
-
-
-def row_index(table: np.ndarray, queries: np.ndarray) -> np.ndarray:
-    """(q,) row of `table` (t, c) equal to each row of `queries` (q, c) (-1: none); rows of
-    both ascending within the row."""
-    both = np.concatenate([table, queries])
-    order = np.lexsort(both.T[::-1])
-    srt = both[order]
-    start = np.r_[True, np.any(srt[1:] != srt[:-1], axis=1)]
-    group = np.cumsum(start) - 1
-    first_table = np.full(group[-1] + 1 if len(group) else 0, -1, dtype=np.int64)
-    is_table = order < len(table)
-    first_table[group[is_table]] = order[is_table]
-    out = np.empty(len(both), dtype=np.int64)
-    out[order] = first_table[group]
-    return out[len(table):]
 
 
 class MergedShape:
