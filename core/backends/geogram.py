@@ -54,9 +54,10 @@ def available() -> bool:
 
 def regular_cells(points: np.ndarray, weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """geogram's regular cells of (m, d) points (d = 2 or 3, m > d) with (m,) weights:
-    (t, d+1) int32 cells, each row ascending, rows in ascending order, and their (t, d+1)
-    int32 neighbours (neighbour i opposite vertex i, -1 on the hull), as
-    core.build.delaunay.regular_cells gives Qhull's; hidden points are in no cell.
+    (t, d+1) int32 cells, each row ascending, and their (t, d+1) int32 neighbours (neighbour
+    i opposite vertex i, -1 on the hull), as core.build.delaunay.regular_cells gives Qhull's;
+    hidden points, and coincident points but the heaviest, are in no cell. The same input
+    gives the same arrays, cell order included. Calls from several threads run one at a time.
 
     InputError when the points span no cell (all coplanar or collinear); GeogramError when
     geogram fails otherwise or the library is missing."""

@@ -6,10 +6,10 @@
 // their weights (squared radii) and returns a handle holding `count` cells; as_take(handle,
 // cells, neighbours) copies them into caller-allocated (count, dim + 1) int32 arrays and frees
 // the handle (as_free frees it unread). Each cell row is ascending; neighbour i is the cell
-// opposite vertex i, -1 on the hull; cells are in ascending lexicographic order of their
-// rows, so the result depends on the input alone (not on geogram's random insertion order).
-// Hidden points are in no cell. geogram runs on the calling thread (its own threads off,
-// logger quiet), one triangulation at a time: its random generator is global.
+// opposite vertex i, -1 on the hull. Hidden points are in no cell, nor are coincident points
+// but the heaviest. geogram runs on the calling thread (its own threads off, logger quiet),
+// one triangulation at a time, its global random generator reset before each: the result,
+// cell order included, depends on the input alone.
 
 #include <Python.h>  // first, as Python asks
 
@@ -27,9 +27,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <new>
+#include <unordered_map>
 #include <vector>
 
 #if defined(_WIN32)
@@ -41,9 +44,9 @@
 namespace {
 
 struct Result {
-    int width = 0;                  // vertices per cell: dim + 1
-    std::vector<int32_t> cells;     // (count, width), rows ascending, rows sorted
-    std::vector<int32_t> neighbours;
+    int width = 0;                   // vertices per cell: dim + 1
+    std::vector<int32_t> cells;      // (count, width), rows ascending
+    std::vector<int32_t> neighbours;  // (count, width), -1 on the hull
 };
 
 std::mutex geogram_lock;  // geogram's random generator and logger are global
@@ -72,17 +75,39 @@ void start() {
     usable = true;
 }
 
-// Sort each row ascending (neighbours alongside), then the rows lexicographically: a counting
-// sort on the first vertex, each bucket (a few cells) sorted by the rest; neighbours renamed.
-void canonical(Result& r, const GEO::index_t* to_v, const GEO::index_t* to_cell, size_t count,
-               size_t n) {
-    const int w = r.width;
-    std::vector<int32_t> cells(count * w), nbrs(count * w);
+// geogram's regular cells of the points `ids` (every point when empty) into `out`, rows
+// ascending (neighbours alongside) in input ids; false when they span no cell.
+bool triangulate(int dim, size_t m, const double* points, const double* weights,
+                 const std::vector<uint32_t>& ids, Result& out) {
+    const size_t used = ids.empty() ? m : ids.size(), stride = size_t(dim) + 1;
+    // geogram lifts a point to |p|² - t² with t = sqrt(W - w), W the largest weight
+    double top = weights[0];
+    for (size_t i = 1; i < m; ++i) top = std::max(top, weights[i]);
+    std::vector<double> rows(used * stride);
+    for (size_t j = 0; j < used; ++j) {
+        size_t i = ids.empty() ? j : ids[j];
+        for (int k = 0; k < dim; ++k) rows[j * stride + k] = points[i * dim + k];
+        rows[j * stride + dim] = std::sqrt(top - weights[i]);
+    }
+    const int w = dim + 1;
+    std::lock_guard<std::mutex> hold(geogram_lock);
+    GEO::Numeric::random_reset(0);
+    GEO::Delaunay_var tri = GEO::Delaunay::create(GEO::coord_index_t(w),
+                                                  dim == 3 ? "BPOW" : "BPOW2d");
+    tri->set_vertices(GEO::index_t(used), rows.data());
+    const size_t count = tri->nb_cells();
+    if (count == 0) return false;
+    const GEO::index_t* to_v = tri->cell_to_v();
+    const GEO::index_t* to_cell = tri->cell_to_cell();
+    out.width = w;
+    out.cells.resize(count * w);
+    out.neighbours.resize(count * w);
     for (size_t c = 0; c < count; ++c) {
-        int32_t v[4], t[4];
+        int32_t* v = &out.cells[c * w];
+        int32_t* t = &out.neighbours[c * w];
         for (int i = 0; i < w; ++i) {
-            v[i] = int32_t(to_v[c * w + i]);
-            GEO::index_t across = to_cell[c * w + i];
+            GEO::index_t vertex = to_v[c * w + i], across = to_cell[c * w + i];
+            v[i] = int32_t(ids.empty() ? vertex : ids[vertex]);
             t[i] = across == GEO::NO_INDEX ? -1 : int32_t(across);
         }
         for (int i = 1; i < w; ++i) {  // insertion sort of at most 4
@@ -91,38 +116,73 @@ void canonical(Result& r, const GEO::index_t* to_v, const GEO::index_t* to_cell,
                 std::swap(t[j - 1], t[j]);
             }
         }
-        std::copy(v, v + w, &cells[c * w]);
-        std::copy(t, t + w, &nbrs[c * w]);
     }
-    std::vector<size_t> start(n + 1, 0);
-    for (size_t c = 0; c < count; ++c) ++start[size_t(cells[c * w]) + 1];
-    for (size_t i = 0; i < n; ++i) start[i + 1] += start[i];
-    std::vector<size_t> order(count);
-    {
-        std::vector<size_t> next(start.begin(), start.end() - 1);
-        for (size_t c = 0; c < count; ++c) order[next[size_t(cells[c * w])]++] = c;
+    return true;
+}
+
+struct Key {  // a point's coordinates, compared and hashed bit for bit
+    const double* p;
+    int dim;
+    bool operator==(const Key& o) const { return std::equal(p, p + dim, o.p); }
+};
+
+struct KeyHash {
+    size_t operator()(const Key& k) const {
+        uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (int i = 0; i < k.dim; ++i) {
+            uint64_t bits;
+            std::memcpy(&bits, k.p + i, 8);
+            h = (h ^ bits) * 0x100000001b3ull;
+            h ^= h >> 29;
+        }
+        return size_t(h);
     }
-    auto less = [&](size_t a, size_t b) {
-        return std::lexicographical_compare(&cells[a * w + 1], &cells[a * w + w],
-                                            &cells[b * w + 1], &cells[b * w + w]);
-    };
-    for (size_t i = 0; i < n; ++i) {
-        if (start[i + 1] - start[i] > 1) {
-            std::sort(order.begin() + start[i], order.begin() + start[i + 1], less);
+};
+
+// Whether a point in no cell coincides with another point: geogram keeps the first of
+// coincident points it inserts, whatever their weights. Costs nothing when every point is
+// a vertex, one hashed pass over the points otherwise.
+bool coincident_unused(int dim, size_t m, const double* points, const Result& r) {
+    std::vector<bool> used(m, false);
+    for (int32_t v : r.cells) used[size_t(v)] = true;
+    std::unordered_map<Key, int, KeyHash> seen;
+    for (size_t i = 0; i < m; ++i) {
+        if (!used[i]) seen.emplace(Key{points + i * dim, dim}, 0);
+    }
+    if (seen.empty()) return false;
+    for (size_t i = 0; i < m; ++i) {
+        auto it = seen.find(Key{points + i * dim, dim});
+        if (it != seen.end() && ++it->second > 1) return true;
+    }
+    return false;
+}
+
+// The points to keep of coincident ones: the heaviest, the first of equal weights; ascending.
+std::vector<uint32_t> distinct(int dim, size_t m, const double* points, const double* weights) {
+    std::vector<uint32_t> order(m);
+    for (size_t i = 0; i < m; ++i) order[i] = uint32_t(i);
+    auto coords = [&](uint32_t i) { return points + size_t(i) * dim; };
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return std::lexicographical_compare(coords(a), coords(a) + dim, coords(b),
+                                            coords(b) + dim);
+    });
+    std::vector<bool> kept(m, true);
+    for (size_t lo = 0, hi; lo < m; lo = hi) {
+        uint32_t best = order[lo];
+        for (hi = lo + 1; hi < m && std::equal(coords(order[hi]), coords(order[hi]) + dim,
+                                               coords(order[lo])); ++hi) {
+            uint32_t i = order[hi];
+            bool heavier = weights[i] > weights[best] ||
+                           (weights[i] == weights[best] && i < best);
+            kept[heavier ? best : i] = false;
+            best = heavier ? i : best;
         }
     }
-    std::vector<int32_t> rank(count);
-    for (size_t k = 0; k < count; ++k) rank[order[k]] = int32_t(k);
-    r.cells.resize(count * w);
-    r.neighbours.resize(count * w);
-    for (size_t k = 0; k < count; ++k) {
-        size_t c = order[k];
-        for (int i = 0; i < w; ++i) {
-            r.cells[k * w + i] = cells[c * w + i];
-            int32_t t = nbrs[c * w + i];
-            r.neighbours[k * w + i] = t < 0 ? -1 : rank[size_t(t)];
-        }
+    std::vector<uint32_t> ids;
+    for (size_t i = 0; i < m; ++i) {
+        if (kept[i]) ids.push_back(uint32_t(i));
     }
+    return ids;
 }
 
 }  // namespace
@@ -142,32 +202,16 @@ AS_API int as_regular(int dim, int64_t n, const double* points, const double* we
     if (!as_ready()) return 1;
     if ((dim != 2 && dim != 3) || n < dim + 1 || n > INT32_MAX) return 2;
     try {
-        const size_t m = size_t(n), stride = size_t(dim) + 1;
-        // geogram lifts a point to |p|² - t² with t = sqrt(W - w), W the largest weight
-        double top = weights[0];
-        for (size_t i = 1; i < m; ++i) top = std::max(top, weights[i]);
-        std::vector<double> rows(m * stride);
-        for (size_t i = 0; i < m; ++i) {
-            for (int k = 0; k < dim; ++k) rows[i * stride + k] = points[i * dim + k];
-            rows[i * stride + dim] = std::sqrt(top - weights[i]);
-        }
-        Result* out = new Result;
-        out->width = dim + 1;
-        {
-            std::lock_guard<std::mutex> hold(geogram_lock);
-            GEO::Numeric::random_reset(0);
-            GEO::Delaunay_var tri = GEO::Delaunay::create(
-                GEO::coord_index_t(dim + 1), dim == 3 ? "BPOW" : "BPOW2d");
-            tri->set_vertices(GEO::index_t(m), rows.data());
-            size_t cells = tri->nb_cells();
-            if (cells == 0) {
-                delete out;
-                return 3;
-            }
-            canonical(*out, tri->cell_to_v(), tri->cell_to_cell(), cells, m);
+        const size_t m = size_t(n);
+        auto out = std::make_unique<Result>();
+        if (!triangulate(dim, m, points, weights, {}, *out)) return 3;
+        if (coincident_unused(dim, m, points, *out)) {  // again without the lighter twins
+            const std::vector<uint32_t> ids = distinct(dim, m, points, weights);
+            if (ids.size() < size_t(dim) + 1) return 2;
+            if (!triangulate(dim, m, points, weights, ids, *out)) return 3;
         }
         *count = int64_t(out->cells.size() / size_t(out->width));
-        *handle = out;
+        *handle = out.release();
         return 0;
     } catch (const std::bad_alloc&) {
         return 5;
