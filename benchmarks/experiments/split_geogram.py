@@ -22,10 +22,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from benchmarks.bench_weighted import packing  # noqa: E402
-from core.backends import geogram, split  # noqa: E402
-from core.build.delaunay import compacted  # noqa: E402
-from core.pipeline import power_of_two_scale  # noqa: E402
+from benchmarks.bench_weighted import packing
+from core.backends import geogram, split
+from core.build.delaunay import compacted
+from core.pipeline import power_of_two_scale
 
 
 def scaled(n: int) -> tuple[np.ndarray, np.ndarray]:
