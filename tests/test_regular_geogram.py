@@ -327,3 +327,27 @@ def test_forced_qhull_uses_qhull() -> None:
     weights = spacing_weights(rng, points, 1.0)
     assert backends.regular(points, weights, "qhull")[1] == backends.Choice("qhull")
     assert backends.regular(points, weights)[1] == backends.Choice("geogram")
+
+
+def test_loading_the_library_keeps_ctrl_c_a_keyboard_interrupt() -> None:
+    """geogram's initialisation resets SIGINT to its default (death); the library puts
+    Python's handler back, so Ctrl-C after a weighted build still raises KeyboardInterrupt."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = ("import os, signal, time\n"
+              "from core.backends import geogram\n"
+              "assert geogram.available()\n"
+              "try:\n"
+              "    os.kill(os.getpid(), signal.SIGINT)\n"
+              "    time.sleep(5)\n"
+              "except KeyboardInterrupt:\n"
+              "    print('interrupted')\n")
+    root = Path(__file__).resolve().parent.parent
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        filter(None, (str(root), os.environ.get("PYTHONPATH")))))
+    done = subprocess.run([sys.executable, "-c", script], cwd=root, env=env,
+                          capture_output=True, text=True, timeout=60)
+    assert (done.returncode, done.stdout.strip()) == (0, "interrupted"), done.stderr

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <exception>
@@ -67,7 +68,18 @@ bool fp_contract_off() {
 
 void start() {
     if (!fp_contract_off()) return;  // exact predicates would be wrong: stay unusable
+    // geogram's initialisation resets SIGINT to its default (its "cancel mode" off), which
+    // would make Ctrl-C kill Python instead of raising KeyboardInterrupt: put it back.
+#if defined(_WIN32)
+    void (*interrupt)(int) = std::signal(SIGINT, SIG_DFL);
     GEO::initialize(GEO::GEOGRAM_INSTALL_NONE);
+    std::signal(SIGINT, interrupt);
+#else
+    struct sigaction interrupt;
+    sigaction(SIGINT, nullptr, &interrupt);
+    GEO::initialize(GEO::GEOGRAM_INSTALL_NONE);
+    sigaction(SIGINT, &interrupt, nullptr);
+#endif
     GEO::Logger::instance()->set_quiet(true);
     GEO::Process::enable_multithreading(false);
     GEO::Process::set_max_threads(1);
