@@ -1,6 +1,7 @@
 """Weighted build: ours vs gudhi's weighted precision="fast", and vs our classic
-build of the same points, and our weighted build with Qhull in one call instead of two halves
-(core.backends.split), in one run, each step in its own fresh interpreter.
+build of the same points, and our weighted build with geogram (the default where its library
+was built) vs the same build with Qhull (backend="qhull": two halves on two threads,
+core.backends.split), in one run, each step in its own fresh interpreter.
 
     .venv/bin/python benchmarks/bench_weighted.py --n 200000 [--seed 0] [--json out.json]
 """
@@ -20,7 +21,7 @@ from benchmarks.isolate import Probe, StageClock, run_isolated, size_options
 from benchmarks.results import clock_pair, save, slug
 
 GOALS = (("gudhi weighted fast", 0.8), ("our classic build", 2.0),
-         ("weighted, one Qhull call", None))
+         ("weighted, Qhull", None))
 
 
 def packing(n: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
@@ -55,23 +56,19 @@ def gudhi_weighted(path: str) -> dict:
     return probe.result(simplices=int(tree.num_simplices()))
 
 
-def ours(path: str, weighted: bool, split: bool = True) -> dict:
-    """AlphaComplex.from_points(points[, weights=w]) with the time of each build stage
-    (split=False: Qhull in one call, never in two halves, for the A/B figure)."""
-    import core.backends.split
+def ours(path: str, weighted: bool, backend: str | None = None) -> dict:
+    """AlphaComplex.from_points(points[, weights=w], backend=backend) with the time of each
+    build stage (backend="qhull": the weighted build by Qhull, for the A/B figure)."""
     from core import AlphaComplex
 
-    if not split:
-        core.backends.split.SPLIT_FROM_POINTS = 1 << 62
-
     pts, w = _tiny()
-    AlphaComplex.from_points(pts, weights=w if weighted else None)
+    AlphaComplex.from_points(pts, weights=w if weighted else None, backend=backend)
     with np.load(path) as data:
         points, weights = data["points"], data["weights"]
     clock = StageClock()
     probe = Probe()
     ac = AlphaComplex.from_points(points, weights=weights if weighted else None,
-                                  progress=clock)
+                                  progress=clock, backend=backend)
     result = probe.result(counts=[len(ac.simplices(k)) for k in range(ac.dim + 1)],
                           hidden=int((ac.input_index < 0).sum()),
                           backend=ac.build_info.backend, note=ac.build_info.backend_note)
@@ -89,7 +86,7 @@ def main(argv: list[str] | None = None) -> int:
         results = {"our weighted build": run_isolated(ours, path, True),
                    "gudhi weighted fast": run_isolated(gudhi_weighted, path),
                    "our classic build": run_isolated(ours, path, False),
-                   "weighted, one Qhull call": run_isolated(ours, path, True, False)}
+                   "weighted, Qhull": run_isolated(ours, path, True, "qhull")}
     mine = results["our weighted build"]
     print(f"{args.n:,} weighted points (radii 1-2 spacings), seed {args.seed}")
     for name, figures in results.items():
@@ -121,7 +118,8 @@ def main(argv: list[str] | None = None) -> int:
     save("bench_weighted", figures, notes=[
         f"{args.n:,} uniform points in a cube with radii 1-2 times the spacing (seed "
         f"{args.seed}); each build in its own fresh interpreter; the figure is our weighted "
-        "build (AlphaComplex.from_points with weights)."])
+        f"build (AlphaComplex.from_points with weights), made by "
+        f"{mine.get('backend', '?')}."])
     return 0
 
 

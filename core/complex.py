@@ -96,8 +96,9 @@ class AlphaComplex:
         along the surface normal, taken from `normals` ((n, d) like the points) or estimated.
         `backend`: the triangulation backend, "qhull", "gmsh" (the optional `fast` extra,
         used only where its cells are certainly Qhull's; InputError otherwise) or None
-        (automatic: gmsh where installed and certain, else Qhull); what was used is
-        `build_info.backend` (core/backends).
+        (automatic: gmsh where installed and certain, else Qhull; weighted points: geogram
+        where its library was built, else Qhull); what was used is `build_info.backend`
+        (core/backends).
         """
         built = build_complex(points, progress, weights=weights, density=density,
                               combine=combine, anisotropy=anisotropy, normals=normals,

@@ -52,9 +52,10 @@ class BuildInfo:
     fields only, so a stage adding a field needs nothing else to have it saved and loaded).
 
     `backend`: the triangulation backend that made the cells ("qhull" for scipy/Qhull,
-    "gmsh"); `backend_note`: why the automatic choice did not use gmsh ("" when it did, or
-    was not asked to: too few points, gmsh not installed, weights), and why a large build
-    was not split in two halves (core.backends.split; "" when it was, or was small).
+    "gmsh", "geogram" for weighted points); `backend_note`: why the automatic choice did not
+    use gmsh ("" when it did, or was not asked to: too few points, gmsh not installed,
+    weights) or geogram (it failed), and why a large build was not split in two halves
+    (core.backends.split; "" when it was, or was small).
     `exact_predicates`: sign decisions (certification and table) that the floating-point
     filter could not settle and exact arithmetic decided; `flips`: cells the certification
     changed (flips and hull repairs, core/build/certify.py); `uncertified`: facets it could not
@@ -209,7 +210,7 @@ def _prepared(given: _Input) -> _Prepared:
 def _triangulated(prep: _Prepared, backend: str | None) -> tuple[Triangulation, Choice]:
     """Stage 3 (backend): the Delaunay (regular, when weighted) cells of the points, centred
     and scaled exactly by a power of two for the triangulator, and which backend made them
-    (core.backends; regular triangulations are Qhull's only)."""
+    (core.backends; regular triangulations are geogram's, or Qhull's)."""
     coords, w = prep.coords, prep.weights
     offset = 0.5 * (coords.min(axis=0) + coords.max(axis=0))
     lift_scale = power_of_two_scale(coords - offset)
@@ -218,7 +219,7 @@ def _triangulated(prep: _Prepared, backend: str | None) -> tuple[Triangulation, 
     if backend == "gmsh":
         raise InputError("the gmsh backend makes Delaunay triangulations only: weighted "
                          "points need backend='qhull' or None")
-    return regular((coords - offset) / lift_scale, w / lift_scale**2)
+    return regular((coords - offset) / lift_scale, w / lift_scale**2, backend)
 
 
 def _certified(prep: _Prepared, tri: Triangulation) -> Certified:

@@ -23,6 +23,9 @@ REPO = Path(__file__).resolve().parent.parent
 BUILD_INPUTS = ("pyproject.toml", "README.md", "app", "core")
 PACKAGES = ("app", "core")
 ASSETS = {"app/assets/sample.ply", "app/assets/icon.svg"}
+# geogram's regular triangulation, compiled by the wheel build (pyproject.toml's ext-modules)
+NATIVE = {f"core/backends/_geogram{sysconfig.get_config_var('EXT_SUFFIX')}"}
+NATIVE_LICENCE = "licenses/core/backends/native/geogram/LICENSE"  # in the .dist-info folder
 SIZE = (320, 240)
 MIN_CONTRAST = 10.0
 MIN_SHAPE_FRACTION = 0.02  # of the pixels, away from the background colour
@@ -59,8 +62,9 @@ def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
     source = root / "source"
     for name in BUILD_INPUTS:
         if (REPO / name).is_dir():
-            shutil.copytree(REPO / name, source / name,
-                            ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+            shutil.copytree(REPO / name, source / name,  # the library compiled anew
+                            ignore=shutil.ignore_patterns("__pycache__", "*.pyc", "*.so",
+                                                          "*.pyd"))
         else:
             source.mkdir(exist_ok=True)
             shutil.copy2(REPO / name, source / name)
@@ -87,11 +91,13 @@ def venv(wheel: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def test_wheel_ships_every_module_and_the_assets(wheel: Path) -> None:
-    """Every .py file of app/ and core/ and the bundled files are in the wheel; nothing else
-    of the repository (tests, benchmarks, docs) is."""
+    """Every .py file of app/ and core/, the bundled files and the compiled library (with
+    geogram's licence) are in the wheel; nothing else of the repository (tests, benchmarks,
+    docs, the C++ sources) is."""
     names = set(zipfile.ZipFile(wheel).namelist())
     shipped = {name for name in names if not name.startswith("alphascoop-")}
-    assert shipped == source_modules() | ASSETS
+    assert shipped == source_modules() | ASSETS | NATIVE
+    assert any(name.endswith(f".dist-info/{NATIVE_LICENCE}") for name in names)
 
 
 def test_installed_package_and_assets_come_from_the_venv(venv: Path) -> None:
@@ -103,6 +109,16 @@ def test_installed_package_and_assets_come_from_the_venv(venv: Path) -> None:
     out = run([str(venv / "bin" / "python"), "-c", script], cwd=venv.parent).stdout.split()
     assert all(Path(path).is_relative_to(venv) for path in out[:4]), out
     assert out[4:] == ["True", "True"]
+
+
+def test_installed_weighted_build_uses_the_compiled_library(venv: Path) -> None:
+    """The installed package loads its own compiled library: a weighted build by geogram."""
+    script = ("import numpy as np; from core import AlphaComplex; import core.backends.geogram "
+              "as g; rng = np.random.default_rng(0); ac = AlphaComplex.from_points("
+              "rng.random((300, 3)), weights=rng.random(300) * 1e-3); "
+              "print(g.available(), ac.build_info.backend, g.__file__)")
+    out = run([str(venv / "bin" / "python"), "-c", script], cwd=venv.parent).stdout.split()
+    assert out[:2] == ["True", "geogram"] and Path(out[2]).is_relative_to(venv), out
 
 
 def test_installed_command_renders_the_sample(venv: Path) -> None:

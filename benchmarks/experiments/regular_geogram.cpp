@@ -1,6 +1,7 @@
 // geogram's regular (weighted Delaunay) triangulation, timed on the points our weighted build
 // gives Qhull: a measurement of a faster exact backend (geogram: BSD-3, exact predicates with
-// symbolic perturbation), not part of the build.
+// symbolic perturbation), not part of the build. The build now compiles geogram's Delaunay PSM
+// itself (core/backends/native, core/backends/geogram.py); this remains the first measurement.
 //
 // Build against the static library and headers the PyPI wheel `geogram` ships (0.0.7):
 //   pip install --target /tmp/geo geogram==0.0.7

@@ -1,9 +1,11 @@
-"""Triangulation backends: Qhull (scipy, always there) and gmsh (optional, faster).
+"""Triangulation backends: Qhull (scipy, always there), gmsh (optional, faster) and geogram
+(regular triangulations, compiled at install).
 
 `delaunay(points, backend)` returns Qhull's Delaunay triangulation, made by gmsh where gmsh
 is installed and its result is certainly the same cells (core.backends.certify), else by
-Qhull; which one did it is returned beside it. `regular(points, weights)` returns Qhull's
-regular triangulation. Qhull works on two halves at once on larger inputs
+Qhull; which one did it is returned beside it. `regular(points, weights)` returns the regular
+triangulation made by geogram (exact predicates, core.backends.geogram) where its library was
+built, else by Qhull. Qhull works on two halves at once on larger inputs
 (core.backends.split), or in one call where the halves cannot promise the same cells.
 """
 
@@ -14,12 +16,13 @@ from functools import partial
 
 import numpy as np
 
+from core.backends import geogram
 from core.backends import gmsh as gmsh_backend
 from core.backends import split as split_backend
 from core.backends.certify import why_not_delaunay, why_not_locally_delaunay
 from core.backends.facets import paired
 from core.backends.restore import restored
-from core.build.delaunay import Triangulation, regular_triangulate, triangulate
+from core.build.delaunay import Triangulation, compacted, regular_triangulate, triangulate
 from core.errors import InputError
 from core.parallel import PASSES, both, halves
 
@@ -33,8 +36,8 @@ GMSH_FROM_POINTS = 20_000
 class Choice:
     """Which backend made a triangulation, and why gmsh was not used where it was asked."""
 
-    backend: str  # "qhull" | "gmsh"
-    note: str = ""  # "" or why gmsh was not used, and why the triangulation was not split
+    backend: str  # "qhull" | "gmsh" | "geogram" (regular triangulations)
+    note: str = ""  # "" or why gmsh (geogram) was not used, and why it was not split
 
 
 def check_backend(backend: object) -> str | None:
@@ -124,10 +127,20 @@ def delaunay(points: np.ndarray, backend: str | None = None) -> tuple[Triangulat
     return _by_qhull(points, None)
 
 
-def regular(points: np.ndarray, weights: np.ndarray) -> tuple[Triangulation, Choice]:
+def regular(points: np.ndarray, weights: np.ndarray,
+            backend: str | None = None) -> tuple[Triangulation, Choice]:
     """The regular triangulation of (m, d) distinct, well-scaled points with (m,) weights
-    (Qhull's; hidden points map to -1)."""
-    return _by_qhull(points, weights)
+    (hidden points map to -1): geogram's in one call (exact, on the calling thread) where its
+    library was built and `backend` is not "qhull", else Qhull's (the reason in
+    Choice.note where geogram failed)."""
+    note = ""
+    if backend != "qhull" and geogram.available():
+        try:
+            cells, neighbors = geogram.regular_cells(points, weights)
+            return compacted(cells, neighbors, len(points)), Choice("geogram")
+        except geogram.GeogramError as exc:
+            note = f"geogram not used: {exc}"
+    return _by_qhull(points, weights, note)
 
 
 def _by_qhull(points: np.ndarray, weights: np.ndarray | None,
