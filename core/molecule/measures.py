@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from core.arrays import readonly
+from core.geometry.power import signed_square
 from core.molecule.intersections import ball_terms
 from core.tolerances import EXPOSED_AREA_RTOL
 
@@ -49,6 +50,22 @@ def _terms(planes: np.ndarray, radii: np.ndarray, simplices: np.ndarray, n: int)
             c, np.take(radii, rows))
     return float(volumes.sum()), np.bincount(corners.ravel(), weights=areas.ravel(),
                                              minlength=n)
+
+
+def in_complex(ac, k: int, alpha2: float = 0.0) -> np.ndarray:
+    """(n_k,) bool: the k-simplices of a weighted AlphaComplex `ac` in its complex at alpha²
+    (squared enter <= alpha2), from the enter column alone (no (n_k, 3) intervals stacked)."""
+    return signed_square(ac.index.level(k).enter) <= alpha2
+
+
+def dual_simplices(ac, alpha2: float = 0.0) -> list[np.ndarray]:
+    """The vertices (., 1), edges, triangles and tetrahedra of a weighted 3D AlphaComplex
+    `ac` in its complex at alpha² (the dual complex of its balls at 0). The levels k >= 1 are
+    sorted by enter, so theirs are prefixes of ac.simplices(k), handed out as views."""
+    out = [ac.simplices(0)[in_complex(ac, 0, alpha2)]]
+    for k in range(1, 4):
+        out.append(ac.simplices(k)[:int(np.count_nonzero(in_complex(ac, k, alpha2)))])
+    return out
 
 
 def union_measures(centres: np.ndarray, radii: np.ndarray, edges: np.ndarray,
