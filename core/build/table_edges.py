@@ -20,19 +20,26 @@ from core.parallel import PASSES, halves, in_chunks, nonzero, reduce_segments, t
 VERTEX_BITS = 29
 FIRST_SHIFT = VERTEX_BITS + 3
 WORDS_UP_TO = 1 << VERTEX_BITS
+#: Edge keys of up to this many bits (up to 65,536 points) are sorted by two passes of a
+#: radix sort (_radix_order); longer ones as packed (key, triangle) words.
+RADIX_KEY_BITS = 32
 
 
 def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bool]:
     """Edge keys a*m+b (ascending) and triangle ids of all triangle-edge incidences, and
     whether the ids ascend within each key.
 
-    Packs key and triangle id into one uint64 when they fit, because np.sort is several
+    Keys of up to RADIX_KEY_BITS bits by a radix sort (_radix_order); longer ones with the
+    triangle id packed into one uint64 when they fit, because np.sort is several
     times faster than np.argsort on this machine class (and, vectorised, than two sorted
     halves and a merge); the packing and unpacking run on two threads.
     """
+    key_bits = (n_points * n_points - 1).bit_length()
+    if key_bits <= RADIX_KEY_BITS:
+        keys, order = _radix_order(triangles, n_points, key_bits)
+        return take(keys, order), np.floor_divide(order, 3).astype(np.int32), True
     m = np.uint64(n_points)
     nt = len(triangles)
-    key_bits = (n_points * n_points - 1).bit_length()
     tri_bits = max(1, (nt - 1).bit_length())
     pairs = ((0, 1), (0, 2), (1, 2))
     if key_bits + tri_bits <= 64:
@@ -64,6 +71,28 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
                            for i, j in pairs])
     order = np.argsort(keys)
     return keys[order], (order % nt).astype(np.int32), False
+
+
+def _radix_order(triangles: np.ndarray, n_points: int, key_bits: int
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """(3 t,) int64 edge keys a*m+b of every triangle's edges, triangle by triangle (row
+    3 i + j: triangle i's edge j), and the stable order that sorts them: a least significant
+    digit radix sort, one stable argsort of 16-bit digits per pass (numpy sorts those by
+    counting), so equal keys keep their triangles ascending, as the packed sort orders them."""
+    keys = np.empty((len(triangles), 3), dtype=np.int64)
+    first = triangles[:, 0].astype(np.int64) * n_points
+    np.add(first, triangles[:, 1], out=keys[:, 0])
+    np.add(first, triangles[:, 2], out=keys[:, 1])
+    np.multiply(triangles[:, 1].astype(np.int64), n_points, out=keys[:, 2])
+    keys[:, 2] += triangles[:, 2]
+    keys = keys.ravel()
+    order = None
+    for shift in range(0, key_bits, 16):  # the cast keeps the low 16 bits
+        current = keys if order is None else take(keys, order)
+        digit = (current >> shift if shift else current).astype(np.uint16)
+        step = np.argsort(digit, kind="stable")
+        order = step if order is None else take(order, step)
+    return keys, order
 
 
 def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
