@@ -68,14 +68,16 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
                                                            mirror)
     del neighbors, mirror
     levels = [facets, top]
+    edge_bits = None
     if d == 3:
         step(0.55, "edges")
-        levels.insert(0, edge_level(points, facets, near_flat, obtuse, weights, sort))
+        edges, edge_bits = edge_level(points, facets, near_flat, obtuse, weights, sort)
+        levels.insert(0, edges)
     step(0.9, "vertices")
     # the facets' interior order sorts (GIL released) while the vertices reduce their edges
     interior_order = (together(lambda: argsort_radii(facets.interior).astype(np.int32))
                       if sort else lambda: np.empty(0, dtype=np.int32))
-    levels.insert(0, vertex_level(len(points), levels[0], points, weights))
+    levels.insert(0, vertex_level(len(points), levels[0], points, weights, edge_bits))
     by_interior = interior_order()
     step(1.0, "done")
     return Table(levels, facet_cells, flip, measure, by_interior, sum(exact_counts or []))

@@ -158,10 +158,11 @@ def _gathered(source: np.ndarray, ids: np.ndarray | None) -> Callable[[int, int]
 
 def _edge_enter(points: np.ndarray, simplices: np.ndarray, regular: np.ndarray,
                 attached: np.ndarray, check: np.ndarray,
-                weights: np.ndarray | None) -> np.ndarray:
+                weights: np.ndarray | None) -> tuple[np.ndarray, np.ndarray | None]:
     """(e,) enter of the (e, 2) edges `simplices`: their own (half length, or signed radius
     of power) unless attached; the edges `check` get the global attachment test. The half
-    lengths in cache-sized chunks, alternate ones in a helper thread."""
+    lengths in cache-sized chunks, alternate ones in a helper thread. Second: weighted, the
+    (e,) uint8 bits of edge_powers (which vertex lies below the other's power), else None."""
     a, b = simplices[:, 0], simplices[:, 1]
     if weights is None:
         half = np.empty(len(simplices))
@@ -175,7 +176,7 @@ def _edge_enter(points: np.ndarray, simplices: np.ndarray, regular: np.ndarray,
             centres = 0.5 * (points[a[check]] + points[b[check]])
             attached[check] |= any_point_inside(points, centres, half[check] ** 2)
     else:
-        power, centres, _ = edge_powers(points, weights, simplices.astype(np.int64))
+        power, centres, below = edge_powers(points, weights, simplices.astype(np.int64))
         half = signed_sqrt(power)
         if len(check):
             attached[check] |= any_point_below(points, weights, centres[check], power[check])
@@ -186,7 +187,7 @@ def _edge_enter(points: np.ndarray, simplices: np.ndarray, regular: np.ndarray,
                               np.minimum(half[lo:hi], regular[lo:hi]))
 
     halves(choose, len(half), PASSES)
-    return out
+    return out, None if weights is None else below
 
 
 def _starts(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -221,13 +222,14 @@ def _edge_ends(keys: np.ndarray, starts: np.ndarray, m: int) -> np.ndarray:
 
 def edge_level(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
                bits: np.ndarray | None, weights: np.ndarray | None = None,
-               sort: bool = True) -> Level:
+               sort: bool = True) -> tuple[Level, np.ndarray | None]:
     """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values.
 
     `bits` (bit j: vertex j attaches the opposite edge) come from facet_radii2; edges of
     triangles next to flat cells (`near_flat`) get the global attachment test. bits=None:
     the edges get no values at all ((0,) arrays: a mode supplies them), only their
-    vertices and the triangles' face ids.
+    vertices and the triangles' face ids. Second: weighted, each edge's (e,) uint8 bits of
+    core.geometry.power.edge_powers in the level's order (for the vertex level), else None.
     """
     m = len(points)
     tris = triangles.simplices
@@ -238,7 +240,7 @@ def edge_level(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     simplices = _edge_ends(keys, starts, m)
     if bits is None:  # a mode supplies every value (core/modes/alpha_modes.py)
         triangles.face_ids = face_ids.reshape(-1, 3)
-        return Level(simplices, np.empty(0), np.empty(0), np.empty(0))
+        return Level(simplices, np.empty(0), np.empty(0), np.empty(0)), None
     n = len(keys)
     if ids_ascend and sort:  # triangles sorted by enter: each edge's first is its least
         regular = take(triangles.enter, take(tri_ids, starts))
@@ -252,8 +254,9 @@ def edge_level(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     # over all incidences
     check = np.unique(face_ids.reshape(-1, 3)[np.flatnonzero(near_flat)])
     del keys, tri_ids, inside
-    enter = _edge_enter(points, simplices, regular, attached, check, weights)
+    enter, below = _edge_enter(points, simplices, regular, attached, check, weights)
     level = Level(simplices, enter, regular, interior)
-    inverse = permute_level(level, sort_order(enter, sort))
+    order = sort_order(enter, sort)
+    inverse = permute_level(level, order)
     triangles.face_ids = (face_ids if inverse is None else take(inverse, face_ids)).reshape(-1, 3)
-    return level
+    return level, below if below is None or order is None else take(below, order)
