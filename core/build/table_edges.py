@@ -25,9 +25,12 @@ WORDS_UP_TO = 1 << VERTEX_BITS
 RADIX_KEY_BITS = 32
 
 
-def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bool]:
-    """Edge keys a*m+b (ascending) and triangle ids of all triangle-edge incidences, and
-    whether the ids ascend within each key.
+def _edge_incidences(triangles: np.ndarray, n_points: int
+                     ) -> tuple[np.ndarray, np.ndarray, bool, np.ndarray | None]:
+    """Edge keys a*m+b (ascending) and triangle ids of all triangle-edge incidences,
+    whether the ids ascend within each key, and (radix sort only; else None) the sorting
+    order of the rows 3 i + j (triangle i's edge j: vertices 01, 02, 12), whose j says which
+    of the triangle's vertices is opposite the edge.
 
     Keys of up to RADIX_KEY_BITS bits by a radix sort (_radix_order); longer ones with the
     triangle id packed into one uint64 when they fit, because np.sort is several
@@ -37,7 +40,7 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
     key_bits = (n_points * n_points - 1).bit_length()
     if key_bits <= RADIX_KEY_BITS:
         keys, order = _radix_order(triangles, n_points, key_bits)
-        return take(keys, order), np.floor_divide(order, 3).astype(np.int32), True
+        return take(keys, order), np.floor_divide(order, 3).astype(np.int32), True, order
     m = np.uint64(n_points)
     nt = len(triangles)
     tri_bits = max(1, (nt - 1).bit_length())
@@ -66,11 +69,11 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
             packed[lo:hi] >>= shift
 
         halves(unpack, len(packed), PASSES)
-        return packed.view(np.int64), tri_ids, True
+        return packed.view(np.int64), tri_ids, True, None
     keys = np.concatenate([triangles[:, i].astype(np.int64) * n_points + triangles[:, j]
                            for i, j in pairs])
     order = np.argsort(keys)
-    return keys[order], (order % nt).astype(np.int32), False
+    return keys[order], (order % nt).astype(np.int32), False, None
 
 
 def _radix_order(triangles: np.ndarray, n_points: int, key_bits: int
@@ -96,21 +99,32 @@ def _radix_order(triangles: np.ndarray, n_points: int, key_bits: int
 
 
 def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
-                tris: np.ndarray, bits: np.ndarray | None, m: int
-                ) -> tuple[np.ndarray | None, np.ndarray]:
+                tris: np.ndarray, bits: np.ndarray | None, m: int,
+                order: np.ndarray | None = None) -> tuple[np.ndarray | None, np.ndarray]:
     """For the sorted incidences (edge key, triangle id): (n,) bool attach bit of each
     (the triangle's vertex opposite the edge is inside its diametral sphere; None without
     `bits`) and the (3 t,) int32 edge number of every triangle's three edges; in chunks on
-    two threads."""
+    two threads. `order` (the radix sort's, _edge_incidences) says which vertex is
+    opposite each edge without reading the triangles."""
     inside = None if bits is None else np.empty(len(keys), dtype=bool)
     face_ids = np.empty(tris.size, dtype=np.int32)
     size = 4 * CACHE_CHUNK
     base = np.cumsum([0] + [np.count_nonzero(is_start[lo:lo + size])
                             for lo in range(0, len(keys), size)])
-    words = _triangle_words(tris, bits) if m <= WORDS_UP_TO else None
+    words = _triangle_words(tris, bits) if m <= WORDS_UP_TO and order is None else None
 
     def part(lo: int, hi: int) -> None:
         t = tri_ids[lo:hi]
+        if order is not None:  # row 3 t + j: edge j (01, 02, 12) is opposite vertex 2 - j
+            local = t.astype(np.int64)
+            local *= -3
+            local += order[lo:hi]
+            np.subtract(2, local, out=local)
+            if inside is not None:
+                inside[lo:hi] = (np.take(bits, t) >> local) & 1
+            edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
+            face_ids[3 * t.astype(np.int64) + local] = edge_of
+            return
         a = keys[lo:hi] // m  # a floor division by a constant: much faster than divmod
         b = keys[lo:hi] - a * m
         if words is None:
@@ -233,10 +247,10 @@ def edge_level(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     """
     m = len(points)
     tris = triangles.simplices
-    keys, tri_ids, ids_ascend = _edge_incidences(tris, m)
+    keys, tri_ids, ids_ascend, order = _edge_incidences(tris, m)
     is_start, starts = _starts(keys)
-    inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m)
-    del is_start
+    inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m, order)
+    del is_start, order
     simplices = _edge_ends(keys, starts, m)
     if bits is None:  # a mode supplies every value (core/modes/alpha_modes.py)
         triangles.face_ids = face_ids.reshape(-1, 3)
