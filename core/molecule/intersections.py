@@ -24,13 +24,19 @@ TWO_PI = 2.0 * np.pi
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """(m,) dot products of (3, m) vectors."""
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    out = a[0] * b[0]
+    out += a[1] * b[1]
+    out += a[2] * b[2]
+    return out
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(3, m) cross products of (3, m) vectors."""
-    return np.stack((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                     a[0] * b[1] - a[1] * b[0]))
+    """(3, m) cross products of (3, m) vectors (written in place: no stacked copy)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    for i, (j, k) in enumerate(((1, 2), (2, 0), (0, 1))):
+        np.multiply(a[j], b[k], out=out[i])
+        out[i] -= a[k] * b[j]
+    return out
 
 
 def _norm(v: np.ndarray) -> np.ndarray:
