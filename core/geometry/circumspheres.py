@@ -57,7 +57,9 @@ def edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     """(n, k, d) vectors from each simplex's first vertex to its others."""
     n, width = simplices.shape
     corners = np.take(points, simplices.ravel(), axis=0).reshape(n, width, points.shape[1])
-    corners[:, 1:] -= corners[:, :1]
+    first = corners[:, 0].copy()  # one vertex at a time: no overlapping broadcast copy
+    for j in range(1, width):
+        np.subtract(corners[:, j], first, out=corners[:, j])
     return corners[:, 1:]
 
 
