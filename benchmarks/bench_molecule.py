@@ -37,7 +37,7 @@ from benchmarks.results import Figure, save  # noqa: E402
 from core.complex import AlphaComplex  # noqa: E402
 from core.io.molecule import read_molecule  # noqa: E402
 from core.molecule.analysis import measure_molecule  # noqa: E402
-from core.molecule.measures import union_measures  # noqa: E402
+from core.molecule.measures import dual_simplices, union_measures  # noqa: E402
 
 SPACING = 24.0  # Å between copies: about the protein's width, so copies overlap a little
 
@@ -111,7 +111,7 @@ def ours_area_volume(path: Path, probe: float):
     """Read, build, exact area and volume of the union: our end to end."""
     mol = read_molecule(path)
     ac = AlphaComplex.from_points(mol.centres, weights=mol.weights(probe))
-    k = [ac.simplices(d)[ac.intervals_sq(d)[:, 0] <= 0] for d in range(4)]
+    k = dual_simplices(ac)
     return union_measures(ac.points, np.sqrt(ac.weights), *k[1:], vertices=k[0][:, 0])
 
 

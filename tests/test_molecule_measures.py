@@ -10,7 +10,7 @@ import pytest
 
 from core.complex import AlphaComplex
 from core.molecule.cavities import void_cells
-from core.molecule.measures import exposed_balls, union_measures
+from core.molecule.measures import dual_simplices, exposed_balls, union_measures
 from core.molecule.regions import dual_facts, region_measures
 from tests.molecule_reference import (
     dual_at_zero,
@@ -130,3 +130,24 @@ def test_hollow_shells_have_one_cavity_each(shells):
                            shells).volume
     # a 0.15 Å voxel grid: within 2 % of the exact volume
     assert np.all(np.abs(np.sort(ours) - np.sort(voxel)) < 0.02 * np.sort(ours))
+
+
+@pytest.mark.parametrize("alpha2", [-1.0, 0.0, 1.5])
+def test_dual_simplices_are_gudhis_at_alpha2(alpha2):
+    """dual_simplices (the complex at alpha², read from the enter column, levels k >= 1 as
+    prefixes) holds gudhi's simplices with filtration <= alpha², and hands out views."""
+    rng = np.random.default_rng(11)
+    centres, radii = rng.uniform(0, 9, size=(300, 3)), rng.uniform(0.8, 2.2, size=300)
+    ac = AlphaComplex.from_points(centres, weights=radii ** 2)
+    ours = dual_simplices(ac, alpha2)
+    row_input = np.empty(len(ac.points), np.int64)
+    kept = np.flatnonzero(ac.input_index >= 0)
+    row_input[ac.input_index[kept]] = kept
+    theirs = gudhi_dual(centres, radii)
+    for k in range(4):
+        simplices, values = theirs[k]
+        want = {tuple(s) for s in simplices[values <= alpha2].tolist()}
+        got = {tuple(sorted(s)) for s in row_input[ours[k]].tolist()}
+        assert got == want
+        if k:
+            assert np.shares_memory(ours[k], ac.simplices(k))

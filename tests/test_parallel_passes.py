@@ -257,6 +257,29 @@ def test_edge_pass_reads_triangles_packed_or_not_the_same() -> None:
         np.testing.assert_array_equal(array, columns[name], err_msg=name)
 
 
+@pytest.mark.parametrize("weighted", [False, True])
+def test_edge_incidences_radix_sorted_as_packed(weighted: bool) -> None:
+    """The edge pass's incidences sorted by the radix passes (keys of up to RADIX_KEY_BITS
+    bits) are the packed sort's: the same keys, each key's triangles ascending; and the
+    table, whose edge ids and attach bits then come from the radix order rather than from
+    the triangles' rows, is the same."""
+    rng = np.random.default_rng(6)
+    points = rng.random((900, 3))
+    weights = rng.uniform(0.0, 0.002, 900) if weighted else None
+    built = build_complex(points, weights=weights)
+    triangles = built.table.levels[2].simplices
+    radix = core.build.table_edges._edge_incidences(triangles, len(built.points))
+    with mock.patch.object(core.build.table_edges, "RADIX_KEY_BITS", 0):
+        packed = core.build.table_edges._edge_incidences(triangles, len(built.points))
+        packed_table = _table_arrays(build_complex(points, weights=weights))
+    assert packed[3] is None  # the radix order, for the incidences' opposite vertices
+    for ours, theirs in zip(radix[:3], packed[:3], strict=True):
+        assert np.asarray(ours).dtype == np.asarray(theirs).dtype
+        np.testing.assert_array_equal(ours, theirs)
+    for name, array in _table_arrays(built).items():
+        np.testing.assert_array_equal(array, packed_table[name], err_msg=name)
+
+
 @pytest.mark.parametrize("n", [1, 2, 7, 1001])
 def test_gmsh_relinked_rows_in_halves(n: int) -> None:
     """The rows of gmsh's neighbour table that the restoration changed, found in halves:

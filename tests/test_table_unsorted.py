@@ -89,3 +89,27 @@ def test_unsorted_table_is_the_sorted_one_in_another_order(dim, kind):
 def test_a_sorted_table_needs_its_radii():
     with pytest.raises(ValueError, match="radii=False"):
         _table(np.random.default_rng(0).uniform(size=(20, 2)), radii=False)
+
+
+@pytest.mark.parametrize("weighted", [False, True])
+def test_sorted_table_sorts_its_facets_by_interior_on_first_use(weighted):
+    """A sorted build leaves the facets' order by interior unsorted (a molecule's measures
+    never ask for it); its first use sorts it: the stable order of the interiors (hull
+    facets, inf, last), read-only, kept."""
+    from core.complex import AlphaComplex
+
+    rng = np.random.default_rng(3)
+    points = rng.uniform(-1, 1, (400, 3))
+    weights = rng.uniform(0.0, 0.01, 400) if weighted else None
+    ac = AlphaComplex.from_points(points, weights=weights)
+    table = ac.index.table
+    assert table.facet_order is None
+    order = table.facet_interior_order
+    np.testing.assert_array_equal(order, np.argsort(table.levels[2].interior, kind="stable"))
+    assert order.dtype == np.int32 and not order.flags.writeable
+    assert table.facet_interior_order is order
+    for alpha in np.quantile(ac.spectrum(), [0.2, 0.5, 0.99]):  # both ways of finding them
+        facets = table.levels[2]
+        boundary = (facets.enter <= alpha) & (facets.interior > alpha)
+        np.testing.assert_array_equal(ac.shape(alpha=float(alpha)).boundary_facets,
+                                      facets.simplices[boundary])

@@ -7,6 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core.arrays import readonly
+from core.build.sorting import argsort_radii
 from core.parallel import inverse_permutation, take
 
 
@@ -29,9 +31,25 @@ class Table:
     facet_cells: np.ndarray  # (f, 2) int32 cells on both sides of each facet, -1 = outside
     facet_flip: np.ndarray  # (f,) bool: reverse the last two vertices to face out of cell 0
     cell_measure: np.ndarray  # (c,) float64 unsigned volume/area of every cell
-    facet_interior_order: np.ndarray  # (f,) int32 facet rows sorted by interior
+    # (f,) int32 facet rows sorted by interior ((0,) in an unsorted table until its mode
+    # sorts it); None: not sorted yet, sorted on first use (facet_interior_order)
+    facet_order: np.ndarray | None
     # sign decisions that needed exact arithmetic (core.build.table_signs)
     exact_predicates: int = 0
+
+    @property
+    def facet_interior_order(self) -> np.ndarray:
+        """(f,) int32 facet rows sorted by interior. A build leaves it to the first use (a
+        shape's interior facets, a cursor, a save), so a build nobody asks it of (a
+        molecule's measures) never sorts its facets a second time."""
+        if self.facet_order is None:
+            self.facet_order = readonly(
+                argsort_radii(self.levels[-2].interior).astype(np.int32))
+        return self.facet_order
+
+    @facet_interior_order.setter
+    def facet_interior_order(self, order: np.ndarray) -> None:
+        self.facet_order = order
 
 
 def permute_level(level: Level, order: np.ndarray | None) -> np.ndarray | None:

@@ -22,12 +22,10 @@ import numpy as np
 
 from core.build.cell_pass import CellSpheres
 from core.build.levels import Table
-from core.build.sorting import argsort_radii
 from core.build.table_cells import cell_level
 from core.build.table_edges import edge_level
 from core.build.table_facets import facet_level
 from core.build.table_vertices import vertex_level
-from core.parallel import together
 from core.progress import Progress
 
 
@@ -68,14 +66,14 @@ def build_table(points: np.ndarray, cells: np.ndarray, neighbors: np.ndarray,
                                                            mirror)
     del neighbors, mirror
     levels = [facets, top]
+    edge_bits = None
     if d == 3:
         step(0.55, "edges")
-        levels.insert(0, edge_level(points, facets, near_flat, obtuse, weights, sort))
+        edges, edge_bits = edge_level(points, facets, near_flat, obtuse, weights, sort)
+        levels.insert(0, edges)
     step(0.9, "vertices")
-    # the facets' interior order sorts (GIL released) while the vertices reduce their edges
-    interior_order = (together(lambda: argsort_radii(facets.interior).astype(np.int32))
-                      if sort else lambda: np.empty(0, dtype=np.int32))
-    levels.insert(0, vertex_level(len(points), levels[0], points, weights))
-    by_interior = interior_order()
+    levels.insert(0, vertex_level(len(points), levels[0], points, weights, edge_bits))
+    # a sorted table's facet order by interior is sorted on first use (Table)
+    by_interior = None if sort else np.empty(0, dtype=np.int32)
     step(1.0, "done")
     return Table(levels, facet_cells, flip, measure, by_interior, sum(exact_counts or []))

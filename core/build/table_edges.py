@@ -20,19 +20,29 @@ from core.parallel import PASSES, halves, in_chunks, nonzero, reduce_segments, t
 VERTEX_BITS = 29
 FIRST_SHIFT = VERTEX_BITS + 3
 WORDS_UP_TO = 1 << VERTEX_BITS
+#: Edge keys of up to this many bits (up to 65,536 points) are sorted by two passes of a
+#: radix sort (_radix_order); longer ones as packed (key, triangle) words.
+RADIX_KEY_BITS = 32
 
 
-def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, np.ndarray, bool]:
-    """Edge keys a*m+b (ascending) and triangle ids of all triangle-edge incidences, and
-    whether the ids ascend within each key.
+def _edge_incidences(triangles: np.ndarray, n_points: int
+                     ) -> tuple[np.ndarray, np.ndarray, bool, np.ndarray | None]:
+    """Edge keys a*m+b (ascending) and triangle ids of all triangle-edge incidences,
+    whether the ids ascend within each key, and (radix sort only; else None) the sorting
+    order of the rows 3 i + j (triangle i's edge j: vertices 01, 02, 12), whose j says which
+    of the triangle's vertices is opposite the edge.
 
-    Packs key and triangle id into one uint64 when they fit, because np.sort is several
+    Keys of up to RADIX_KEY_BITS bits by a radix sort (_radix_order); longer ones with the
+    triangle id packed into one uint64 when they fit, because np.sort is several
     times faster than np.argsort on this machine class (and, vectorised, than two sorted
     halves and a merge); the packing and unpacking run on two threads.
     """
+    key_bits = (n_points * n_points - 1).bit_length()
+    if key_bits <= RADIX_KEY_BITS:
+        keys, order = _radix_order(triangles, n_points, key_bits)
+        return take(keys, order), np.floor_divide(order, 3).astype(np.int32), True, order
     m = np.uint64(n_points)
     nt = len(triangles)
-    key_bits = (n_points * n_points - 1).bit_length()
     tri_bits = max(1, (nt - 1).bit_length())
     pairs = ((0, 1), (0, 2), (1, 2))
     if key_bits + tri_bits <= 64:
@@ -59,29 +69,62 @@ def _edge_incidences(triangles: np.ndarray, n_points: int) -> tuple[np.ndarray, 
             packed[lo:hi] >>= shift
 
         halves(unpack, len(packed), PASSES)
-        return packed.view(np.int64), tri_ids, True
+        return packed.view(np.int64), tri_ids, True, None
     keys = np.concatenate([triangles[:, i].astype(np.int64) * n_points + triangles[:, j]
                            for i, j in pairs])
     order = np.argsort(keys)
-    return keys[order], (order % nt).astype(np.int32), False
+    return keys[order], (order % nt).astype(np.int32), False, None
+
+
+def _radix_order(triangles: np.ndarray, n_points: int, key_bits: int
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """(3 t,) int64 edge keys a*m+b of every triangle's edges, triangle by triangle (row
+    3 i + j: triangle i's edge j), and the stable order that sorts them: a least significant
+    digit radix sort, one stable argsort of 16-bit digits per pass (numpy sorts those by
+    counting), so equal keys keep their triangles ascending, as the packed sort orders them."""
+    keys = np.empty((len(triangles), 3), dtype=np.int64)
+    first = triangles[:, 0].astype(np.int64) * n_points
+    np.add(first, triangles[:, 1], out=keys[:, 0])
+    np.add(first, triangles[:, 2], out=keys[:, 1])
+    np.multiply(triangles[:, 1].astype(np.int64), n_points, out=keys[:, 2])
+    keys[:, 2] += triangles[:, 2]
+    keys = keys.ravel()
+    order = None
+    for shift in range(0, key_bits, 16):  # the cast keeps the low 16 bits
+        current = keys if order is None else take(keys, order)
+        digit = (current >> shift if shift else current).astype(np.uint16)
+        step = np.argsort(digit, kind="stable")
+        order = step if order is None else take(order, step)
+    return keys, order
 
 
 def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
-                tris: np.ndarray, bits: np.ndarray | None, m: int
-                ) -> tuple[np.ndarray | None, np.ndarray]:
+                tris: np.ndarray, bits: np.ndarray | None, m: int,
+                order: np.ndarray | None = None) -> tuple[np.ndarray | None, np.ndarray]:
     """For the sorted incidences (edge key, triangle id): (n,) bool attach bit of each
     (the triangle's vertex opposite the edge is inside its diametral sphere; None without
     `bits`) and the (3 t,) int32 edge number of every triangle's three edges; in chunks on
-    two threads."""
+    two threads. `order` (the radix sort's, _edge_incidences) says which vertex is
+    opposite each edge without reading the triangles."""
     inside = None if bits is None else np.empty(len(keys), dtype=bool)
     face_ids = np.empty(tris.size, dtype=np.int32)
     size = 4 * CACHE_CHUNK
     base = np.cumsum([0] + [np.count_nonzero(is_start[lo:lo + size])
                             for lo in range(0, len(keys), size)])
-    words = _triangle_words(tris, bits) if m <= WORDS_UP_TO else None
+    words = _triangle_words(tris, bits) if m <= WORDS_UP_TO and order is None else None
 
     def part(lo: int, hi: int) -> None:
         t = tri_ids[lo:hi]
+        if order is not None:  # row 3 t + j: edge j (01, 02, 12) is opposite vertex 2 - j
+            local = t.astype(np.int64)
+            local *= -3
+            local += order[lo:hi]
+            np.subtract(2, local, out=local)
+            if inside is not None:
+                inside[lo:hi] = (np.take(bits, t) >> local) & 1
+            edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
+            face_ids[3 * t.astype(np.int64) + local] = edge_of
+            return
         a = keys[lo:hi] // m  # a floor division by a constant: much faster than divmod
         b = keys[lo:hi] - a * m
         if words is None:
@@ -129,10 +172,11 @@ def _gathered(source: np.ndarray, ids: np.ndarray | None) -> Callable[[int, int]
 
 def _edge_enter(points: np.ndarray, simplices: np.ndarray, regular: np.ndarray,
                 attached: np.ndarray, check: np.ndarray,
-                weights: np.ndarray | None) -> np.ndarray:
+                weights: np.ndarray | None) -> tuple[np.ndarray, np.ndarray | None]:
     """(e,) enter of the (e, 2) edges `simplices`: their own (half length, or signed radius
     of power) unless attached; the edges `check` get the global attachment test. The half
-    lengths in cache-sized chunks, alternate ones in a helper thread."""
+    lengths in cache-sized chunks, alternate ones in a helper thread. Second: weighted, the
+    (e,) uint8 bits of edge_powers (which vertex lies below the other's power), else None."""
     a, b = simplices[:, 0], simplices[:, 1]
     if weights is None:
         half = np.empty(len(simplices))
@@ -146,7 +190,7 @@ def _edge_enter(points: np.ndarray, simplices: np.ndarray, regular: np.ndarray,
             centres = 0.5 * (points[a[check]] + points[b[check]])
             attached[check] |= any_point_inside(points, centres, half[check] ** 2)
     else:
-        power, centres, _ = edge_powers(points, weights, simplices.astype(np.int64))
+        power, centres, below = edge_powers(points, weights, simplices.astype(np.int64))
         half = signed_sqrt(power)
         if len(check):
             attached[check] |= any_point_below(points, weights, centres[check], power[check])
@@ -157,7 +201,7 @@ def _edge_enter(points: np.ndarray, simplices: np.ndarray, regular: np.ndarray,
                               np.minimum(half[lo:hi], regular[lo:hi]))
 
     halves(choose, len(half), PASSES)
-    return out
+    return out, None if weights is None else below
 
 
 def _starts(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -192,24 +236,25 @@ def _edge_ends(keys: np.ndarray, starts: np.ndarray, m: int) -> np.ndarray:
 
 def edge_level(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
                bits: np.ndarray | None, weights: np.ndarray | None = None,
-               sort: bool = True) -> Level:
+               sort: bool = True) -> tuple[Level, np.ndarray | None]:
     """Level 1 (3D) from the triangles: unique edges and their aggregated cofacet values.
 
     `bits` (bit j: vertex j attaches the opposite edge) come from facet_radii2; edges of
     triangles next to flat cells (`near_flat`) get the global attachment test. bits=None:
     the edges get no values at all ((0,) arrays: a mode supplies them), only their
-    vertices and the triangles' face ids.
+    vertices and the triangles' face ids. Second: weighted, each edge's (e,) uint8 bits of
+    core.geometry.power.edge_powers in the level's order (for the vertex level), else None.
     """
     m = len(points)
     tris = triangles.simplices
-    keys, tri_ids, ids_ascend = _edge_incidences(tris, m)
+    keys, tri_ids, ids_ascend, order = _edge_incidences(tris, m)
     is_start, starts = _starts(keys)
-    inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m)
-    del is_start
+    inside, face_ids = _incidences(keys, tri_ids, is_start, tris, bits, m, order)
+    del is_start, order
     simplices = _edge_ends(keys, starts, m)
     if bits is None:  # a mode supplies every value (core/modes/alpha_modes.py)
         triangles.face_ids = face_ids.reshape(-1, 3)
-        return Level(simplices, np.empty(0), np.empty(0), np.empty(0))
+        return Level(simplices, np.empty(0), np.empty(0), np.empty(0)), None
     n = len(keys)
     if ids_ascend and sort:  # triangles sorted by enter: each edge's first is its least
         regular = take(triangles.enter, take(tri_ids, starts))
@@ -223,8 +268,9 @@ def edge_level(points: np.ndarray, triangles: Level, near_flat: np.ndarray,
     # over all incidences
     check = np.unique(face_ids.reshape(-1, 3)[np.flatnonzero(near_flat)])
     del keys, tri_ids, inside
-    enter = _edge_enter(points, simplices, regular, attached, check, weights)
+    enter, below = _edge_enter(points, simplices, regular, attached, check, weights)
     level = Level(simplices, enter, regular, interior)
-    inverse = permute_level(level, sort_order(enter, sort))
+    order = sort_order(enter, sort)
+    inverse = permute_level(level, order)
     triangles.face_ids = (face_ids if inverse is None else take(inverse, face_ids)).reshape(-1, 3)
-    return level
+    return level, below if below is None or order is None else take(below, order)

@@ -10,10 +10,11 @@ from core.geometry.power import edge_powers, signed_sqrt
 
 
 def vertex_level(n_points: int, edges: Level, points: np.ndarray | None = None,
-                 weights: np.ndarray | None = None) -> Level:
+                 weights: np.ndarray | None = None, bits: np.ndarray | None = None) -> Level:
     """Level 0: vertices enter at 0 (weighted: at -sqrt(w), or with their first edge when
     a neighbour has negative power to their sphere); regular/interior over their edges.
-    Edges without values (a mode's table) give vertices without values."""
+    Edges without values (a mode's table) give vertices without values. `bits`: the
+    edges' (e,) edge_powers bits when the edge pass has them, else computed here."""
     edges.face_ids = edges.simplices[:, ::-1].copy()
     simplices = np.arange(n_points, dtype=np.int32)[:, None]
     if len(edges.enter) < len(edges.simplices):
@@ -25,7 +26,8 @@ def vertex_level(n_points: int, edges: Level, points: np.ndarray | None = None,
         np.maximum.at(interior, edges.simplices[:, col], edges.interior)
     if weights is None:
         return Level(simplices, np.zeros(n_points), regular, interior)
-    bits = edge_powers(points, weights, edges.simplices)[2]
+    if bits is None:
+        bits = edge_powers(points, weights, edges.simplices)[2]
     attached = np.zeros(n_points, dtype=bool)
     attached[edges.simplices[(bits & 2) != 0, 0]] = True  # vertex 1 below vertex 0's power
     attached[edges.simplices[(bits & 1) != 0, 1]] = True

@@ -57,7 +57,9 @@ def edge_vectors(points: np.ndarray, simplices: np.ndarray) -> np.ndarray:
     """(n, k, d) vectors from each simplex's first vertex to its others."""
     n, width = simplices.shape
     corners = np.take(points, simplices.ravel(), axis=0).reshape(n, width, points.shape[1])
-    corners[:, 1:] -= corners[:, :1]
+    first = corners[:, 0].copy()  # one vertex at a time: no overlapping broadcast copy
+    for j in range(1, width):
+        np.subtract(corners[:, j], first, out=corners[:, j])
     return corners[:, 1:]
 
 
@@ -110,10 +112,12 @@ class Terms(NamedTuple):
     duals: np.ndarray | None  # (k, n, d) for d-simplices: dual_i . vec_j = det if i == j
 
 
-def centre_terms(vec: np.ndarray, rhs: np.ndarray | None = None) -> Terms:
-    """The centre system's terms for (n, k, d) edge vectors, k >= 2 (solve_centres)."""
+def centre_terms(vec: np.ndarray, rhs: np.ndarray | None = None,
+                 sq: np.ndarray | None = None) -> Terms:
+    """The centre system's terms for (n, k, d) edge vectors, k >= 2 (solve_centres); `sq`:
+    their (n, k) squared lengths when the caller has them."""
     k, d = vec.shape[1], vec.shape[2]
-    sq = np.einsum("nid,nid->ni", vec, vec)
+    sq = np.einsum("nid,nid->ni", vec, vec) if sq is None else sq
     rhs = sq if rhs is None else rhs
     a, b = vec[:, 0], vec[:, 1]
     if k == 2 and d == 2:
@@ -138,20 +142,22 @@ def centre_terms(vec: np.ndarray, rhs: np.ndarray | None = None) -> Terms:
 
 
 def solve_centres(vec: np.ndarray, degenerate_rtol: float = DEGENERATE_RTOL,
-                  rhs: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
+                  rhs: np.ndarray | None = None, sq: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, ...]:
     """Centre offsets (n, d), determinants (n,), flags (degenerate, ill-conditioned), and for
     d-simplices the dual vectors (k, n, d): dual_i . vec_j = det if i == j else 0.
 
     The centre c solves 2 vec_i . c = rhs_i in the simplex's span; rhs defaults to |vec_i|²
-    (circumcentres); |vec_i|² - (w_i - w_0) gives the centres of orthogonal spheres."""
+    (circumcentres); |vec_i|² - (w_i - w_0) gives the centres of orthogonal spheres. `sq`:
+    the (n, k) |vec_i|² when the caller has them."""
     if vec.shape[1] == 1:
-        sq = np.einsum("nid,nid->ni", vec, vec)
+        sq = np.einsum("nid,nid->ni", vec, vec) if sq is None else sq
         zero = sq[:, 0] == 0.0
         if rhs is None:
             return 0.5 * vec[:, 0], np.ones(len(vec)), zero, zero, None
         ratio = rhs[:, 0] / (2.0 * np.where(zero, 1.0, sq[:, 0]))
         return ratio[:, None] * vec[:, 0], np.ones(len(vec)), zero, zero, None
-    return _solved(centre_terms(vec, rhs), degenerate_rtol)
+    return _solved(centre_terms(vec, rhs, sq), degenerate_rtol)
 
 
 def _solved(terms: Terms, degenerate_rtol: float = DEGENERATE_RTOL) -> tuple[np.ndarray, ...]:

@@ -108,14 +108,15 @@ def _refine(power: np.ndarray, size: np.ndarray, points: np.ndarray, weights: np
 
 
 def _orthospheres(points: np.ndarray, weights: np.ndarray, simplices: np.ndarray,
-                  vec: np.ndarray | None = None):
+                  vec: np.ndarray | None = None, sq: np.ndarray | None = None):
     """One chunk: centre offsets, powers, determinants, degenerate flags and (d-simplices)
-    attach bits, with extended precision and least squares where needed. `vec`: the
-    chunk's edge_vectors, when the caller has them already."""
+    attach bits, with extended precision and least squares where needed. `vec`, `sq`: the
+    chunk's edge_vectors and their squared lengths, when the caller has them already."""
     vec = edge_vectors(points, simplices) if vec is None else vec
+    sq = np.einsum("nid,nid->ni", vec, vec) if sq is None else sq  # once, for both uses
     rel = _relative(weights, simplices)
-    rhs = np.einsum("nid,nid->ni", vec, vec) - rel[:, 1:]
-    c0, det, bad, poor, duals = solve_centres(vec, DEGENERATE_RTOL, rhs)
+    rhs = sq - rel[:, 1:]
+    c0, det, bad, poor, duals = solve_centres(vec, DEGENERATE_RTOL, rhs, sq)
     if poor.any():
         c0[poor], det[poor], bad[poor] = extended(points, simplices[poor], weights)
     bits = None if duals is None else barycentric_signs(duals, c0, det)
@@ -177,8 +178,9 @@ def triangle_powers(points: np.ndarray, weights: np.ndarray, triangles: np.ndarr
     for lo in range(0, len(triangles), CACHE_CHUNK):
         sl = slice(lo, lo + CACHE_CHUNK)
         vec = edge_vectors(points, triangles[sl])
-        c0, power[sl], _, bad, _ = _orthospheres(points, weights, triangles[sl], vec)
-        lam = _coordinates(vec, c0)
+        sq = np.einsum("nid,nid->ni", vec, vec)
+        c0, power[sl], _, bad, _ = _orthospheres(points, weights, triangles[sl], vec, sq)
+        lam = _coordinates(vec, c0, sq)
         chunk = ((1.0 - lam.sum(axis=1)) < -ON_SPHERE_RTOL).astype(np.uint8)
         chunk |= (lam[:, 0] < -ON_SPHERE_RTOL).astype(np.uint8) << 1
         chunk |= (lam[:, 1] < -ON_SPHERE_RTOL).astype(np.uint8) << 2
@@ -187,10 +189,11 @@ def triangle_powers(points: np.ndarray, weights: np.ndarray, triangles: np.ndarr
     return power, bits
 
 
-def _coordinates(vec: np.ndarray, c0: np.ndarray) -> np.ndarray:
-    """(n, 2) coefficients of offsets c0 in the (n, 2, 3) edge vectors of triangles."""
+def _coordinates(vec: np.ndarray, c0: np.ndarray, sq: np.ndarray) -> np.ndarray:
+    """(n, 2) coefficients of offsets c0 in the (n, 2, 3) edge vectors of triangles, whose
+    (n, 2) squared lengths are `sq` (the same sums as an einsum of each vector's own)."""
     a, b = vec[:, 0], vec[:, 1]
-    aa, bb, ab = (np.einsum("nd,nd->n", x, y) for x, y in ((a, a), (b, b), (a, b)))
+    aa, bb, ab = sq[:, 0], sq[:, 1], np.einsum("nd,nd->n", a, b)
     ca, cb = np.einsum("nd,nd->n", c0, a), np.einsum("nd,nd->n", c0, b)
     det = aa * bb - ab * ab
     det = np.where(det > 0, det, 1.0)

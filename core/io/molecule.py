@@ -104,7 +104,12 @@ def drop_other_conformers(model) -> int:
     position (chain, number, insertion code) the first altloc met is kept, with every atom
     that has none. Atoms that merely share a name (ligands written with one name per
     element, residues numbered alike) all stay: gemmi's remove_alternative_conformations
-    keeps one atom per name, and so dropped them."""
+    keeps one atom per name, and so dropped them. A model without altlocs (gemmi counts the
+    atoms whose altloc is empty, selection ':') is left as it is without a pass over its atoms."""
+    import gemmi
+
+    if model.count_atom_sites(gemmi.Selection(":")) == model.count_atom_sites():
+        return 0
     kept: dict[tuple[str, str], str] = {}
     removed = 0
     for chain in model:

@@ -12,7 +12,7 @@ import numpy as np
 from core.arrays import contiguous_readonly
 from core.errors import InputError
 from core.molecule.cavities import void_cells
-from core.molecule.measures import union_measures
+from core.molecule.measures import dual_simplices, union_measures
 from core.molecule.pockets import Pockets, find_pockets
 from core.molecule.regions import dual_facts, lining_atoms, region_measures
 
@@ -72,11 +72,6 @@ def pocket_dicts(pockets: Pockets, labels: list[dict] | None = None) -> list[dic
     return out
 
 
-def _in_complex(ac, k: int, alpha2: float) -> np.ndarray:
-    """(n_k,) bool: the k-simplices of the complex at alpha²."""
-    return ac.intervals_sq(k)[:, 0] <= alpha2
-
-
 def measure_molecule(ac, probe: float, alpha2: float = 0.0,
                      check: Callable[[], None] | None = None) -> MoleculeMeasures:
     """Area, volume, per-atom area and cavities of a weighted 3D AlphaComplex's balls.
@@ -91,7 +86,7 @@ def measure_molecule(ac, probe: float, alpha2: float = 0.0,
     if ac.weights.min() + alpha2 <= 0:
         raise InputError(f"alpha2 {alpha2:g} leaves some balls with no radius")
     radii = np.sqrt(ac.weights + alpha2)
-    simplices = [ac.simplices(k)[_in_complex(ac, k, alpha2)] for k in range(4)]
+    simplices = dual_simplices(ac, alpha2)
     union = union_measures(ac.points, radii, *simplices[1:], vertices=simplices[0][:, 0])
     check()
     facts = dual_facts(ac, alpha2)

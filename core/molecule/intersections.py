@@ -24,13 +24,19 @@ TWO_PI = 2.0 * np.pi
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """(m,) dot products of (3, m) vectors."""
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    out = a[0] * b[0]
+    out += a[1] * b[1]
+    out += a[2] * b[2]
+    return out
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(3, m) cross products of (3, m) vectors."""
-    return np.stack((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                     a[0] * b[1] - a[1] * b[0]))
+    """(3, m) cross products of (3, m) vectors (written in place: no stacked copy)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    for i, (j, k) in enumerate(((1, 2), (2, 0), (0, 1))):
+        np.multiply(a[j], b[k], out=out[i])
+        out[i] -= a[k] * b[j]
+    return out
 
 
 def _norm(v: np.ndarray) -> np.ndarray:
@@ -83,14 +89,6 @@ def radical_point(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     return z.T, t
 
 
-def _exterior_angle(corner, ca, ra, ub, uc):
-    """Angle between the inward conormals, on sphere a at `corner`, of the caps toward b, c."""
-    e = (corner - ca) / ra
-    nb = ub - _dot(ub, e) * e
-    nc = uc - _dot(uc, e) * e
-    return np.arctan2(_norm(_cross(nb, nc)), _dot(nb, nc))
-
-
 def two_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Lens volume (m,) and the cap areas (m, 2) of each sphere inside the other ball."""
     volume, areas = _two_planes(*_split(c, r))
@@ -108,6 +106,45 @@ def _two_planes(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 TRIANGLE_PAIRS = ((0, 1, 2), (1, 2, 0), (0, 2, 1))  # (a, b, third)
 
 
+def _meeting(cx, cy, cw, rx, ry, rw):
+    """Where three balls' spheres meet: the radical point z (3, m) of the three, t (m,) the
+    distance from z to either meeting point, n = (cy - cx) x (cw - cx) (3, m), |n| (m,) (twice
+    the triangle's area), and the dot products of the two edge vectors at x, at y and at w."""
+    p, q = cy - cx, cw - cx
+    pp, pq, qq = _dot(p, p), _dot(p, q), _dot(q, q)
+    g0 = 0.5 * (pp - ry * ry + rx * rx)
+    g1 = 0.5 * (qq - rw * rw + rx * rx)
+    det = pp * qq - pq * pq
+    y = (g0 * qq - g1 * pq) / det * p + (pp * g1 - pq * g0) / det * q
+    t = np.sqrt(np.maximum(rx * rx - _dot(y, y), 0.0))
+    n = _cross(p, q)
+    return cx + y, t, n, _norm(n), (pq, pp - pq, qq - pq)
+
+
+def _corner_angle(area_t, ra, dot_a, h_ab, h_ae):
+    """Exterior angle, on sphere a at a point where it meets spheres b and e, between the
+    inward conormals of its caps toward b and e. With e = (corner - c_a) / r_a and the unit
+    axes u_b, u_e: atan2(|e . (u_b x u_e)|, u_b . u_e - (u_b . e)(u_e . e)); the corner lies
+    on both radical planes (u_b . e = s_ab / r_a) and t from the centres' plane, so scaled
+    by r_a² d_ab d_ae that is atan2(2 A t r_a, r_a² (v_ab . v_ae) - h_ab h_ae), with
+    `area_t` = 2 A t (A the area of the centres' triangle), `dot_a` = v_ab . v_ae (the edge
+    vectors from c_a) and h_ab = s_ab d_ab = (d_ab² + r_a² - r_b²) / 2."""
+    return np.arctan2(area_t * ra, ra * ra * dot_a - h_ab * h_ae)
+
+
+def _pair(ca, ra, cb, rb):
+    """pair_geometry, and h = s d and d² - h (s d from each end: _corner_angle's h)."""
+    u = cb - ca
+    d2 = _dot(u, u)
+    d = np.sqrt(d2)
+    u = u / d
+    ra2, rb2 = ra * ra, rb * rb
+    h = 0.5 * (d2 + ra2 - rb2)
+    s = h / d
+    rho2 = np.maximum(ra2 - s * s, 0.0)
+    return d, u, s, rho2, ca + s * u, (h, 0.5 * (d2 + rb2 - ra2))
+
+
 def three_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Volume (m,) of three balls' intersection and each sphere's area inside the other two."""
     volume, areas = _three_planes(*_split(c, r))
@@ -116,23 +153,24 @@ def three_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def _three_planes(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """three_balls on (k, 3, m) centres and (k, m) radii; areas (k, m)."""
-    z, t = _radical(c, r)
-    corner = z + t * _unit(_cross(c[1] - c[0], c[2] - c[0]))
-    arc, s_from, units = {}, {}, {}
+    z, t, _, area2, dots = _meeting(c[0], c[1], c[2], r[0], r[1], r[2])
+    height = t / np.where(area2 > 0, area2, 1.0)  # t / (2 A)
+    arc, s_from, h = {}, {}, {}
     volume = np.zeros(r.shape[1])
     for a, b, o in TRIANGLE_PAIRS:
-        d, u, s, rho2, m = pair_geometry(c[a], r[a], c[b], r[b])
-        w = c[o] - c[a]
-        w = _unit(w - _dot(w, u) * u)
-        e = _dot(z - m, w)
-        theta = 2.0 * np.arctan2(t, e)  # arc of circle ab inside ball o
-        volume -= d * (0.5 * rho2 * theta - e * t)  # d * (segment of the disk inside ball o)
+        d, _, s, rho2, m, (h_ab, h_ba) = _pair(c[a], r[a], c[b], r[b])
+        # signed distance from the circle's centre m to z, toward ball o: (z - m) is normal
+        # to the axis, and c_o's distance from the axis is 2 A / d
+        e = _dot(z - m, c[o] - c[a]) * d
+        theta = 2.0 * np.arctan2(t * area2, e)  # arc of circle ab inside ball o
+        volume -= d * (0.5 * rho2 * theta - e * height)  # d * (segment of the disk inside o)
         arc[a, b] = arc[b, a] = theta
         s_from[a, b], s_from[b, a] = s, d - s
-        units[a, b], units[b, a] = u, -u
+        h[a, b], h[b, a] = h_ab, h_ba
     areas = np.empty_like(r)
+    area_t = area2 * t
     for a, b, o in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
-        ext = _exterior_angle(corner, c[a], r[a], units[a, b], units[a, o])
+        ext = _corner_angle(area_t, r[a], dots[a], h[a, b], h[a, o])
         geodesic = s_from[a, b] * arc[a, b] + s_from[a, o] * arc[a, o]
         areas[a] = r[a] ** 2 * (TWO_PI - 2.0 * ext) - r[a] * geodesic
         volume += r[a] * areas[a]
@@ -145,16 +183,16 @@ TETRA_PAIRS = ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2), (1, 2, 0, 3), (1, 3, 0,
 
 
 def _face_corners(c: np.ndarray, r: np.ndarray) -> dict:
-    """For each face of each tetrahedron, the point where its three spheres meet on the side
-    of the opposite centre, keyed by the face's vertex set."""
-    corners = {}
+    """For each face (x, y, w) (ascending) of each tetrahedron: the point where its three
+    spheres meet on the side of the opposite centre, 2 A t (_corner_angle's area_t) and the
+    edge vectors' dot products at its vertices ({x: ., y: ., w: .})."""
+    faces = {}
     for x, y, w, o in TETRA_FACES:
-        idx = [x, y, w]
-        z, t = _radical(c[idx], r[idx])
-        normal = _unit(_cross(c[y] - c[x], c[w] - c[x]))
-        normal *= np.sign(_dot(normal, c[o] - c[x]))
-        corners[frozenset(idx)] = z + t * normal
-    return corners
+        z, t, n, area2, dots = _meeting(c[x], c[y], c[w], r[x], r[y], r[w])
+        side = np.sign(_dot(n, c[o] - c[x]))
+        corner = z + (t * side / np.where(area2 > 0, area2, 1.0)) * n
+        faces[x, y, w] = corner, area2 * t, dict(zip((x, y, w), dots, strict=True))
+    return faces
 
 
 def four_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -166,28 +204,32 @@ def four_balls(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _four_planes(c: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """four_balls on (k, 3, m) centres and (k, m) radii; areas (k, m)."""
     z, _ = _radical(c, r)
-    corners = _face_corners(c, r)
-    arc, s_from, units = {}, {}, {}
+    faces = _face_corners(c, r)
+    arc, s_from, h = {}, {}, {}
     volume = np.zeros(r.shape[1])
     for a, b, p, q in TETRA_PAIRS:
-        d, u, s, rho2, m = pair_geometry(c[a], r[a], c[b], r[b])
+        d, u, s, rho2, m, (h_ab, h_ba) = _pair(c[a], r[a], c[b], r[b])
         # The face of planes a|b is the disk ab cut by a wedge with apex z whose rays end at
-        # the corners abp and abq; order them counter-clockwise about u.
-        first, second = corners[frozenset((a, b, p))], corners[frozenset((a, b, q))]
-        ccw = _dot(_cross(first - z, second - z), u) >= 0
-        p1, p2 = np.where(ccw, first, second), np.where(ccw, second, first)
-        theta = np.mod(np.arctan2(_dot(_cross(p1 - m, p2 - m), u), _dot(p1 - m, p2 - m)),
-                       TWO_PI)
-        volume -= d * 0.5 * (rho2 * theta + _dot(_cross(m - z, p2 - p1), u))
+        # the corners abp and abq, taken counter-clockwise about u: with f, g those corners
+        # seen from m, the order is counter-clockwise when [f - (z - m), g - (z - m), u] =
+        # [f, g, u] + [m - z, g - f, u] >= 0, else f and g swap (both products change sign).
+        f = faces[tuple(sorted((a, b, p)))][0] - m
+        g = faces[tuple(sorted((a, b, q)))][0] - m
+        turn = _dot(_cross(f, g), u)
+        wedge = _dot(_cross(m - z, g - f), u)
+        sign = np.where(turn + wedge >= 0, 1.0, -1.0)
+        theta = np.mod(np.arctan2(sign * turn, _dot(f, g)), TWO_PI)
+        volume -= d * 0.5 * (rho2 * theta + sign * wedge)
         arc[a, b] = arc[b, a] = theta
         s_from[a, b], s_from[b, a] = s, d - s
-        units[a, b], units[b, a] = u, -u
+        h[a, b], h[b, a] = h_ab, h_ba
     areas = np.empty_like(r)
     for a in range(4):
         o = [b for b in range(4) if b != a]
-        ext = sum(_exterior_angle(corners[frozenset((a, b, e))], c[a], r[a],
-                                  units[a, b], units[a, e])
-                  for b, e in ((o[0], o[1]), (o[0], o[2]), (o[1], o[2])))
+        ext = 0.0
+        for b, e in ((o[0], o[1]), (o[0], o[2]), (o[1], o[2])):
+            _, area_t, dots = faces[tuple(sorted((a, b, e)))]
+            ext = ext + _corner_angle(area_t, r[a], dots[a], h[a, b], h[a, e])
         geodesic = sum(s_from[a, b] * arc[a, b] for b in o)
         areas[a] = r[a] ** 2 * (TWO_PI - ext) - r[a] * geodesic
         volume += r[a] * areas[a]

@@ -11,6 +11,7 @@ from scipy.sparse import coo_matrix
 from scipy.spatial import cKDTree
 
 from core.molecule.exact_cells import clipped_cell_measures, near_balls, needs_clipping, neighbours
+from core.molecule.measures import in_complex
 from core.molecule.sectors import tet_edge_ids, tet_pieces, tet_volumes
 from core.parallel import both
 
@@ -64,7 +65,7 @@ class DualFacts:
 def dual_facts(ac, alpha2: float = 0.0) -> DualFacts:
     """DualFacts of a weighted 3D AlphaComplex at alpha²."""
     def inside(k):
-        return ac.intervals_sq(k)[:, 0] <= alpha2
+        return in_complex(ac, k, alpha2)
 
     tet_faces = np.asarray(ac.face_ids(3), np.int64)
     vertex_in = np.zeros(len(ac.points), bool)

@@ -67,8 +67,9 @@ class TableIndex:
                 if arr is not None:
                     readonly(arr)
         for arr in (self.table.facet_cells, self.table.facet_flip, self.table.cell_measure,
-                    self.table.facet_interior_order):
-            readonly(arr)
+                    self.table.facet_order):
+            if arr is not None:  # the facet order is sorted, read-only, on first use
+                readonly(arr)
 
     @property
     def dim(self) -> int:
