@@ -3,6 +3,7 @@ Qhull's simplex for simplex, or the build falls back to Qhull (automatic) or ref
 
 from __future__ import annotations
 
+import ctypes
 import os
 import signal
 import threading
@@ -126,6 +127,26 @@ def test_degenerate_input_falls_back_to_qhull(name: str, monkeypatch) -> None:
     assert np.array_equal(tri.cells, ref.cells) and np.array_equal(tri.neighbors, ref.neighbors)
     with pytest.raises(InputError, match="cannot promise Qhull's exact triangulation"):
         backends.delaunay(points, "gmsh")
+
+
+@needs_gmsh
+@pytest.mark.skipif(os.name != "posix", reason="reaches the C library's srand through ctypes")
+def test_gmsh_gives_the_same_cells_whatever_calls_came_before(monkeypatch) -> None:
+    """gmsh draws from the C library's rand(), whose state earlier calls (gmsh's own or any
+    other code's) leave behind: the same points still give the same cells and the same
+    choice of backend (the choice once changed from call to call in one process)."""
+    points = prepared(DEGENERATE["near duplicates"](np.random.default_rng(3)))
+    monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 0)
+    srand = ctypes.CDLL(None).srand
+    srand.argtypes, srand.restype = [ctypes.c_uint], None
+    cells, choices = [], []
+    for seed in (1, 2, 3, 48):
+        srand(seed)
+        cells.append(backends.gmsh_backend.gmsh_cells(points))
+        srand(seed)
+        choices.append(backends.delaunay(points)[1])
+    assert all(np.array_equal(c, cells[0]) for c in cells[1:])
+    assert all(choice == choices[0] for choice in choices[1:]), choices
 
 
 @needs_gmsh
