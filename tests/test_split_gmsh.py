@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from reference import DATA_ABSENT, data_dir, read_scan
-from test_backends import DEGENERATE, cell_set, prepared
+from test_backends import DEGENERATE, TIED, cell_set, prepared
 from test_split import SPLITTABLE, assert_same_cells, by_rows, splits_counted
 
 import core.backends as backends
@@ -52,11 +52,11 @@ def test_gmsh_split_equals_one_qhull_call_on_real_scans(name: str) -> None:
     gmsh_split_equals_qhull(prepared(read_scan(folder / name)))
 
 
-@pytest.mark.parametrize("name", list(DEGENERATE))
+@pytest.mark.parametrize("name", TIED)
 def test_degenerate_input_falls_back_from_the_gmsh_halves(name: str, monkeypatch) -> None:
-    """Lattices, cospherical points, near duplicates: the gmsh halves cannot promise Qhull's
-    cells (the reason in the note), nor can one gmsh call: the automatic choice is one
-    Qhull call."""
+    """Lattices, cospherical points (no unique Delaunay triangulation): the gmsh halves cannot
+    promise Qhull's cells (the reason in the note), nor can one gmsh call: the automatic
+    choice is one Qhull call."""
     points = prepared(DEGENERATE[name](np.random.default_rng(3)))
     monkeypatch.setattr(split, "GMSH_SPLIT_FROM_POINTS", 0)
     monkeypatch.setattr(backends, "GMSH_FROM_POINTS", 0)

@@ -3,7 +3,9 @@
 gmsh.algorithm.tetrahedralize / triangulate return Delaunay cells without neighbours and
 without some cells near the hull; core.backends.restore completes them and
 core.backends.certify decides whether the result is certainly the unique Delaunay
-triangulation (the one the table then gets from Qhull too).
+triangulation (the one the table then gets from Qhull too). gmsh draws from the C library's
+rand(), whose state one call leaves to the next: every call reseeds it first, so the same
+points give the same cells (and the same choice of backend) however many calls came before.
 """
 
 from __future__ import annotations
@@ -51,14 +53,30 @@ def _ignore_sigpipe() -> None:
         pass  # no C signal() to call: not a POSIX system, where SIGPIPE does not exist
 
 
+#: The seed every gmsh call starts from: the C library's own at the start of a process.
+RAND_SEED = 1
+
+
+def _reseed(gmsh) -> None:
+    """Reset the rand() state gmsh draws from (the C library's, process-wide) to RAND_SEED,
+    where that library can be reached (srand found through gmsh's own library)."""
+    try:
+        srand = gmsh.lib.srand
+    except AttributeError:
+        return  # no srand beside gmsh (its C runtime not shared): calls may then differ
+    srand.argtypes, srand.restype = [ctypes.c_uint], None
+    srand(RAND_SEED)
+
+
 def gmsh_cells(points: np.ndarray) -> np.ndarray:
     """(t, d+1) int32 cells with ascending rows that gmsh finds for (m, 2) or (m, 3)
-    distinct points (a subset of the Delaunay cells; may be empty). gmsh holds global state,
-    so calls are serialised."""
+    distinct points (a subset of the Delaunay cells; may be empty), the same for the same
+    points on every call (_reseed). gmsh holds global state, so calls are serialised."""
     d = points.shape[1]
     flat = np.ascontiguousarray(points, dtype=np.float64).ravel()
     with _lock:
         gmsh = _ready()
+        _reseed(gmsh)
         if d == 3:
             raw = gmsh.algorithm.tetrahedralize(flat)[0]
         else:
