@@ -351,3 +351,24 @@ def test_loading_the_library_keeps_ctrl_c_a_keyboard_interrupt() -> None:
     done = subprocess.run([sys.executable, "-c", script], cwd=root, env=env,
                           capture_output=True, text=True, timeout=60)
     assert (done.returncode, done.stdout.strip()) == (0, "interrupted"), done.stderr
+
+
+@pytest.mark.parametrize("zero", [0.0, -0.0])
+def test_a_heavier_twin_later_in_the_input_is_the_one_kept(zero: float) -> None:
+    """The heaviest of coincident points is kept wherever it comes in the input, also where
+    the twins' coordinates differ only in the sign of a zero (equal numbers): the same cells
+    as with twins equal bit for bit."""
+    rng = np.random.default_rng(12)
+    points = rng.random((300, 3)) + 1.0
+    points[:50, 0] = 0.0
+    weights = spacing_weights(rng, points, 0.5)
+    later = points[:50].copy()
+    later[:, 0] = zero
+    twins = np.vstack([points, later])
+    twin_weights = np.concatenate([weights, weights[:50] * 2.0])
+    cells, neighbors = geogram.regular_cells(twins, twin_weights)
+    assert not np.isin(np.arange(50), cells).any()
+    assert_valid_neighbours(cells, neighbors)
+    same = np.vstack([points, points[:50]])
+    assert adjacency(cells, neighbors) == adjacency(*geogram.regular_cells(same, twin_weights))
+
