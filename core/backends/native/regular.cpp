@@ -200,9 +200,14 @@ std::vector<uint32_t> distinct(int dim, size_t m, const double* points, const do
 
 }  // namespace
 
-// 1 when the library can triangulate (initialised, exact arithmetic intact), else 0.
+// 1 when the library can triangulate (initialised, exact arithmetic intact), else 0 (also
+// when initialising threw: no C++ exception may reach ctypes, it would abort the process).
 AS_API int as_ready() {
-    std::call_once(started, start);
+    try {
+        std::call_once(started, start);
+    } catch (...) {
+        return 0;
+    }
     return usable ? 1 : 0;
 }
 
