@@ -372,3 +372,10 @@ def test_a_heavier_twin_later_in_the_input_is_the_one_kept(zero: float) -> None:
     same = np.vstack([points, points[:50]])
     assert adjacency(cells, neighbors) == adjacency(*geogram.regular_cells(same, twin_weights))
 
+
+def test_weights_not_one_per_point_are_refused() -> None:
+    """The library reads one weight a point: another count is a ValueError, not a read
+    past the array."""
+    points = np.random.default_rng(13).random((20, 3))
+    with pytest.raises(ValueError, match=r"20 points need \(20,\) weights"):
+        geogram.regular_cells(points, np.zeros(19))

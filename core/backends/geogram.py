@@ -67,6 +67,8 @@ def regular_cells(points: np.ndarray, weights: np.ndarray) -> tuple[np.ndarray, 
     m, d = points.shape
     xyz = np.ascontiguousarray(points, dtype=np.float64)
     w = np.ascontiguousarray(weights, dtype=np.float64)
+    if w.shape != (m,):  # the library reads m weights
+        raise ValueError(f"{m} points need ({m},) weights, not {w.shape}")
     handle, count = ctypes.c_void_p(), ctypes.c_int64()
     code = lib.as_regular(d, m, xyz.ctypes.data, w.ctypes.data, ctypes.byref(handle),
                           ctypes.byref(count))
