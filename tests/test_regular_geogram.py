@@ -321,6 +321,18 @@ def test_a_geogram_failure_falls_back_to_qhull_and_says_why(monkeypatch) -> None
     assert len(tri.cells)
 
 
+def test_more_points_than_geograms_indices_take_fall_back_to_qhull(monkeypatch) -> None:
+    monkeypatch.setitem(geogram.MAX_POINTS, 3, 99)
+    rng = np.random.default_rng(12)
+    points = rng.random((100, 3))
+    weights = spacing_weights(rng, points, 1.0)
+    tri, choice = backends.regular(points, weights)
+    assert choice == backends.Choice("qhull", "geogram not used: 100 points are more than "
+                                              "geogram's 32-bit cell arrays take (99 at most in 3D)")
+    assert len(tri.cells)
+    assert backends.regular(points[:99], weights[:99])[1].backend == "geogram"
+
+
 def test_forced_qhull_uses_qhull() -> None:
     rng = np.random.default_rng(11)
     points = rng.random((100, 3))
