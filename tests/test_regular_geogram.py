@@ -327,8 +327,9 @@ def test_more_points_than_geograms_indices_take_fall_back_to_qhull(monkeypatch) 
     points = rng.random((100, 3))
     weights = spacing_weights(rng, points, 1.0)
     tri, choice = backends.regular(points, weights)
-    assert choice == backends.Choice("qhull", "geogram not used: 100 points are more than "
-                                              "geogram's 32-bit cell arrays take (99 at most in 3D)")
+    assert choice == backends.Choice(
+        "qhull", "geogram not used: 100 points are more than geogram's 32-bit cell arrays "
+                 "take (99 at most in 3D)")
     assert len(tri.cells)
     assert backends.regular(points[:99], weights[:99])[1].backend == "geogram"
 
