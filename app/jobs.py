@@ -196,7 +196,9 @@ class Runner(QObject):
         except Cancelled:
             self._report.emit(request, CANCELLED, None)
         except BaseException as error:  # every failure becomes a message; none is lost
-            stop = isinstance(error, STOPS)  # re-raised: the thread's excepthook shows it
+            # a stop is re-raised and ends the thread; threading.excepthook prints a
+            # KeyboardInterrupt and ignores a SystemExit: the failure line names both
+            stop = isinstance(error, STOPS)
             if not isinstance(error, (AlphaScoopError, MemoryError, *STOPS)):
                 traceback.print_exc(file=sys.stderr)  # a bug: keep its traceback too
             if stop:

@@ -258,3 +258,36 @@ def test_a_deferred_id_pass_runs_after_the_frame_of_a_new_view() -> None:
         assert not np.array_equal(moved, again)
     finally:
         scene.close()
+
+
+def every_ball_picture(scene: Scene) -> np.ndarray:
+    """The frame with every ball drawn (culling off for it, then on again: the balls are
+    found anew after it)."""
+    layer = scene.layers["balls"]
+    scene.seen.track(layer.actor, None)
+    layer.actor.GetMapper().SetInputData(layer.mesh)
+    every = picture(scene)
+    scene.seen.track(layer.actor, layer.mesh)
+    return every
+
+
+def test_a_resized_window_or_a_second_dataset_finds_its_balls_anew(scene) -> None:
+    """The balls found for a view are not kept past it: a window resized at the same aspect
+    (the same camera matrix, more pixels) or new balls in the scene draw the balls found
+    for them, with the picture every ball gives."""
+    centres, radii = packed_balls(800, seed=12)
+    ball_scene(scene, centres, radii)
+    picture(scene)
+    small = drawn(scene)
+    assert small.GetNumberOfPoints() < len(centres)
+    scene.plotter.window_size = [2 * SIZE[0], 2 * SIZE[1]]
+    shown = picture(scene)
+    assert drawn(scene) is not small and drawn(scene).GetNumberOfPoints() < len(centres)
+    np.testing.assert_array_equal(shown, every_ball_picture(scene))
+    others, other_radii = packed_balls(800, seed=13)
+    ball_scene(scene, others + 5.0, other_radii)
+    shown = picture(scene)
+    new = set(map(tuple, np.asarray(scene.layers["balls"].mesh.points).tolist()))
+    assert set(map(tuple, np.asarray(drawn(scene).points).tolist())) <= new
+    assert drawn(scene).GetNumberOfPoints() < len(others)
+    np.testing.assert_array_equal(shown, every_ball_picture(scene))

@@ -321,6 +321,19 @@ def test_a_geogram_failure_falls_back_to_qhull_and_says_why(monkeypatch) -> None
     assert len(tri.cells)
 
 
+def test_more_points_than_geograms_indices_take_fall_back_to_qhull(monkeypatch) -> None:
+    monkeypatch.setitem(geogram.MAX_POINTS, 3, 99)
+    rng = np.random.default_rng(12)
+    points = rng.random((100, 3))
+    weights = spacing_weights(rng, points, 1.0)
+    tri, choice = backends.regular(points, weights)
+    assert choice == backends.Choice(
+        "qhull", "geogram not used: 100 points are more than geogram's 32-bit cell arrays "
+                 "take (99 at most in 3D)")
+    assert len(tri.cells)
+    assert backends.regular(points[:99], weights[:99])[1].backend == "geogram"
+
+
 def test_forced_qhull_uses_qhull() -> None:
     rng = np.random.default_rng(11)
     points = rng.random((100, 3))
@@ -351,3 +364,31 @@ def test_loading_the_library_keeps_ctrl_c_a_keyboard_interrupt() -> None:
     done = subprocess.run([sys.executable, "-c", script], cwd=root, env=env,
                           capture_output=True, text=True, timeout=60)
     assert (done.returncode, done.stdout.strip()) == (0, "interrupted"), done.stderr
+
+
+@pytest.mark.parametrize("zero", [0.0, -0.0])
+def test_a_heavier_twin_later_in_the_input_is_the_one_kept(zero: float) -> None:
+    """The heaviest of coincident points is kept wherever it comes in the input, also where
+    the twins' coordinates differ only in the sign of a zero (equal numbers): the same cells
+    as with twins equal bit for bit."""
+    rng = np.random.default_rng(12)
+    points = rng.random((300, 3)) + 1.0
+    points[:50, 0] = 0.0
+    weights = spacing_weights(rng, points, 0.5)
+    later = points[:50].copy()
+    later[:, 0] = zero
+    twins = np.vstack([points, later])
+    twin_weights = np.concatenate([weights, weights[:50] * 2.0])
+    cells, neighbors = geogram.regular_cells(twins, twin_weights)
+    assert not np.isin(np.arange(50), cells).any()
+    assert_valid_neighbours(cells, neighbors)
+    same = np.vstack([points, points[:50]])
+    assert adjacency(cells, neighbors) == adjacency(*geogram.regular_cells(same, twin_weights))
+
+
+def test_weights_not_one_per_point_are_refused() -> None:
+    """The library reads one weight a point: another count is a ValueError, not a read
+    past the array."""
+    points = np.random.default_rng(13).random((20, 3))
+    with pytest.raises(ValueError, match=r"20 points need \(20,\) weights"):
+        geogram.regular_cells(points, np.zeros(19))

@@ -157,7 +157,8 @@ class SeenBalls:
             self.key, self.subset = None, None
         self.actor, self.balls = actor, balls
         if actor is not None and balls is not None:
-            if actor.GetMapper().GetInput() not in (balls, self.subset):
+            drawn = actor.GetMapper().GetInput()
+            if drawn is not balls and drawn is not self.subset:  # identity, not pyvista's ==
                 self._set_input(balls)
 
     def _id_pass(self) -> IdPass:

@@ -19,6 +19,11 @@ LIBRARY = "core.backends._geogram"  #: the compiled module (pyproject.toml's ext
 
 _FLAT, _NO_MEMORY = 3, 5  # as_regular's codes (native/regular.cpp)
 
+#: Most points geogram's 32-bit cell arrays can take, by dimension: its 3D arrays hold 4
+#: indices for each of some 6.7 cells a point (geogram's own periodic build refuses n × 28 >
+#: 2³¹ - 1), its 2D arrays 3 for each of some 2 cells a point; past it, Qhull.
+MAX_POINTS = {2: (2**31 - 1) // 12, 3: (2**31 - 1) // 28}
+
 
 class GeogramError(RuntimeError):
     """geogram could not triangulate these points (the caller falls back to Qhull)."""
@@ -60,13 +65,18 @@ def regular_cells(points: np.ndarray, weights: np.ndarray) -> tuple[np.ndarray, 
     gives the same arrays, cell order included. Calls from several threads run one at a time.
 
     InputError when the points span no cell (all coplanar or collinear); GeogramError when
-    geogram fails otherwise or the library is missing."""
+    geogram fails otherwise, the points are more than MAX_POINTS or the library is missing."""
     lib = _library()
     if lib is None:
         raise GeogramError("geogram's library was not built")
     m, d = points.shape
+    if m > MAX_POINTS[d]:
+        raise GeogramError(f"{m:,} points are more than geogram's 32-bit cell arrays take "
+                           f"({MAX_POINTS[d]:,} at most in {d}D)")
     xyz = np.ascontiguousarray(points, dtype=np.float64)
     w = np.ascontiguousarray(weights, dtype=np.float64)
+    if w.shape != (m,):  # the library reads m weights
+        raise ValueError(f"{m} points need ({m},) weights, not {w.shape}")
     handle, count = ctypes.c_void_p(), ctypes.c_int64()
     code = lib.as_regular(d, m, xyz.ctypes.data, w.ctypes.data, ctypes.byref(handle),
                           ctypes.byref(count))

@@ -132,18 +132,19 @@ bool triangulate(int dim, size_t m, const double* points, const double* weights,
     return true;
 }
 
-struct Key {  // a point's coordinates, compared and hashed bit for bit
+struct Key {  // a point's coordinates, compared as numbers (-0.0 == 0.0, as geogram does)
     const double* p;
     int dim;
     bool operator==(const Key& o) const { return std::equal(p, p + dim, o.p); }
 };
 
-struct KeyHash {
+struct KeyHash {  // equal keys hash alike: a zero's bits are +0.0's whatever its sign
     size_t operator()(const Key& k) const {
         uint64_t h = 0x9e3779b97f4a7c15ull;
         for (int i = 0; i < k.dim; ++i) {
+            const double x = k.p[i] == 0.0 ? 0.0 : k.p[i];
             uint64_t bits;
-            std::memcpy(&bits, k.p + i, 8);
+            std::memcpy(&bits, &x, 8);
             h = (h ^ bits) * 0x100000001b3ull;
             h ^= h >> 29;
         }
@@ -199,9 +200,14 @@ std::vector<uint32_t> distinct(int dim, size_t m, const double* points, const do
 
 }  // namespace
 
-// 1 when the library can triangulate (initialised, exact arithmetic intact), else 0.
+// 1 when the library can triangulate (initialised, exact arithmetic intact), else 0 (also
+// when initialising threw: no C++ exception may reach ctypes, it would abort the process).
 AS_API int as_ready() {
-    std::call_once(started, start);
+    try {
+        std::call_once(started, start);
+    } catch (...) {
+        return 0;
+    }
     return usable ? 1 : 0;
 }
 
