@@ -50,6 +50,8 @@ def test_xyzr_radii_and_comments(tmp_path):
     mol = read_molecule(path)
     assert mol.vdw_radii.tolist() == [1.5, 1.7, 1.2]
     assert mol.centres.tolist() == [[0, 0, 0], [2.5, 0, 0], [0, 2, 0]]
+    # an XYZR file has no residues or chains: the note does not count one per atom
+    assert mol.report.summary().startswith("3 atoms (0 H), no residues or chains in the file,")
 
 
 @pytest.mark.parametrize(("name", "text", "words"), [

@@ -50,8 +50,9 @@ class MoleculeReport:
                    f"alternate-location atoms skipped")
         extra = (f"; unknown elements {', '.join(self.unknown_elements)} given radius "
                  f"{UNKNOWN_RADIUS} Å" if self.unknown_elements else "")
-        return (f"{_count(self.atoms, 'atom')} ({self.hydrogens:,} H), "
-                f"{_count(self.residues, 'residue')}, {_count(self.chains, 'chain')}, "
+        groups = (f"{_count(self.residues, 'residue')}, {_count(self.chains, 'chain')}"
+                  if self.chains else "no residues or chains in the file")  # XYZR
+        return (f"{_count(self.atoms, 'atom')} ({self.hydrogens:,} H), {groups}, "
                 f"model 1 of {self.models}; {skipped}{extra}")
 
 
