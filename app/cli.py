@@ -470,7 +470,10 @@ def _export_pockets(args) -> int:
     from core.molecule.analysis import measure_molecule
 
     ext = os.path.splitext(args.output)[1].lower()
-    if not is_molecule(args) or ext not in (".vtu", ".csv") or args.table:
+    if not is_molecule(args):
+        raise UsageError(f"--pockets needs a molecule file (.pdb, .cif, .pqr, .xyzr...), "
+                         f"not {os.path.basename(args.file)}")
+    if ext not in (".vtu", ".csv") or args.table:
         raise UsageError("--pockets writes a molecule's pockets to .vtu or .csv")
     try:
         refuse_source(args.output, args.file)
