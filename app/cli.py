@@ -65,7 +65,8 @@ def _common(sub: argparse.ArgumentParser) -> None:
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
     sub.add_argument("--backend", choices=("qhull", "gmsh"),
                      help="triangulation backend (default: gmsh where installed and exact, "
-                          "else qhull)")
+                          "else qhull; weighted points: geogram where built, which "
+                          "qhull overrides)")
     sizes = sub.add_mutually_exclusive_group()
     sizes.add_argument("--weights", metavar="COLUMN",
                        help="weighted points: squared radii from this column")
