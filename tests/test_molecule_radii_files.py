@@ -3,6 +3,7 @@ XYZR gives freesasa's area for those radii; bad lines are one-line errors."""
 
 from __future__ import annotations
 
+import html
 import json
 
 import numpy as np
@@ -99,3 +100,17 @@ def test_1a8o_as_radii_file_matches_freesasa(tmp_path, kind, capsys):
     assert info["surface_area"] == pytest.approx(total, rel=1e-4)
     if kind == "pqr":
         assert info["pockets"][0]["atoms"][0]["residue"].isalpha()
+
+
+@pytest.mark.parametrize(("name", "radii"), [("m.pqr", "the file's radii"),
+                                             ("m.xyzr", "the file's radii"),
+                                             ("m.pdb.gz", "van der Waals radii (Bondi)")])
+def test_info_dock_names_where_the_radii_came_from(name, radii):
+    """A PQR or XYZR file brings its own radii: the info dock does not call them Bondi's."""
+    from types import SimpleNamespace
+
+    from app.info_panel import weights_line
+
+    ds = SimpleNamespace(is_molecule=True, probe=1.4, path=name,
+                         ac=SimpleNamespace(input_index=np.arange(3)))
+    assert weights_line(ds) == html.escape(f"atoms as balls: {radii} + probe 1.4 Å")
