@@ -114,3 +114,24 @@ def test_info_dock_names_where_the_radii_came_from(name, radii):
     ds = SimpleNamespace(is_molecule=True, probe=1.4, path=name,
                          ac=SimpleNamespace(input_index=np.arange(3)))
     assert weights_line(ds) == html.escape(f"atoms as balls: {radii} + probe 1.4 Å")
+
+
+def test_pocket_text_of_atoms_without_residues():
+    """A pocket of an XYZR file (no chains, no residue names) lists its atoms' numbers, not
+    "residues" padded with the empty names."""
+    from app.pockets_layer import pocket_text
+
+    class OnePocket:
+        volume, area, mouth_area, atoms = [55.0], [62.3], [32.0], [[1, 0]]
+
+        def mouths(self, pocket):
+            return [0]
+
+        def __len__(self):
+            return 1
+
+    pockets = OnePocket()
+    xyzr = pocket_text(pockets, 0, np.array(["::1:", "::2:"]))
+    assert xyzr.endswith("<br>2 atoms: 2, 1")
+    pdb = pocket_text(pockets, 0, np.array(["A:CYS:218:SG", "A:GLY:220:CA"]))
+    assert pdb.endswith("<br>2 residues: A GLY 220, A CYS 218")
