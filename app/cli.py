@@ -467,7 +467,7 @@ def _export_pockets(args) -> int:
     """`export --pockets`: a molecule's pockets at alpha² = 0 as VTU or CSV."""
     from app.pocket_export import write_pockets_csv, write_pockets_vtu
     from core.export.targets import refuse_source
-    from core.io.molecule import atom_labels, read_molecule
+    from core.io.molecule import atom_labels, molecule_extension, read_molecule
     from core.molecule.analysis import measure_molecule
 
     ext = os.path.splitext(args.output)[1].lower()
@@ -489,7 +489,8 @@ def _export_pockets(args) -> int:
     else:
         labels = atom_labels(read_molecule(args.file, keep_water=args.keep_water), ac.points)
         count = write_pockets_csv(args.output, pockets, labels)
-        print(f"{args.output}: {len(pockets)} pockets, {count:,} lining residues")
+        lining = "atoms" if molecule_extension(Path(args.file)) == ".xyzr" else "residues"
+        print(f"{args.output}: {len(pockets)} pockets, {count:,} lining {lining}")
     return 0
 
 

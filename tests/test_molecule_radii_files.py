@@ -100,6 +100,10 @@ def test_1a8o_as_radii_file_matches_freesasa(tmp_path, kind, capsys):
     assert info["surface_area"] == pytest.approx(total, rel=1e-4)
     if kind == "pqr":
         assert info["pockets"][0]["atoms"][0]["residue"].isalpha()
+    table = tmp_path / "pockets.csv"  # an XYZR file has no residues: its rows are atoms
+    assert main(["export", str(path), "-o", str(table), "--pockets"]) == 0
+    lining = "residues" if kind == "pqr" else "atoms"
+    assert capsys.readouterr().out.endswith(f" lining {lining}\n")
 
 
 @pytest.mark.parametrize(("name", "radii"), [("m.pqr", "the file's radii"),
