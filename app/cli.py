@@ -65,7 +65,8 @@ def _common(sub: argparse.ArgumentParser) -> None:
     sub.add_argument("--no-cache", action="store_true", help="rebuild, ignore the table cache")
     sub.add_argument("--backend", choices=("qhull", "gmsh"),
                      help="triangulation backend (default: gmsh where installed and exact, "
-                          "else qhull)")
+                          "else qhull; weighted points: geogram where built, which "
+                          "qhull overrides)")
     sizes = sub.add_mutually_exclusive_group()
     sizes.add_argument("--weights", metavar="COLUMN",
                        help="weighted points: squared radii from this column")
@@ -466,11 +467,14 @@ def _export_pockets(args) -> int:
     """`export --pockets`: a molecule's pockets at alpha² = 0 as VTU or CSV."""
     from app.pocket_export import write_pockets_csv, write_pockets_vtu
     from core.export.targets import refuse_source
-    from core.io.molecule import atom_labels, read_molecule
+    from core.io.molecule import atom_labels, molecule_extension, read_molecule
     from core.molecule.analysis import measure_molecule
 
     ext = os.path.splitext(args.output)[1].lower()
-    if not is_molecule(args) or ext not in (".vtu", ".csv") or args.table:
+    if not is_molecule(args):
+        raise UsageError(f"--pockets needs a molecule file (.pdb, .cif, .pqr, .xyzr...), "
+                         f"not {os.path.basename(args.file)}")
+    if ext not in (".vtu", ".csv") or args.table:
         raise UsageError("--pockets writes a molecule's pockets to .vtu or .csv")
     try:
         refuse_source(args.output, args.file)
@@ -485,7 +489,8 @@ def _export_pockets(args) -> int:
     else:
         labels = atom_labels(read_molecule(args.file, keep_water=args.keep_water), ac.points)
         count = write_pockets_csv(args.output, pockets, labels)
-        print(f"{args.output}: {len(pockets)} pockets, {count:,} lining residues")
+        lining = "atoms" if molecule_extension(Path(args.file)) == ".xyzr" else "residues"
+        print(f"{args.output}: {len(pockets)} pockets, {count:,} lining {lining}")
     return 0
 
 

@@ -8,6 +8,7 @@ one. The dock keeps its width whatever the text, so the 3D view beside it never 
 from __future__ import annotations
 
 import html
+from pathlib import Path
 
 import numpy as np
 from PySide6.QtCore import QSize, Qt
@@ -16,6 +17,7 @@ from PySide6.QtWidgets import QFrame, QLabel, QScrollArea, QSizePolicy, QVBoxLay
 from app.model import ExplorerModel
 from app.numbers import coordinate, plural, quantity, with_unit
 from app.row_labels import RowLabels
+from core.io.molecule import RADII_READERS, molecule_extension
 from core.query.classes import INTERIOR, REGULAR, SINGULAR
 
 BETTI_NAMES = {2: ("component", "hole"), 3: ("component", "tunnel", "void")}
@@ -55,10 +57,13 @@ def data_lines(model: ExplorerModel) -> list[str]:
 
 
 def weights_line(ds) -> str:
-    """What the balls' radii are: a molecule's atoms (Bondi van der Waals radii + the probe),
-    else where the weights came from; and how many balls are hidden (none: not said)."""
+    """What the balls' radii are: a molecule's atoms (Bondi van der Waals radii, or a PQR or
+    XYZR file's own, + the probe), else where the weights came from; and how many balls are
+    hidden (none: not said)."""
     if ds.is_molecule:
-        text = f"atoms as balls: van der Waals radii (Bondi) + probe {ds.probe:g} Å"
+        own = molecule_extension(Path(ds.path)) in RADII_READERS
+        radii = "the file's radii" if own else "van der Waals radii (Bondi)"
+        text = f"atoms as balls: {radii} + probe {ds.probe:g} Å"
     else:
         text = f"weighted: {getattr(ds.report, 'weights_from', None) or 'given weights'}"
     hidden = int((np.asarray(ds.ac.input_index) < 0).sum())

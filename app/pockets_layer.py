@@ -65,8 +65,10 @@ def pocket_text(pockets, pocket: int, labels: np.ndarray | None) -> str:
     atoms = pockets.atoms[pocket]
     if labels is None:
         return head + "<br>atoms " + ", ".join(str(int(a)) for a in atoms[:RESIDUES_SHOWN])
-    residues = list(dict.fromkeys(" ".join(str(labels[a]).split(":")[:3]) for a in atoms))
+    parts = [str(labels[a]).split(":")[:3] for a in atoms]
+    residues = list(dict.fromkeys(" ".join(p for p in part if p) for part in parts))
+    noun = "residues" if any(len(part) > 1 and part[1] for part in parts) else "atoms"  # XYZR
     more = len(residues) - RESIDUES_SHOWN
-    return (head + f"<br>{len(residues)} residues: "
+    return (head + f"<br>{len(residues)} {noun}: "
             + html.escape(", ".join(residues[:RESIDUES_SHOWN]))
             + (f" … and {more} more" if more > 0 else ""))

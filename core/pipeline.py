@@ -82,10 +82,16 @@ class BuildInfo:
     def describe(self) -> str:
         """One line for people: "backend qhull" (every field that is not empty, name then
         value); the sentinel uncertified -1 is said in words, "not certified (weighted points
-        or an older table)", never printed as a number."""
+        or an older table)", never printed as a number; a weighted geogram build says its
+        predicates are exact (they are) rather than "not certified" with the zero counts of a
+        certification that did not run."""
         fields = {name: value for name, value in self.to_dict().items()
                   if value != "" and (value != 0 or name not in _SAID_WHEN_SET)}
-        if fields.get("uncertified", 0) < 0:
+        if self.backend == "geogram" and self.uncertified < 0:
+            for name in ("exact_predicates", "flips", "uncertified"):
+                del fields[name]
+            fields["triangulated"] = "with its exact predicates (no certification pass)"
+        elif fields.get("uncertified", 0) < 0:
             del fields["uncertified"]
             fields["not_certified"] = "(weighted points or an older table)"
         return ", ".join(f"{name.replace('_', ' ')} {value}" for name, value in fields.items())

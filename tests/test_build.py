@@ -92,3 +92,8 @@ def test_info_reports_the_build(tmp_path, monkeypatch, capsys):
     assert "build       backend qhull, exact predicates " in capsys.readouterr().out
     assert BuildInfo().describe() == ("backend qhull, exact predicates 0, flips 0, "
                                       "not certified (weighted points or an older table)")
+    geogram = BuildInfo("geogram")  # exact predicates: no alarm, no counts of a pass not run
+    assert geogram.describe() == ("backend geogram, triangulated with its exact predicates "
+                                  "(no certification pass)")
+    assert BuildInfo("qhull", "geogram failed: x").describe().endswith("not certified (weighted "
+                                                                      "points or an older table)")

@@ -89,3 +89,16 @@ def test_numpy_warnings_never_print_before_the_error_line(tmp_path, ending):
     assert result.returncode == 1 and result.stdout == ""
     assert len(result.stderr.splitlines()) == 1, result.stderr
     assert result.stderr.startswith("alphascoop: error: ")
+
+
+def test_pockets_of_a_file_that_is_no_molecule(capsys, tmp_path):
+    """`export --pockets` on weighted points that are no molecule says so (it blamed the
+    output's extension, even a right one)."""
+    source = tmp_path / "balls.xyz"
+    rng = np.random.default_rng(5)
+    np.savetxt(source, np.column_stack([rng.random((40, 3)), rng.uniform(0.1, 0.2, 40)]),
+               header="x y z radius", comments="")
+    code = main(["export", str(source), "-o", str(tmp_path / "p.vtu"), "--pockets"])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert "--pockets needs a molecule file" in err and "balls.xyz" in err

@@ -86,3 +86,15 @@ def test_bad_files_are_one_line_errors(tmp_path, name, text):
     assert str(path) in str(err.value) and "\n" not in str(err.value)
     with pytest.raises(FileFormatError):
         read_points(path)
+
+
+def test_report_summary_counts_in_words():
+    """One chain is "1 chain", not "1 chains"."""
+    from core.io.molecule import MoleculeReport
+
+    one = MoleculeReport(path="m.pdb", models=1, chains=1, residues=1, atoms=1, hydrogens=0,
+                         waters_skipped=0, altlocs_skipped=0)
+    assert one.summary().startswith("1 atom (0 H), 1 residue, 1 chain, model 1 of 1;")
+    two = MoleculeReport(path="m.pdb", models=2, chains=2, residues=70, atoms=1556, hydrogens=0,
+                         waters_skipped=0, altlocs_skipped=0)
+    assert two.summary().startswith("1,556 atoms (0 H), 70 residues, 2 chains, model 1 of 2;")

@@ -3,6 +3,7 @@ XYZR gives freesasa's area for those radii; bad lines are one-line errors."""
 
 from __future__ import annotations
 
+import html
 import json
 
 import numpy as np
@@ -50,6 +51,8 @@ def test_xyzr_radii_and_comments(tmp_path):
     mol = read_molecule(path)
     assert mol.vdw_radii.tolist() == [1.5, 1.7, 1.2]
     assert mol.centres.tolist() == [[0, 0, 0], [2.5, 0, 0], [0, 2, 0]]
+    # an XYZR file has no residues or chains: the note does not count one per atom
+    assert mol.report.summary().startswith("3 atoms (0 H), no residues or chains in the file,")
 
 
 @pytest.mark.parametrize(("name", "text", "words"), [
@@ -97,3 +100,42 @@ def test_1a8o_as_radii_file_matches_freesasa(tmp_path, kind, capsys):
     assert info["surface_area"] == pytest.approx(total, rel=1e-4)
     if kind == "pqr":
         assert info["pockets"][0]["atoms"][0]["residue"].isalpha()
+    table = tmp_path / "pockets.csv"  # an XYZR file has no residues: its rows are atoms
+    assert main(["export", str(path), "-o", str(table), "--pockets"]) == 0
+    lining = "residues" if kind == "pqr" else "atoms"
+    assert capsys.readouterr().out.endswith(f" lining {lining}\n")
+
+
+@pytest.mark.parametrize(("name", "radii"), [("m.pqr", "the file's radii"),
+                                             ("m.xyzr", "the file's radii"),
+                                             ("m.pdb.gz", "van der Waals radii (Bondi)")])
+def test_info_dock_names_where_the_radii_came_from(name, radii):
+    """A PQR or XYZR file brings its own radii: the info dock does not call them Bondi's."""
+    from types import SimpleNamespace
+
+    from app.info_panel import weights_line
+
+    ds = SimpleNamespace(is_molecule=True, probe=1.4, path=name,
+                         ac=SimpleNamespace(input_index=np.arange(3)))
+    assert weights_line(ds) == html.escape(f"atoms as balls: {radii} + probe 1.4 Å")
+
+
+def test_pocket_text_of_atoms_without_residues():
+    """A pocket of an XYZR file (no chains, no residue names) lists its atoms' numbers, not
+    "residues" padded with the empty names."""
+    from app.pockets_layer import pocket_text
+
+    class OnePocket:
+        volume, area, mouth_area, atoms = [55.0], [62.3], [32.0], [[1, 0]]
+
+        def mouths(self, pocket):
+            return [0]
+
+        def __len__(self):
+            return 1
+
+    pockets = OnePocket()
+    xyzr = pocket_text(pockets, 0, np.array(["::1:", "::2:"]))
+    assert xyzr.endswith("<br>2 atoms: 2, 1")
+    pdb = pocket_text(pockets, 0, np.array(["A:CYS:218:SG", "A:GLY:220:CA"]))
+    assert pdb.endswith("<br>2 residues: A GLY 220, A CYS 218")

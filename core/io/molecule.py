@@ -50,8 +50,15 @@ class MoleculeReport:
                    f"alternate-location atoms skipped")
         extra = (f"; unknown elements {', '.join(self.unknown_elements)} given radius "
                  f"{UNKNOWN_RADIUS} Å" if self.unknown_elements else "")
-        return (f"{self.atoms:,} atoms ({self.hydrogens:,} H), {self.residues:,} residues, "
-                f"{self.chains:,} chains, model 1 of {self.models}; {skipped}{extra}")
+        groups = (f"{_count(self.residues, 'residue')}, {_count(self.chains, 'chain')}"
+                  if self.chains else "no residues or chains in the file")  # XYZR
+        return (f"{_count(self.atoms, 'atom')} ({self.hydrogens:,} H), {groups}, "
+                f"model 1 of {self.models}; {skipped}{extra}")
+
+
+def _count(count: int, noun: str) -> str:
+    """'1 chain', '2 chains'."""
+    return f"{count:,} {noun}{'' if count == 1 else 's'}"
 
 
 @dataclass(frozen=True, eq=False)
