@@ -44,8 +44,10 @@ SPLIT_FROM_POINTS = 50_000
 
 
 #: From this many points the gmsh backend triangulates in two halves, one in a child process
-#: (its start costs about 0.4 s of the other core; gmsh takes some 1 s per 100k points).
-GMSH_SPLIT_FROM_POINTS = 200_000
+#: (its start costs about 0.4 s of the other core; gmsh takes some 1 s per 100k points). At
+#: 200k one call was as fast with a fifth less CPU; from 350k the halves were faster
+#: (benchmarks/experiments/backend_thresholds.py).
+GMSH_SPLIT_FROM_POINTS = 350_000
 KD_LEAF = 64  # points per leaf of the other half's tree: big spheres search faster
 
 
