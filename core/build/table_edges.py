@@ -116,14 +116,14 @@ def _incidences(keys: np.ndarray, tri_ids: np.ndarray, is_start: np.ndarray,
     def part(lo: int, hi: int) -> None:
         t = tri_ids[lo:hi]
         if order is not None:  # row 3 t + j: edge j (01, 02, 12) is opposite vertex 2 - j
-            local = t.astype(np.int64)
-            local *= -3
-            local += order[lo:hi]
-            np.subtract(2, local, out=local)
+            opposite = t.astype(np.int64)  # becomes the vertex opposite each edge
+            opposite *= -3
+            opposite += order[lo:hi]  # j
+            np.subtract(2, opposite, out=opposite)
             if inside is not None:
-                inside[lo:hi] = (np.take(bits, t) >> local) & 1
+                inside[lo:hi] = (np.take(bits, t) >> opposite) & 1
             edge_of = np.cumsum(is_start[lo:hi], dtype=np.int64) + (int(base[lo // size]) - 1)
-            face_ids[3 * t.astype(np.int64) + local] = edge_of
+            face_ids[3 * t.astype(np.int64) + opposite] = edge_of
             return
         a = keys[lo:hi] // m  # a floor division by a constant: much faster than divmod
         b = keys[lo:hi] - a * m

@@ -55,8 +55,19 @@ def _finite(xyz: np.ndarray, path: Path, first: int) -> np.ndarray:
     return xyz[np.isfinite(xyz).all(axis=1)]
 
 
+class _Unprojected:
+    """A streamed file's points are never projected: their dimension is the file's."""
+
+    dim: int
+
+    @property
+    def ambient_dim(self) -> int:
+        """Dimension of the file's points (the same as `dim`)."""
+        return self.dim
+
+
 @dataclass(frozen=True)
-class TextSource:
+class TextSource(_Unprojected):
     """A delimited text file (XYZ, TXT, CSV, PTS) read `chunk` lines at a time."""
 
     path: Path
@@ -83,11 +94,6 @@ class TextSource:
         """Dimension of the points (2 or 3 coordinate columns)."""
         return len(self.usecols)
 
-    @property
-    def ambient_dim(self) -> int:
-        """Dimension of the file's points (never projected: the same as `dim`)."""
-        return self.dim
-
     def chunks(self) -> Iterator[tuple[np.ndarray, None]]:
         """(coords, None) chunks in file order."""
         with _readable(self.path):
@@ -98,7 +104,7 @@ class TextSource:
 
 
 @dataclass(frozen=True)
-class PlySource:
+class PlySource(_Unprojected):
     """A PLY file's vertices (ASCII or binary, without list properties) read in chunks."""
 
     path: Path
@@ -123,11 +129,6 @@ class PlySource:
     def dim(self) -> int:
         """Dimension of the points (x, y and z if the vertices have it)."""
         return len(self.axes)
-
-    @property
-    def ambient_dim(self) -> int:
-        """Dimension of the file's points (never projected: the same as `dim`)."""
-        return self.dim
 
     def chunks(self) -> Iterator[tuple[np.ndarray, None]]:
         """(coords, None) chunks in file order, each value through its property's type (as
