@@ -153,7 +153,7 @@ def run(copies: int, size: tuple[int, int]) -> dict:
 
     def forget_view() -> None:
         """The new-view way finds its balls again at its next render (a moved camera)."""
-        fresh.key = None
+        fresh.forget_view()
 
     result = {"atoms": len(mol["centres"]), "balls_n": len(points),
               "drawn": int(mol["exposed"].sum()), "size": size,

@@ -161,6 +161,10 @@ class SeenBalls:
             if drawn is not balls and drawn is not self.subset:  # identity, not pyvista's ==
                 self._set_input(balls)
 
+    def forget_view(self) -> None:
+        """Find the seen balls again at the next still render, as after a moved camera."""
+        self.key = None
+
     def _id_pass(self) -> IdPass:
         """The id pass (made on first use)."""
         if self._pass is None:

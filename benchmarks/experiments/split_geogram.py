@@ -5,7 +5,7 @@
 A measurement behind a decision, not part of the build: on the random ball packings of
 benchmarks/bench_weighted.py, the best of `reps` runs of
 - geogram in one call (core.backends.geogram.regular_cells, what weighted builds do),
-- core.backends.split with geogram's halves (split._cells patched; geogram runs one call at a
+- core.backends.split with geogram's halves (split.subset_cells patched; geogram runs one call at a
   time, so the halves follow each other) and, from the same run, what it would take with the
   halves at once: the split minus its faster half,
 - Qhull's split (what weighted builds did before, on two threads).
@@ -53,7 +53,7 @@ def main() -> int:
     if not geogram.available():
         print("geogram's library is not built")
         return 1
-    qhull_cells = split._cells
+    qhull_cells = split.subset_cells
     halves: list[float] = []
 
     def geogram_cells(points, weights, ids):
@@ -66,17 +66,19 @@ def main() -> int:
         points, weights = scaled(n)
         whole = best(args.reps, lambda p=points, w=weights: compacted(
             *geogram.regular_cells(p, w), len(p)))
-        split._cells = geogram_cells
+        split.subset_cells = geogram_cells
         runs = []
-        for _ in range(args.reps):
-            halves.clear()
-            start = time.perf_counter()
-            result = split.split_triangulation(points, weights)
-            total = time.perf_counter() - start
-            assert not isinstance(result, str), result
-            faster = sorted(halves)[-2]  # of the two halves (the band's call is smaller)
-            runs.append((total, total - faster))
-        split._cells = qhull_cells
+        try:
+            for _ in range(args.reps):
+                halves.clear()
+                start = time.perf_counter()
+                result = split.split_triangulation(points, weights)
+                total = time.perf_counter() - start
+                assert not isinstance(result, str), result
+                faster = sorted(halves)[-2]  # of the two halves (the band's call is smaller)
+                runs.append((total, total - faster))
+        finally:
+            split.subset_cells = qhull_cells
         total, at_once = min(runs)
         qhull = best(args.reps, lambda p=points, w=weights: split.split_triangulation(p, w))
         print(f"{n:,} balls: geogram one call {whole:.3f} s; split with geogram halves "

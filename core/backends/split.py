@@ -78,9 +78,10 @@ class _Half:
     out: np.ndarray
 
 
-def _cells(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray
+def subset_cells(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray
            ) -> tuple[np.ndarray, np.ndarray]:
-    """Qhull's cells of points[ids] (weighted: regular) in point ids, and their neighbours."""
+    """Qhull's cells of points[ids] (weighted: regular) in point ids, and their neighbours
+    (each half's and the band's triangulation)."""
     if weights is None:
         cells, nbrs = delaunay_cells(points[ids])
     else:
@@ -172,7 +173,7 @@ def _half(points: np.ndarray, weights: np.ndarray | None, ids: np.ndarray,
           other: np.ndarray, axis: int, ahead: bool) -> _Half:
     """Qhull's triangulation of points[ids]; the cells found empty of points[other], which
     lie beyond ids along `axis` (ahead: at larger coordinates)."""
-    cells, nbrs = _cells(points, weights, ids)
+    cells, nbrs = subset_cells(points, weights, ids)
     in_half = np.zeros(len(points), dtype=bool)
     in_half[cells.ravel()] = True
     out = ids[~in_half[ids]]
@@ -239,7 +240,7 @@ def _band(points: np.ndarray, weights: np.ndarray | None, cells: np.ndarray,
     covered = np.zeros(len(points), dtype=bool)
     covered[cells.ravel()] = True
     band = np.union1d(np.unique(outer), np.flatnonzero(~covered & ~hidden))
-    simplices, around = _cells(points, weights, band)
+    simplices, around = subset_cells(points, weights, band)
     seen = np.zeros(len(points), dtype=bool)
     seen[simplices.ravel()] = True
     hidden[band[~seen[band]]] = True
